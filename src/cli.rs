@@ -1,0 +1,90 @@
+//! The `ppo-tutor` command line: argument definitions (clap) and dispatch.
+//!
+//! `src/main.rs` only calls [`main_with_args`]; every subcommand lives in its own
+//! module under `cli/` and returns an [`anyhow::Result`] so errors reach the user
+//! with context, never as a panic.
+
+use std::ffi::OsString;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+pub mod args;
+pub mod cartpole;
+
+/// Learn Proximal Policy Optimization by running it: a terminal tutor over a native
+/// CartPole-v1 and a candle PPO identical to the seed's PyTorch code.
+#[derive(Debug, Parser)]
+#[command(name = "ppo-tutor", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do; with none, the tutor starts.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run the native CartPole: reset with a seed, apply actions, print the trajectory.
+    Cartpole(cartpole::CartpoleArgs),
+    /// Print the lesson plan, one lesson per line.
+    Lessons,
+}
+
+/// Exit code for bad command-line input (as clap uses).
+pub const EXIT_USAGE: u8 = 2;
+
+/// Parses `args` and runs the command; the binary's whole `main`.
+pub fn main_with_args<I, T>(args: I) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(err) => return report_clap_error(&err),
+    };
+    match run(cli) {
+        Ok(code) => code,
+        Err(err) => {
+            eprintln!("error: {err:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Prints help and version as clap does; usage errors as one line, exit code 2.
+fn report_clap_error(err: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match err.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = err.print();
+            ExitCode::SUCCESS
+        }
+        _ => {
+            let rendered = err.render().to_string();
+            let line = rendered
+                .lines()
+                .find(|l| !l.trim().is_empty())
+                .unwrap_or("error: invalid arguments");
+            eprintln!("{line} (see --help)");
+            ExitCode::from(EXIT_USAGE)
+        }
+    }
+}
+
+/// Runs a parsed command line.
+///
+/// # Errors
+/// Whatever the subcommand reports (bad files, invalid settings, I/O).
+pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        Some(Command::Cartpole(args)) => cartpole::run(&args),
+        Some(Command::Lessons) | None => {
+            println!("ppo-tutor: the lesson plan follows (the terminal walkthrough is coming).");
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}

@@ -1,0 +1,213 @@
+//! `ppo-tutor cartpole`: run the native CartPole and print what Gymnasium would.
+
+use std::io::Write;
+use std::process::ExitCode;
+use std::time::Duration;
+
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+
+use super::args::{ActionList, parse_actions, parse_env, parse_seed};
+use crate::env::{CartPoleConfig, EnvId, Integrator, Policy, Trajectory};
+
+/// Arguments of `ppo-tutor cartpole`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  ppo-tutor cartpole --seed 0 --actions 0,1,1,0 --json\n  ppo-tutor cartpole --seed 3 --policy lean --render"
+)]
+pub struct CartpoleArgs {
+    /// Seed for reset(seed=...), any integer from 0 to 2^64-1.
+    #[arg(long, default_value = "0", value_parser = parse_seed, allow_hyphen_values = true)]
+    pub seed: u64,
+    /// Actions to apply in order, comma-separated 0 (left) / 1 (right); '' only resets.
+    #[arg(long, value_parser = parse_actions, conflicts_with = "policy", allow_hyphen_values = true)]
+    pub actions: Option<ActionList>,
+    /// Pick actions with a policy instead of --actions.
+    #[arg(long, value_enum)]
+    pub policy: Option<PolicyArg>,
+    /// Most steps a --policy plays (the time limit also ends the episode).
+    #[arg(long, default_value_t = 500)]
+    pub max_steps: usize,
+    /// Gymnasium environment id: CartPole-v1 (500-step limit) or CartPole-v0 (200).
+    #[arg(long = "env", default_value = "CartPole-v1", value_parser = parse_env)]
+    pub env_id: EnvId,
+    /// Use semi-implicit Euler instead of Gymnasium's default explicit Euler.
+    #[arg(long)]
+    pub semi_implicit: bool,
+    /// Gymnasium's sutton_barto_reward: 0 per step, -1 when the pole falls.
+    #[arg(long)]
+    pub sutton_barto_reward: bool,
+    /// Also record the states of N further unseeded resets (as `next_resets`).
+    #[arg(long, default_value_t = 0)]
+    pub resets: usize,
+    /// Print one JSON object in the schema of Gymnasium's fixture traces.
+    #[arg(long, conflicts_with = "render")]
+    pub json: bool,
+    /// Animate the cart and pole in the terminal instead of printing a table.
+    #[arg(long)]
+    pub render: bool,
+}
+
+/// The `--policy` choices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PolicyArg {
+    /// Uniformly random actions (seeded by --seed).
+    Random,
+    /// Push towards the pole's lean, with 10% random actions: long episodes.
+    Lean,
+}
+
+/// Runs `ppo-tutor cartpole`.
+///
+/// # Errors
+/// Writing to standard output failed, or JSON encoding failed.
+pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
+    let mut config = CartPoleConfig::new(args.env_id);
+    if args.semi_implicit {
+        config.integrator = Integrator::SemiImplicitEuler;
+    }
+    config.sutton_barto_reward = args.sutton_barto_reward;
+    let (policy, max_steps) = match (&args.actions, args.policy) {
+        (Some(ActionList(list)), _) => (Policy::Actions(list.clone()), list.len()),
+        (None, Some(PolicyArg::Random)) => (Policy::Random, args.max_steps),
+        (None, Some(PolicyArg::Lean)) => (Policy::Lean, args.max_steps),
+        (None, None) => {
+            eprintln!("error: give --actions 0,1,... or --policy random|lean (see --help)");
+            return Ok(ExitCode::from(super::EXIT_USAGE));
+        }
+    };
+    let t = Trajectory::record(config, args.seed, &policy, max_steps, args.resets)
+        .context("recording the episode")?;
+    if let Policy::Actions(list) = &policy {
+        if t.actions.len() < list.len() {
+            eprintln!(
+                "note: the episode ended after {} of the {} actions; the rest were not applied",
+                t.actions.len(),
+                list.len()
+            );
+        }
+    }
+    if args.json {
+        let mut value = serde_json::to_value(&t).context("encoding the trajectory")?;
+        if let Some(map) = value.as_object_mut() {
+            map.insert("env".into(), args.env_id.as_str().into());
+            if args.resets > 0 && !map.contains_key("next_resets") {
+                map.insert("next_resets".into(), serde_json::Value::Array(vec![]));
+            }
+        }
+        println!("{value}");
+    } else if args.render {
+        render(&t, args.env_id)?;
+    } else {
+        print_table(&t, args.env_id)?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn print_table(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "{env_id}, reset(seed={})", t.seed)?;
+    writeln!(
+        out,
+        "{:>5} {:>6} {:>11} {:>11} {:>11} {:>11} {:>6}  {}",
+        "step", "action", "x", "x_dot", "theta", "theta_dot", "reward", "end"
+    )?;
+    let o = t.reset_obs;
+    writeln!(
+        out,
+        "{:>5} {:>6} {:>11.6} {:>11.6} {:>11.6} {:>11.6} {:>6}",
+        0, "-", o[0], o[1], o[2], o[3], "-"
+    )?;
+    for (i, o) in t.obs.iter().enumerate() {
+        let end = match (t.terminated[i], t.truncated[i]) {
+            (true, true) => "terminated+truncated",
+            (true, false) => "terminated",
+            (false, true) => "truncated",
+            (false, false) => "",
+        };
+        let action = if t.actions[i] == 1 { "right" } else { "left" };
+        writeln!(
+            out,
+            "{:>5} {:>6} {:>11.6} {:>11.6} {:>11.6} {:>11.6} {:>6.1}  {end}",
+            i + 1,
+            action,
+            o[0],
+            o[1],
+            o[2],
+            o[3],
+            t.rewards[i]
+        )?;
+    }
+    writeln!(
+        out,
+        "return {} over {} steps",
+        t.episode_return(),
+        t.actions.len()
+    )?;
+    for (i, s) in t.next_resets.iter().enumerate() {
+        writeln!(out, "next reset {}: {:?}", i + 1, s)?;
+    }
+    Ok(())
+}
+
+/// Draws the cart and pole as text, one frame per state.
+#[must_use]
+pub fn ascii_frame(state: [f64; 4], width: usize) -> Vec<String> {
+    let height = 9_usize;
+    let width = width.max(20);
+    let mut grid = vec![vec![' '; width]; height];
+    let x_to_col = |x: f64| -> isize {
+        let frac = (x + 2.4) / 4.8;
+        (frac * (width as f64 - 1.0)).round() as isize
+    };
+    let cart_col = x_to_col(state[0]);
+    let track_row = height - 1;
+    grid[track_row].fill('─');
+    let cart_row = height - 2;
+    for dc in -2..=2 {
+        let c = cart_col + dc;
+        if (0..width as isize).contains(&c) {
+            grid[cart_row][c as usize] = '█';
+        }
+    }
+    // The pole: from the cart's top, length 6 rows, leaning by theta (x stretched 2x for aspect).
+    let theta = state[2];
+    for k in 1..=12 {
+        let r = k as f64 * 0.5;
+        let row = cart_row as f64 - r * theta.cos();
+        let col = cart_col as f64 + 2.0 * r * theta.sin();
+        let (row, col) = (row.round() as isize, col.round() as isize);
+        if (0..height as isize).contains(&row) && (0..width as isize).contains(&col) {
+            grid[row as usize][col as usize] = '●';
+        }
+    }
+    grid.into_iter().map(|r| r.into_iter().collect()).collect()
+}
+
+fn render(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
+    let mut out = std::io::stdout().lock();
+    let frames = std::iter::once(t.reset_state).chain(t.states.iter().copied());
+    for (i, state) in frames.enumerate() {
+        let lines = ascii_frame(state, 64);
+        if i > 0 {
+            write!(out, "\x1b[{}A", lines.len() + 1)?;
+        }
+        writeln!(
+            out,
+            "{env_id} seed {} step {i:>3}  x={:+.3} θ={:+.3}      ",
+            t.seed, state[0], state[2]
+        )?;
+        for line in lines {
+            writeln!(out, "{line}")?;
+        }
+        out.flush()?;
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    writeln!(
+        out,
+        "return {} over {} steps",
+        t.episode_return(),
+        t.actions.len()
+    )?;
+    Ok(())
+}

@@ -1,0 +1,44 @@
+//! The native CartPole: Gymnasium 1.4.0's `CartPole-v1` (and `-v0`), bit for bit.
+//!
+//! - [`CartPole`]: one environment with Gymnasium's `reset(seed)` / `step(action)`.
+//! - [`CartPoleVec`]: many environments stepped together, for throughput.
+//! - [`seeding`]: numpy's `SeedSequence` → `PCG64` → `uniform`, so seeds give Gymnasium's states.
+
+pub mod cartpole;
+pub mod seeding;
+pub mod trace;
+pub mod vector;
+
+pub use cartpole::{CartPole, CartPoleConfig, EnvId, Integrator, Step};
+pub use trace::{Policy, Trajectory};
+pub use vector::{CartPoleVec, VecStep};
+
+/// What can go wrong when using a CartPole.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EnvError {
+    /// `step` was called before the first `reset`.
+    #[error("step() called before reset(): call reset(seed) first")]
+    NotReset,
+    /// CartPole has two actions.
+    #[error("invalid action {0}: CartPole's actions are 0 (push left) and 1 (push right)")]
+    InvalidAction(usize),
+    /// An environment id this crate does not provide.
+    #[error("unknown environment id '{0}': use CartPole-v1 or CartPole-v0")]
+    UnknownEnv(String),
+    /// Reset bounds that are not finite or have `low > high`.
+    #[error("invalid reset bounds low={low}, high={high}: need finite low <= high")]
+    InvalidBounds {
+        /// The lower bound given.
+        low: f64,
+        /// The upper bound given.
+        high: f64,
+    },
+    /// A vector step got the wrong number of actions.
+    #[error("expected {expected} actions (one per environment), got {got}")]
+    ActionCount {
+        /// The number of environments.
+        expected: usize,
+        /// The number of actions passed.
+        got: usize,
+    },
+}

@@ -1,0 +1,172 @@
+//! `CartPoleVec`: N CartPoles stepped together, for throughput.
+//!
+//! The states are kept as a struct of arrays (`x[i]`, `x_dot[i]`, ...), every
+//! environment has its own numpy-compatible generator, and an environment whose
+//! episode ends is reset in the same call (its terminal observation is kept in
+//! [`VecStep::final_obs`]). Environment `i` of `CartPoleVec::new(config, n, seed)`
+//! produces exactly the numbers of a single [`CartPole`](super::CartPole) reset
+//! with `Some(seed + i)` and then with `None` after every episode.
+//!
+//! ```
+//! use ppo_tutor::env::{CartPoleConfig, CartPoleVec, EnvId};
+//! let mut envs = CartPoleVec::new(CartPoleConfig::new(EnvId::CartPoleV1), 8, 0);
+//! let out = envs.step(&[1; 8])?;
+//! assert_eq!(out.rewards, vec![1.0; 8]);
+//! # Ok::<(), ppo_tutor::env::EnvError>(())
+//! ```
+
+use super::EnvError;
+use super::cartpole::{CartPoleConfig, Integrator, is_terminated, physics};
+use super::seeding::NumpyRng;
+
+/// What one vector step returns, one entry per environment.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct VecStep {
+    /// Observations after the step; for an environment that just ended, the first
+    /// observation of its next episode.
+    pub obs: Vec<[f32; 4]>,
+    /// Rewards of this step.
+    pub rewards: Vec<f64>,
+    /// Whether each environment terminated on this step.
+    pub terminated: Vec<bool>,
+    /// Whether each environment was truncated by the time limit on this step.
+    pub truncated: Vec<bool>,
+    /// The terminal observation of each environment that ended on this step.
+    pub final_obs: Vec<Option<[f32; 4]>>,
+}
+
+/// N CartPoles with automatic reset, stored as a struct of arrays.
+#[derive(Debug, Clone)]
+pub struct CartPoleVec {
+    config: CartPoleConfig,
+    x: Vec<f64>,
+    x_dot: Vec<f64>,
+    theta: Vec<f64>,
+    theta_dot: Vec<f64>,
+    elapsed: Vec<u32>,
+    rngs: Vec<NumpyRng>,
+    out: VecStep,
+}
+
+impl CartPoleVec {
+    /// `n` environments, environment `i` reset with seed `seed + i` (wrapping).
+    #[must_use]
+    pub fn new(config: CartPoleConfig, n: usize, seed: u64) -> Self {
+        let mut envs = Self {
+            config,
+            x: vec![0.0; n],
+            x_dot: vec![0.0; n],
+            theta: vec![0.0; n],
+            theta_dot: vec![0.0; n],
+            elapsed: vec![0; n],
+            rngs: (0..n as u64)
+                .map(|i| NumpyRng::from_seed(seed.wrapping_add(i)))
+                .collect(),
+            out: VecStep {
+                obs: vec![[0.0; 4]; n],
+                rewards: vec![0.0; n],
+                terminated: vec![false; n],
+                truncated: vec![false; n],
+                final_obs: vec![None; n],
+            },
+        };
+        for i in 0..n {
+            envs.reset_one(i);
+        }
+        envs
+    }
+
+    /// How many environments there are.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    /// True when there are no environments.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+
+    /// The current observations (after the last step or the initial reset).
+    #[must_use]
+    pub fn obs(&self) -> &[[f32; 4]] {
+        &self.out.obs
+    }
+
+    /// The f64 state of environment `i`.
+    #[must_use]
+    pub fn state(&self, i: usize) -> Option<[f64; 4]> {
+        Some([
+            *self.x.get(i)?,
+            self.x_dot[i],
+            self.theta[i],
+            self.theta_dot[i],
+        ])
+    }
+
+    fn reset_one(&mut self, i: usize) {
+        let (low, high) = self.config.reset_bounds;
+        let rng = &mut self.rngs[i];
+        self.x[i] = rng.uniform(low, high);
+        self.x_dot[i] = rng.uniform(low, high);
+        self.theta[i] = rng.uniform(low, high);
+        self.theta_dot[i] = rng.uniform(low, high);
+        self.elapsed[i] = 0;
+        self.out.obs[i] = self.obs_of(i);
+    }
+
+    fn obs_of(&self, i: usize) -> [f32; 4] {
+        [
+            self.x[i] as f32,
+            self.x_dot[i] as f32,
+            self.theta[i] as f32,
+            self.theta_dot[i] as f32,
+        ]
+    }
+
+    /// Steps every environment with its action, resetting those whose episode ends.
+    ///
+    /// # Errors
+    /// [`EnvError::ActionCount`] if `actions.len() != self.len()`;
+    /// [`EnvError::InvalidAction`] for an action other than 0 or 1 (nothing is stepped then).
+    pub fn step(&mut self, actions: &[usize]) -> Result<&VecStep, EnvError> {
+        if actions.len() != self.len() {
+            return Err(EnvError::ActionCount {
+                expected: self.len(),
+                got: actions.len(),
+            });
+        }
+        if let Some(&bad) = actions.iter().find(|&&a| a > 1) {
+            return Err(EnvError::InvalidAction(bad));
+        }
+        let integrator: Integrator = self.config.integrator;
+        let limit = self.config.env_id.max_episode_steps();
+        let reward = if self.config.sutton_barto_reward { 0.0 } else { 1.0 };
+        for (i, &action) in actions.iter().enumerate() {
+            let s = physics(
+                [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]],
+                action,
+                integrator,
+            );
+            [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]] = s;
+            let terminated = is_terminated(&s);
+            self.elapsed[i] += 1;
+            let truncated = self.elapsed[i] >= limit;
+            self.out.terminated[i] = terminated;
+            self.out.truncated[i] = truncated;
+            self.out.rewards[i] = match (terminated, self.config.sutton_barto_reward) {
+                (true, true) => -1.0,
+                _ => reward,
+            };
+            if terminated || truncated {
+                self.out.final_obs[i] = Some(self.obs_of(i));
+                self.reset_one(i);
+            } else {
+                self.out.final_obs[i] = None;
+                self.out.obs[i] = self.obs_of(i);
+            }
+        }
+        Ok(&self.out)
+    }
+}

@@ -1,0 +1,13 @@
+//! # ppo-tutor
+//!
+//! Learn Proximal Policy Optimization by running it. The crate is an engine with faces:
+//!
+//! - [`env`]: a native CartPole-v1 identical to Gymnasium's (same states, bit for bit, same seeds).
+//! - `ppo`: the seed's PPO (*Hands-on RL*, `task_PPO.py`) on candle, same numbers as PyTorch.
+//! - [`cli`]: the `ppo-tutor` command line (the binary only parses arguments and calls it).
+//!
+//! The engine never imports a face; the terminal app, the notebooks and the graders all
+//! drive the same engine.
+
+pub mod cli;
+pub mod env;
