@@ -11,6 +11,7 @@ use clap::{Parser, Subcommand};
 
 pub mod args;
 pub mod cartpole;
+pub mod lessons;
 
 /// Learn Proximal Policy Optimization by running it: a terminal tutor over a native
 /// CartPole-v1 and a candle PPO identical to the seed's PyTorch code.
@@ -27,8 +28,10 @@ pub struct Cli {
 pub enum Command {
     /// Run the native CartPole: reset with a seed, apply actions, print the trajectory.
     Cartpole(cartpole::CartpoleArgs),
-    /// Print the lesson plan, one lesson per line.
+    /// List the lessons, one `id<TAB>title` per line, in order.
     Lessons,
+    /// Print one lesson step (or all steps) as plain text with its live values.
+    Show(lessons::ShowArgs),
 }
 
 /// Exit code for bad command-line input (as clap uses).
@@ -82,8 +85,10 @@ fn report_clap_error(err: &clap::Error) -> ExitCode {
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Some(Command::Cartpole(args)) => cartpole::run(&args),
-        Some(Command::Lessons) | None => {
-            println!("ppo-tutor: the lesson plan follows (the terminal walkthrough is coming).");
+        Some(Command::Lessons) => lessons::list(),
+        Some(Command::Show(args)) => lessons::show(&args),
+        None => {
+            crate::tui::run()?;
             Ok(ExitCode::SUCCESS)
         }
     }

@@ -3,7 +3,9 @@
 //! Learn Proximal Policy Optimization by running it. The crate is an engine with faces:
 //!
 //! - [`env`]: a native CartPole-v1 identical to Gymnasium's (same states, bit for bit, same seeds).
-//! - `ppo`: the seed's PPO (*Hands-on RL*, `task_PPO.py`) on candle, same numbers as PyTorch.
+//! - [`ppo`]: the seed's PPO (*Hands-on RL*, `task_PPO.py`) on candle, same numbers as PyTorch.
+//! - [`lesson`]: the course as data (`lessons/`, embedded), code anchors, live values, progress.
+//! - [`tui`]: the terminal app (ratatui), training on a worker thread.
 //! - [`cli`]: the `ppo-tutor` command line (the binary only parses arguments and calls it).
 //!
 //! The engine never imports a face; the terminal app, the notebooks and the graders all
@@ -11,3 +13,6 @@
 
 pub mod cli;
 pub mod env;
+pub mod lesson;
+pub mod ppo;
+pub mod tui;

@@ -78,14 +78,14 @@ pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
     };
     let t = Trajectory::record(config, args.seed, &policy, max_steps, args.resets)
         .context("recording the episode")?;
-    if let Policy::Actions(list) = &policy {
-        if t.actions.len() < list.len() {
-            eprintln!(
-                "note: the episode ended after {} of the {} actions; the rest were not applied",
-                t.actions.len(),
-                list.len()
-            );
-        }
+    if let Policy::Actions(list) = &policy
+        && t.actions.len() < list.len()
+    {
+        eprintln!(
+            "note: the episode ended after {} of the {} actions; the rest were not applied",
+            t.actions.len(),
+            list.len()
+        );
     }
     if args.json {
         let mut value = serde_json::to_value(&t).context("encoding the trajectory")?;
@@ -109,8 +109,8 @@ fn print_table(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
     writeln!(out, "{env_id}, reset(seed={})", t.seed)?;
     writeln!(
         out,
-        "{:>5} {:>6} {:>11} {:>11} {:>11} {:>11} {:>6}  {}",
-        "step", "action", "x", "x_dot", "theta", "theta_dot", "reward", "end"
+        "{:>5} {:>6} {:>11} {:>11} {:>11} {:>11} {:>6}  end",
+        "step", "action", "x", "x_dot", "theta", "theta_dot", "reward"
     )?;
     let o = t.reset_obs;
     writeln!(

@@ -199,6 +199,7 @@ pub fn physics(state: [f64; 4], action: usize, integrator: Integrator) -> [f64; 
 // ANCHOR: termination
 /// Gymnasium's termination test, on the f64 state.
 #[must_use]
+#[allow(clippy::manual_range_contains)] // Gymnasium's exact comparisons (NaN included)
 pub fn is_terminated(state: &[f64; 4]) -> bool {
     let [x, _, theta, _] = *state;
     x < -X_THRESHOLD

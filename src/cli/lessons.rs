@@ -1,0 +1,173 @@
+//! `ppo-tutor lessons` and `ppo-tutor show`: the course as plain text, for scripts,
+//! screen readers and logs.
+
+use std::fmt::Write as _;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+
+use crate::lesson::{Course, Snapshot, anchor};
+use crate::ppo::{PpoConfig, Trainer, moving_average};
+use crate::tui::app::set_hyper;
+
+/// Arguments of `ppo-tutor show`.
+#[derive(Debug, Args)]
+pub struct ShowArgs {
+    /// The lesson id, as `ppo-tutor lessons` lists it (e.g. td-target).
+    pub id: String,
+    /// The step to show, from 1; all steps when omitted.
+    #[arg(long)]
+    pub step: Option<usize>,
+    /// Episodes to train before showing live values (the latest episode's update is shown).
+    #[arg(long, default_value_t = 1)]
+    pub episodes: usize,
+    /// Seed of the agent and the environment.
+    #[arg(long, default_value = "0", value_parser = super::args::parse_seed)]
+    pub seed: u64,
+}
+
+/// Prints `id<TAB>title`, one lesson per line, in order.
+///
+/// # Errors
+/// The embedded lessons are invalid (a build that passed its tests never is).
+pub fn list() -> anyhow::Result<ExitCode> {
+    let course = Course::embedded().context("loading the embedded lessons")?;
+    for l in &course.lessons {
+        println!("{}\t{}", l.id, l.title);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Trains `episodes` episodes and returns what the tutor would show after them.
+///
+/// # Errors
+/// Invalid settings or a diverged run.
+pub fn live_snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::Result<Snapshot> {
+    let mut snapshot = Snapshot::default();
+    set_hyper(&mut snapshot, &config, seed);
+    let mut trainer = Trainer::new(config, seed)?;
+    for _ in 0..episodes {
+        let Some(report) = trainer.next_episode()? else {
+            break;
+        };
+        snapshot.episodes = report.episode + 1;
+        snapshot.returns.push(report.episode_return);
+        let agent = trainer.agent();
+        snapshot.probs = report
+            .trace
+            .states
+            .iter()
+            .map(|s| {
+                let p = agent.probs(s);
+                [
+                    p.first().copied().unwrap_or(f32::NAN),
+                    p.get(1).copied().unwrap_or(f32::NAN),
+                ]
+            })
+            .collect();
+        snapshot.trace = Some(report.trace);
+    }
+    snapshot.moving_average = moving_average(&snapshot.returns, 9).unwrap_or_default();
+    snapshot.weights = trainer
+        .agent()
+        .weights()
+        .map(|w| w.into_iter().map(|(n, t)| (n, t.shape, t.data)).collect())
+        .unwrap_or_default();
+    Ok(snapshot)
+}
+
+/// Renders one step as plain text with its live values.
+#[must_use]
+pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snapshot) -> String {
+    let mut out = String::new();
+    let Some(l) = course.lessons.get(lesson) else {
+        return out;
+    };
+    let Some(s) = l.steps.get(step) else {
+        return out;
+    };
+    let _ = writeln!(
+        out,
+        "# {} — step {}/{}: {}\n",
+        l.title,
+        step + 1,
+        l.steps.len(),
+        s.title
+    );
+    let _ = writeln!(out, "{}\n", s.body);
+    if !s.python.is_empty() {
+        let _ = writeln!(out, "## The seed (PyTorch)\n{}\n", s.python);
+    }
+    if let Some((path, code)) = (!s.code.is_empty())
+        .then(|| anchor::find(&s.code))
+        .flatten()
+    {
+        let _ = writeln!(out, "## ppo-tutor (src/{path})\n{code}\n");
+    }
+    for name in &s.show {
+        match snapshot.tensor(name) {
+            Some(t) if !t.labels.is_empty() => {
+                let _ = writeln!(out, "## {name}");
+                for label in &t.labels {
+                    let _ = writeln!(out, "  {label}");
+                }
+            }
+            Some(t) => {
+                let stats = t.stats().map_or(String::new(), |(lo, hi, mean)| {
+                    format!(" min {lo:.6} max {hi:.6} mean {mean:.6}")
+                });
+                let _ = writeln!(out, "## {name} {}{stats}", t.shape_text());
+                let cols = t.cols();
+                for (row, chunk) in t.values.chunks(cols).enumerate().take(20) {
+                    let vals: Vec<String> = chunk.iter().map(|v| format!("{v:.6}")).collect();
+                    let _ = writeln!(out, "  [{row}] {}", vals.join(" "));
+                }
+                if t.values.len() / cols > 20 {
+                    let _ = writeln!(out, "  ... ({} rows)", t.values.len() / cols);
+                }
+            }
+            None if crate::lesson::VIEWS.contains(&name.as_str()) => {
+                let _ = writeln!(out, "## {name}: a picture in the terminal app (ppo-tutor)");
+            }
+            None => {
+                let _ = writeln!(out, "## {name}: not available yet");
+            }
+        }
+    }
+    out
+}
+
+/// Runs `ppo-tutor show`.
+///
+/// # Errors
+/// Training failed; unknown ids and steps are reported with exit code 2.
+pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
+    let course = Course::embedded().context("loading the embedded lessons")?;
+    let Some(index) = course.index_of(&args.id) else {
+        let ids: Vec<&str> = course.lessons.iter().map(|l| l.id.as_str()).collect();
+        eprintln!(
+            "error: unknown lesson '{}' for <ID>: expected one of {}",
+            args.id,
+            ids.join(", ")
+        );
+        return Ok(ExitCode::from(super::EXIT_USAGE));
+    };
+    let steps = course.lessons[index].steps.len();
+    let range = match args.step {
+        Some(n) if n == 0 || n > steps => {
+            eprintln!(
+                "error: --step {n} is out of range: lesson '{}' has steps 1 to {steps}",
+                args.id
+            );
+            return Ok(ExitCode::from(super::EXIT_USAGE));
+        }
+        Some(n) => n - 1..n,
+        None => 0..steps,
+    };
+    let snapshot = live_snapshot(PpoConfig::default(), args.seed, args.episodes.max(1))?;
+    for step in range {
+        print!("{}", render_step(&course, index, step, &snapshot));
+    }
+    Ok(ExitCode::SUCCESS)
+}

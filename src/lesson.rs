@@ -1,0 +1,67 @@
+//! Lessons as data: the course the tutor, the headless commands and the notebooks share.
+//!
+//! A lesson is a folder `lessons/NN-slug/` holding `lesson.md`: TOML front matter
+//! between `+++` lines (id, title, summary, one `[[steps]]` table per step naming the
+//! seed's Python line, the Rust code anchor and the live values it shows, and an
+//! optional `[exercise]`), then a markdown body split into steps by `## ` headings.
+//! The folders are embedded in the binary, so an installed `ppo-tutor` works anywhere.
+//!
+//! - [`loader`]: parsing and validation ([`Course::embedded`]).
+//! - [`anchor`]: Rust code pulled from `src/` by `// ANCHOR: name` markers.
+//! - [`progress`]: where the learner is, saved atomically.
+
+pub mod anchor;
+pub mod live;
+pub mod loader;
+pub mod progress;
+
+use serde::Deserialize;
+
+pub use live::{Mark, Snapshot, TensorView};
+pub use loader::{Course, LessonError};
+pub use progress::Progress;
+
+/// One lesson: a folder of `lessons/`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lesson {
+    /// The stable id (the folder name without its `NN-` prefix), e.g. `td-target`.
+    pub id: String,
+    /// The title shown in lists and headers.
+    pub title: String,
+    /// One sentence for the lesson list.
+    pub summary: String,
+    /// The position in the course, from the folder's `NN-` prefix.
+    pub order: u32,
+    /// The steps, in order.
+    pub steps: Vec<Step>,
+    /// The exercise the learner writes in this lesson, if any.
+    pub exercise: Option<Exercise>,
+}
+
+/// One step of a lesson: an explanation, the code that runs, and live values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// The step's heading.
+    pub title: String,
+    /// The seed's Python line(s) this step explains (may be empty).
+    pub python: String,
+    /// The anchor name of the Rust code shown (may be empty).
+    pub code: String,
+    /// Live values and views shown beside the text (`td_target`, `plot`, ...).
+    pub show: Vec<String>,
+    /// The explanation, in markdown.
+    pub body: String,
+}
+
+/// The exercise attached to a lesson.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+pub struct Exercise {
+    /// The function the learner writes (also the name on the command line).
+    pub name: String,
+    /// Hints, from gentle to nearly the answer.
+    #[serde(default)]
+    pub hints: Vec<String>,
+}
+
+/// Views a step can show instead of a tensor.
+pub const VIEWS: [&str; 3] = ["plot", "cartpole", "clip_chart"];

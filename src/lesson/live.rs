@@ -1,0 +1,391 @@
+//! Live values: the named tensors a lesson step shows, taken from the running agent.
+//!
+//! A [`Snapshot`] is what the tutor knows after the latest episode and update: the
+//! hyper-parameters, the episode's batch and every intermediate of the update
+//! ([`UpdateTrace`]), the action probabilities, the return curve. [`Snapshot::tensor`]
+//! turns a name from a lesson's `show` list into a [`TensorView`] with its shape,
+//! dtype, values and the entries that matter marked (clipped ratios, done flags, the
+//! sign of the advantage).
+
+use crate::ppo::UpdateTrace;
+
+/// Every live value name a lesson may show (views such as `plot` are listed in [`super::VIEWS`]).
+pub const NAMES: [&str; 28] = [
+    "hyper",
+    "weights",
+    "probs",
+    "obs",
+    "states",
+    "actions",
+    "rewards",
+    "next_states",
+    "dones",
+    "terminated",
+    "truncated",
+    "values",
+    "next_values",
+    "td_target",
+    "td_delta",
+    "advantage",
+    "old_log_probs",
+    "log_probs",
+    "ratio",
+    "surr1",
+    "surr2",
+    "clipped",
+    "actor_loss",
+    "critic_loss",
+    "approx_kl",
+    "clip_frac",
+    "returns",
+    "moving_average",
+];
+
+/// Whether `name` is a live value the tutor can show.
+#[must_use]
+pub fn is_known(name: &str) -> bool {
+    NAMES.contains(&name)
+}
+
+/// How an entry is highlighted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Mark {
+    /// Nothing special.
+    #[default]
+    Plain,
+    /// A ratio outside `[1 − ε, 1 + ε]`: the clip is active.
+    Clipped,
+    /// A step whose `done` flag is set (the TD target drops `V(s')`).
+    Done,
+    /// A positive advantage (the action did better than expected).
+    Positive,
+    /// A negative advantage.
+    Negative,
+}
+
+/// One tensor, ready to display.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TensorView {
+    /// The name, as in the seed's code.
+    pub name: String,
+    /// The shape, PyTorch-style (`(N, 1)` columns stay two-dimensional).
+    pub shape: Vec<usize>,
+    /// The element type, as PyTorch would print it.
+    pub dtype: &'static str,
+    /// Row labels for key/value tables (`hyper`), empty for numeric tensors.
+    pub labels: Vec<String>,
+    /// The values, row-major.
+    pub values: Vec<f64>,
+    /// One mark per value.
+    pub marks: Vec<Mark>,
+}
+
+impl TensorView {
+    fn new(name: &str, shape: Vec<usize>, dtype: &'static str, values: Vec<f64>) -> Self {
+        let marks = vec![Mark::Plain; values.len()];
+        Self {
+            name: name.into(),
+            shape,
+            dtype,
+            labels: Vec::new(),
+            values,
+            marks,
+        }
+    }
+
+    fn column(name: &str, values: &[f32]) -> Self {
+        Self::new(
+            name,
+            vec![values.len(), 1],
+            "float32",
+            values.iter().map(|&v| f64::from(v)).collect(),
+        )
+    }
+
+    fn rows(name: &str, rows: &[[f32; 4]]) -> Self {
+        let values = rows.iter().flatten().map(|&v| f64::from(v)).collect();
+        Self::new(name, vec![rows.len(), 4], "float32", values)
+    }
+
+    fn flags(name: &str, flags: &[bool]) -> Self {
+        let mut t = Self::new(
+            name,
+            vec![flags.len(), 1],
+            "float32",
+            flags.iter().map(|&d| if d { 1.0 } else { 0.0 }).collect(),
+        );
+        t.marks = flags
+            .iter()
+            .map(|&d| if d { Mark::Done } else { Mark::Plain })
+            .collect();
+        t
+    }
+
+    /// Columns per displayed row (the last dimension, 1 for vectors and scalars).
+    #[must_use]
+    pub fn cols(&self) -> usize {
+        if self.shape.len() >= 2 {
+            self.shape[self.shape.len() - 1].max(1)
+        } else {
+            1
+        }
+    }
+
+    /// `(min, max, mean)` of the finite values, `None` when there are none.
+    #[must_use]
+    pub fn stats(&self) -> Option<(f64, f64, f64)> {
+        let finite: Vec<f64> = self
+            .values
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .collect();
+        if finite.is_empty() {
+            return None;
+        }
+        let min = finite.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = finite.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        Some((min, max, finite.iter().sum::<f64>() / finite.len() as f64))
+    }
+
+    /// How many entries carry `mark`.
+    #[must_use]
+    pub fn count(&self, mark: Mark) -> usize {
+        self.marks.iter().filter(|&&m| m == mark).count()
+    }
+
+    /// A one-line shape description, like `(149, 1) float32`.
+    #[must_use]
+    pub fn shape_text(&self) -> String {
+        let dims: Vec<String> = self.shape.iter().map(ToString::to_string).collect();
+        let shape = match dims.len() {
+            0 => "()".to_string(),
+            1 => format!("({},)", dims[0]),
+            _ => format!("({})", dims.join(", ")),
+        };
+        format!("{shape} {}", self.dtype)
+    }
+}
+
+/// What the tutor knows after the latest episode and update.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Snapshot {
+    /// The hyper-parameters in force, as `(name, value)` in the seed's order.
+    pub hyper: Vec<(String, String)>,
+    /// Episodes finished so far.
+    pub episodes: usize,
+    /// Every episode's return, in order.
+    pub returns: Vec<f64>,
+    /// The seed's `moving_average(returns, 9)`, same length as `returns`.
+    pub moving_average: Vec<f64>,
+    /// The latest update's batch and intermediates.
+    pub trace: Option<UpdateTrace>,
+    /// `π(·|s_t)` over the latest batch, before the update.
+    pub probs: Vec<[f32; 2]>,
+    /// Gymnasium's `terminated` for each step of the latest episode.
+    pub terminated: Vec<bool>,
+    /// Gymnasium's `truncated` for each step of the latest episode.
+    pub truncated: Vec<bool>,
+    /// The actor's and critic's parameters: `(name, shape, values)`.
+    pub weights: Vec<(String, Vec<usize>, Vec<f32>)>,
+    /// The clip range ε in force (for marking clipped ratios).
+    pub eps: f32,
+}
+
+impl Snapshot {
+    /// The view of live value `name`, `None` if nothing has been computed for it yet.
+    #[must_use]
+    pub fn tensor(&self, name: &str) -> Option<TensorView> {
+        if let Some(t) = self.scalar_or_curve(name) {
+            return Some(t);
+        }
+        let trace = self.trace.as_ref()?;
+        let last = trace.epochs.last();
+        let first = trace.epochs.first();
+        Some(match name {
+            "states" => TensorView::rows(name, &trace.states),
+            "obs" | "next_states" => TensorView::rows(name, &trace.next_states),
+            "actions" => TensorView::new(
+                name,
+                vec![trace.actions.len(), 1],
+                "int64",
+                trace.actions.iter().map(|&a| a as f64).collect(),
+            ),
+            "rewards" => TensorView::column(name, &trace.rewards),
+            "dones" => TensorView::flags(name, &trace.dones),
+            "values" => TensorView::column(name, &trace.values),
+            "next_values" => TensorView::column(name, &trace.next_values),
+            "td_target" => TensorView::column(name, &trace.td_target),
+            "td_delta" => signed(TensorView::column(name, &trace.td_delta)),
+            "advantage" => signed(TensorView::column(name, &trace.advantage)),
+            "old_log_probs" => TensorView::column(name, &trace.old_log_probs),
+            "log_probs" => TensorView::column(name, &last?.log_probs),
+            "ratio" => self.ratio_view(name, last?),
+            "surr1" => TensorView::column(name, &last?.surr1),
+            "surr2" => TensorView::column(name, &last?.surr2),
+            "clipped" => {
+                let mut t = TensorView::flags(name, &last?.clipped);
+                t.dtype = "bool";
+                t.marks = last?
+                    .clipped
+                    .iter()
+                    .map(|&c| if c { Mark::Clipped } else { Mark::Plain })
+                    .collect();
+                t
+            }
+            "actor_loss" => epoch_series(name, &trace.epochs, |e| e.actor_loss),
+            "critic_loss" => epoch_series(name, &trace.epochs, |e| e.critic_loss),
+            "approx_kl" => epoch_series(name, &trace.epochs, |e| e.approx_kl),
+            "clip_frac" => epoch_series(name, &trace.epochs, |e| e.clip_fraction),
+            _ => {
+                let _ = first;
+                return None;
+            }
+        })
+    }
+
+    fn scalar_or_curve(&self, name: &str) -> Option<TensorView> {
+        match name {
+            "hyper" => {
+                let mut t = TensorView::new(
+                    name,
+                    vec![self.hyper.len()],
+                    "",
+                    vec![f64::NAN; self.hyper.len()],
+                );
+                t.labels = self
+                    .hyper
+                    .iter()
+                    .map(|(k, v)| format!("{k} = {v}"))
+                    .collect();
+                Some(t)
+            }
+            "returns" if !self.returns.is_empty() => Some(TensorView::new(
+                name,
+                vec![self.returns.len()],
+                "float64",
+                self.returns.clone(),
+            )),
+            "moving_average" if !self.moving_average.is_empty() => Some(TensorView::new(
+                name,
+                vec![self.moving_average.len()],
+                "float64",
+                self.moving_average.clone(),
+            )),
+            "probs" if !self.probs.is_empty() => {
+                let values = self.probs.iter().flatten().map(|&p| f64::from(p)).collect();
+                Some(TensorView::new(
+                    name,
+                    vec![self.probs.len(), 2],
+                    "float32",
+                    values,
+                ))
+            }
+            "terminated" if !self.terminated.is_empty() => {
+                Some(TensorView::flags(name, &self.terminated))
+            }
+            "truncated" if !self.truncated.is_empty() => {
+                Some(TensorView::flags(name, &self.truncated))
+            }
+            "weights" if !self.weights.is_empty() => {
+                let mut t = TensorView::new(name, vec![self.weights.len()], "", vec![]);
+                for (n, shape, values) in &self.weights {
+                    let norm = values
+                        .iter()
+                        .map(|v| f64::from(*v).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    let dims: Vec<String> = shape.iter().map(ToString::to_string).collect();
+                    t.labels
+                        .push(format!("{n} ({}) ‖·‖ = {norm:.4}", dims.join(", ")));
+                    t.values.push(norm);
+                    t.marks.push(Mark::Plain);
+                }
+                t.shape = vec![t.labels.len()];
+                Some(t)
+            }
+            _ => None,
+        }
+    }
+
+    fn ratio_view(&self, name: &str, epoch: &crate::ppo::EpochTrace) -> TensorView {
+        let mut t = TensorView::column(name, &epoch.ratio);
+        t.marks = epoch
+            .clipped
+            .iter()
+            .map(|&c| if c { Mark::Clipped } else { Mark::Plain })
+            .collect();
+        t
+    }
+}
+
+/// Marks each entry by its sign.
+fn signed(mut t: TensorView) -> TensorView {
+    t.marks = t
+        .values
+        .iter()
+        .map(|&v| {
+            if v > 0.0 {
+                Mark::Positive
+            } else if v < 0.0 {
+                Mark::Negative
+            } else {
+                Mark::Plain
+            }
+        })
+        .collect();
+    t
+}
+
+/// A per-epoch scalar as a vector over epochs (`(epochs,)`).
+fn epoch_series(
+    name: &str,
+    epochs: &[crate::ppo::EpochTrace],
+    f: impl Fn(&crate::ppo::EpochTrace) -> f32,
+) -> TensorView {
+    let values: Vec<f64> = epochs.iter().map(|e| f64::from(f(e))).collect();
+    TensorView::new(name, vec![values.len()], "float32", values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ppo::EpochTrace;
+
+    fn snapshot() -> Snapshot {
+        let trace = UpdateTrace {
+            dones: vec![false, true],
+            advantage: vec![0.5, -0.25],
+            epochs: vec![EpochTrace {
+                ratio: vec![1.3, 0.95],
+                clipped: vec![true, false],
+                ..EpochTrace::default()
+            }],
+            ..UpdateTrace::default()
+        };
+        Snapshot {
+            trace: Some(trace),
+            eps: 0.2,
+            ..Snapshot::default()
+        }
+    }
+
+    #[test]
+    fn marks_follow_the_data() -> Result<(), &'static str> {
+        let s = snapshot();
+        let ratio = s.tensor("ratio").ok_or("no ratio")?;
+        assert_eq!(ratio.marks, vec![Mark::Clipped, Mark::Plain]);
+        let adv = s.tensor("advantage").ok_or("no advantage")?;
+        assert_eq!(adv.marks, vec![Mark::Positive, Mark::Negative]);
+        let dones = s.tensor("dones").ok_or("no dones")?;
+        assert_eq!(dones.count(Mark::Done), 1);
+        assert_eq!(adv.shape_text(), "(2, 1) float32");
+        Ok(())
+    }
+
+    #[test]
+    fn every_name_is_known_and_unknown_names_are_not() {
+        assert!(NAMES.iter().all(|n| is_known(n)));
+        assert!(!is_known("td_targets"));
+    }
+}

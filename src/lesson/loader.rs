@@ -1,0 +1,276 @@
+//! Parsing and validating `lessons/`: front matter, steps, and their references.
+
+use include_dir::{Dir, include_dir};
+use serde::Deserialize;
+
+use super::{Exercise, Lesson, Step, VIEWS, anchor};
+
+static LESSONS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/lessons");
+
+/// A lesson file that cannot be used, with where and how to fix it.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum LessonError {
+    /// The folder name does not start with a two-digit order, like `07-td-target`.
+    #[error("lessons/{dir}: folder name must be NN-slug (two digits, a dash, the id)")]
+    BadFolderName {
+        /// The folder.
+        dir: String,
+    },
+    /// `lesson.md` is missing from a lesson folder.
+    #[error("lessons/{dir}/lesson.md: missing; every lesson folder needs one")]
+    MissingFile {
+        /// The folder.
+        dir: String,
+    },
+    /// The front matter is absent or not valid TOML.
+    #[error("lessons/{dir}/lesson.md: front matter: {reason}")]
+    FrontMatter {
+        /// The folder.
+        dir: String,
+        /// What is wrong, from the TOML parser or the format check.
+        reason: String,
+    },
+    /// The body's `## ` headings do not match the `[[steps]]` tables.
+    #[error("lessons/{dir}/lesson.md: step {index}: {reason}")]
+    StepMismatch {
+        /// The folder.
+        dir: String,
+        /// The 1-based step.
+        index: usize,
+        /// What differs.
+        reason: String,
+    },
+    /// A step names a code anchor or a live value that does not exist.
+    #[error("lessons/{dir}/lesson.md: step {index}: unknown {kind} '{name}'")]
+    UnknownReference {
+        /// The folder.
+        dir: String,
+        /// The 1-based step.
+        index: usize,
+        /// `code anchor` or `live value`.
+        kind: &'static str,
+        /// The name used.
+        name: String,
+    },
+    /// Two lessons share an id, or an id does not match its folder.
+    #[error("lessons/{dir}: {reason}")]
+    BadId {
+        /// The folder.
+        dir: String,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FrontMatter {
+    id: String,
+    title: String,
+    #[serde(default)]
+    summary: String,
+    #[serde(default)]
+    steps: Vec<StepMeta>,
+    exercise: Option<Exercise>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StepMeta {
+    title: String,
+    #[serde(default)]
+    python: String,
+    #[serde(default)]
+    code: String,
+    #[serde(default)]
+    show: Vec<String>,
+}
+
+/// The whole course, in order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Course {
+    /// The lessons, sorted by their `NN-` prefix.
+    pub lessons: Vec<Lesson>,
+}
+
+impl Course {
+    /// The course embedded in the binary at build time.
+    ///
+    /// # Errors
+    /// The first lesson file that fails to parse (the content test catches this first).
+    pub fn embedded() -> Result<Self, LessonError> {
+        let mut folders: Vec<(&str, Option<&str>)> = LESSONS
+            .dirs()
+            .map(|d| {
+                let name = d.path().file_name().and_then(|n| n.to_str()).unwrap_or("");
+                let text = d
+                    .get_file(d.path().join("lesson.md"))
+                    .and_then(|f| f.contents_utf8());
+                (name, text)
+            })
+            .collect();
+        folders.sort_by(|a, b| a.0.cmp(b.0));
+        let lessons = folders
+            .into_iter()
+            .map(|(dir, text)| {
+                let text = text.ok_or_else(|| LessonError::MissingFile { dir: dir.into() })?;
+                parse_lesson(dir, text)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let course = Self { lessons };
+        course.check_ids()?;
+        Ok(course)
+    }
+
+    fn check_ids(&self) -> Result<(), LessonError> {
+        let mut seen = std::collections::BTreeSet::new();
+        for l in &self.lessons {
+            if !seen.insert(&l.id) {
+                return Err(LessonError::BadId {
+                    dir: format!("{:02}-{}", l.order, l.id),
+                    reason: format!("id '{}' is used by two lessons", l.id),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The lesson with `id`.
+    #[must_use]
+    pub fn get(&self, id: &str) -> Option<&Lesson> {
+        self.lessons.iter().find(|l| l.id == id)
+    }
+
+    /// The position of lesson `id` in the course.
+    #[must_use]
+    pub fn index_of(&self, id: &str) -> Option<usize> {
+        self.lessons.iter().position(|l| l.id == id)
+    }
+
+    /// Total number of steps over all lessons.
+    #[must_use]
+    pub fn total_steps(&self) -> usize {
+        self.lessons.iter().map(|l| l.steps.len()).sum()
+    }
+}
+
+/// Splits `+++\n<toml>\n+++\n<body>`.
+fn split_front_matter(text: &str) -> Option<(&str, &str)> {
+    let rest = text.strip_prefix("+++")?.trim_start_matches('\r');
+    let rest = rest.strip_prefix('\n')?;
+    let end = rest.find("\n+++")?;
+    let body = rest[end + 4..].trim_start_matches(['\r', '\n']);
+    Some((&rest[..end], body))
+}
+
+/// Splits a markdown body into `(heading, text)` pairs at `## ` headings.
+fn split_steps(body: &str) -> Vec<(String, String)> {
+    let mut steps: Vec<(String, String)> = Vec::new();
+    for line in body.lines() {
+        if let Some(title) = line.strip_prefix("## ") {
+            steps.push((title.trim().to_string(), String::new()));
+        } else if let Some((_, text)) = steps.last_mut() {
+            text.push_str(line);
+            text.push('\n');
+        }
+    }
+    for (_, text) in &mut steps {
+        *text = text.trim().to_string();
+    }
+    steps
+}
+
+/// Parses one `lesson.md` from folder `dir` and checks its references.
+///
+/// # Errors
+/// A [`LessonError`] naming the folder, the step and the fix.
+pub fn parse_lesson(dir: &str, text: &str) -> Result<Lesson, LessonError> {
+    let (order, slug) = dir
+        .split_once('-')
+        .and_then(|(n, slug)| Some((n.parse::<u32>().ok().filter(|_| n.len() == 2)?, slug)))
+        .ok_or_else(|| LessonError::BadFolderName { dir: dir.into() })?;
+    let (front, body) = split_front_matter(text).ok_or_else(|| LessonError::FrontMatter {
+        dir: dir.into(),
+        reason: "the file must start with a '+++' line and close it with another".into(),
+    })?;
+    let meta: FrontMatter = toml::from_str(front).map_err(|e| LessonError::FrontMatter {
+        dir: dir.into(),
+        reason: e.message().to_string(),
+    })?;
+    if meta.id != slug {
+        return Err(LessonError::BadId {
+            dir: dir.into(),
+            reason: format!("id '{}' must equal the folder's slug '{slug}'", meta.id),
+        });
+    }
+    let bodies = split_steps(body);
+    if bodies.len() != meta.steps.len() {
+        return Err(LessonError::StepMismatch {
+            dir: dir.into(),
+            index: bodies.len().min(meta.steps.len()) + 1,
+            reason: format!(
+                "{} [[steps]] tables but {} '## ' headings",
+                meta.steps.len(),
+                bodies.len()
+            ),
+        });
+    }
+    let steps = meta
+        .steps
+        .into_iter()
+        .zip(bodies)
+        .enumerate()
+        .map(|(i, (m, (heading, body)))| check_step(dir, i + 1, m, &heading, body))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Lesson {
+        id: meta.id,
+        title: meta.title,
+        summary: meta.summary,
+        order,
+        steps,
+        exercise: meta.exercise,
+    })
+}
+
+fn check_step(
+    dir: &str,
+    index: usize,
+    meta: StepMeta,
+    heading: &str,
+    body: String,
+) -> Result<Step, LessonError> {
+    if meta.title != heading {
+        return Err(LessonError::StepMismatch {
+            dir: dir.into(),
+            index,
+            reason: format!("title '{}' but heading '## {heading}'", meta.title),
+        });
+    }
+    if !meta.code.is_empty() && anchor::find(&meta.code).is_none() {
+        return Err(LessonError::UnknownReference {
+            dir: dir.into(),
+            index,
+            kind: "code anchor",
+            name: meta.code,
+        });
+    }
+    if let Some(bad) = meta
+        .show
+        .iter()
+        .find(|n| !VIEWS.contains(&n.as_str()) && !super::live::is_known(n))
+    {
+        return Err(LessonError::UnknownReference {
+            dir: dir.into(),
+            index,
+            kind: "live value",
+            name: bad.clone(),
+        });
+    }
+    Ok(Step {
+        title: meta.title,
+        python: meta.python.trim().to_string(),
+        code: meta.code,
+        show: meta.show,
+        body,
+    })
+}

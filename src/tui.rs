@@ -1,0 +1,152 @@
+//! The terminal app: the tutorial step by step, with live tensors and live plots.
+//!
+//! - [`app`]: state and its one `update`; [`keys`]: key map; [`ui`]: drawing only;
+//!   [`theme`]: styles (`NO_COLOR` aware); [`widgets`]: plot, cart-pole, clip chart, tensors.
+//! - [`worker`]: training on its own thread, talking to the UI over channels.
+//!
+//! The loop waits on one channel of [`Event`]s fed by an input thread, a ticker and the
+//! worker, so the UI never blocks on training.
+
+pub mod app;
+pub mod keys;
+pub mod theme;
+pub mod ui;
+pub mod widgets;
+pub mod worker;
+
+use std::io::IsTerminal;
+use std::sync::mpsc::{self, Sender};
+use std::time::Duration;
+
+use anyhow::Context;
+use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, MouseEventKind};
+
+use crate::lesson::{Course, Progress};
+use app::App;
+use keys::Action;
+use worker::{Command, WorkerEvent};
+
+/// What the event loop reacts to.
+#[derive(Debug)]
+pub enum Event {
+    /// A key, mouse or resize event from the terminal.
+    Input(event::Event),
+    /// Animation tick.
+    Tick,
+    /// A message from the training worker.
+    Worker(WorkerEvent),
+}
+
+/// Frames per second of the cart-pole animation.
+const TICK: Duration = Duration::from_millis(50);
+
+/// Runs the tutor in the terminal until the learner quits.
+///
+/// # Errors
+/// No terminal attached, the lessons cannot be loaded, or terminal I/O fails.
+pub fn run() -> anyhow::Result<()> {
+    if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
+        anyhow::bail!(
+            "ppo-tutor needs an interactive terminal; without one, use `ppo-tutor lessons` and `ppo-tutor show <id> [--step N]`"
+        );
+    }
+    let course = Course::embedded().context("loading the embedded lessons")?;
+    let path = Progress::default_path();
+    let (progress, warning) = Progress::load(&path);
+    let mut app = App::new(course, progress, Some(path));
+    if let Some(w) = warning {
+        app.status = w;
+    }
+    let (tx, rx) = mpsc::channel::<Event>();
+    let (cmd_tx, cmd_rx) = mpsc::channel::<Command>();
+    let (worker_tx, worker_rx) = mpsc::channel::<WorkerEvent>();
+    let worker = worker::spawn(app.config.clone(), app.seed, cmd_rx, worker_tx);
+    forward(worker_rx, tx.clone());
+    spawn_input(tx.clone());
+    spawn_ticker(tx);
+    let theme = theme::Theme::from_env();
+    let mut terminal = ratatui::init();
+    let _ = crossterm::execute!(std::io::stdout(), EnableMouseCapture);
+    // Start with one episode so every live value has something to show.
+    let _ = cmd_tx.send(Command::OneEpisode);
+    let result = event_loop(&mut terminal, &mut app, theme, &rx, &cmd_tx);
+    let _ = crossterm::execute!(std::io::stdout(), DisableMouseCapture);
+    ratatui::restore();
+    let _ = cmd_tx.send(Command::Quit);
+    let _ = worker.join();
+    app.save_progress();
+    result
+}
+
+fn event_loop(
+    terminal: &mut ratatui::DefaultTerminal,
+    app: &mut App,
+    theme: theme::Theme,
+    rx: &mpsc::Receiver<Event>,
+    cmd_tx: &Sender<Command>,
+) -> anyhow::Result<()> {
+    loop {
+        terminal.draw(|f| f.render_widget(&ui::View { app, theme }, f.area()))?;
+        let Ok(event) = rx.recv() else { return Ok(()) };
+        handle(app, event);
+        // Drain whatever else is queued before redrawing.
+        while let Ok(event) = rx.try_recv() {
+            handle(app, event);
+        }
+        for command in app.outbox.drain(..) {
+            let _ = cmd_tx.send(command);
+        }
+        if app.quit {
+            return Ok(());
+        }
+    }
+}
+
+/// Applies one event to the app.
+pub fn handle(app: &mut App, event: Event) {
+    match event {
+        Event::Tick => app.tick(),
+        Event::Worker(w) => app.on_worker(w),
+        Event::Input(event::Event::Key(key)) => {
+            let overlay = app.overlay != app::Overlay::None && app.overlay != app::Overlay::Help;
+            let sandbox = matches!(app.overlay, app::Overlay::Sandbox(_));
+            if let Some(action) = keys::map(key, overlay, sandbox) {
+                app.update(action);
+            }
+        }
+        Event::Input(event::Event::Mouse(m)) => match m.kind {
+            MouseEventKind::ScrollDown => app.update(Action::ScrollDown),
+            MouseEventKind::ScrollUp => app.update(Action::ScrollUp),
+            _ => {}
+        },
+        Event::Input(_) => {}
+    }
+}
+
+fn forward(rx: mpsc::Receiver<WorkerEvent>, tx: Sender<Event>) {
+    std::thread::spawn(move || {
+        for e in rx {
+            if tx.send(Event::Worker(e)).is_err() {
+                return;
+            }
+        }
+    });
+}
+
+fn spawn_input(tx: Sender<Event>) {
+    std::thread::spawn(move || {
+        while let Ok(e) = event::read() {
+            if tx.send(Event::Input(e)).is_err() {
+                return;
+            }
+        }
+    });
+}
+
+fn spawn_ticker(tx: Sender<Event>) {
+    std::thread::spawn(move || {
+        while tx.send(Event::Tick).is_ok() {
+            std::thread::sleep(TICK);
+        }
+    });
+}

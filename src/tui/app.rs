@@ -1,0 +1,445 @@
+//! The app's state and its one `update`: every key and worker event goes through here.
+
+use std::path::PathBuf;
+
+use crate::lesson::{Course, Lesson, Progress, Snapshot, Step};
+use crate::ppo::PpoConfig;
+use crate::ppo::moving_average;
+
+use super::keys::Action;
+use super::worker::{Command, EpisodeData, WorkerEvent};
+
+/// Which overlay covers the lesson, if any.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Overlay {
+    /// None: the lesson step.
+    #[default]
+    None,
+    /// The key map.
+    Help,
+    /// The lesson list; the field is the highlighted row.
+    Lessons(usize),
+    /// The sandbox; the field is the highlighted setting.
+    Sandbox(usize),
+}
+
+/// Whether the worker is training.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TrainState {
+    /// Waiting for `t` or `e`.
+    #[default]
+    Paused,
+    /// Training episode after episode.
+    Running,
+    /// The configured number of episodes is done.
+    Finished,
+}
+
+/// The sandbox's editable settings, in display order.
+pub const SANDBOX_FIELDS: [&str; 9] = [
+    "eps",
+    "gamma",
+    "lmbda",
+    "actor_lr",
+    "critic_lr",
+    "seed",
+    "bootstrap_on_truncation",
+    "normalize_advantage",
+    "env",
+];
+
+/// Everything the app shows and remembers.
+#[derive(Debug)]
+pub struct App {
+    /// The course.
+    pub course: Course,
+    /// Current lesson index.
+    pub lesson: usize,
+    /// Current step index within the lesson.
+    pub step: usize,
+    /// Scroll offset of the explanation.
+    pub text_scroll: u16,
+    /// Scroll offset of the live tensors.
+    pub tensor_scroll: usize,
+    /// The open overlay.
+    pub overlay: Overlay,
+    /// Training state.
+    pub train: TrainState,
+    /// The live values from the latest episode.
+    pub snapshot: Snapshot,
+    /// The episode's states for the cart-pole animation, and the frame shown.
+    pub frames: Vec<[f32; 4]>,
+    /// Index into `frames`.
+    pub frame: usize,
+    /// The previous run's returns, overlaid on the plot after a sandbox retrain.
+    pub previous: Option<(String, Vec<f64>)>,
+    /// Hyper-parameters of the current run.
+    pub config: PpoConfig,
+    /// Settings being edited in the sandbox.
+    pub sandbox: PpoConfig,
+    /// Seed of the current run.
+    pub seed: u64,
+    /// Seed being edited in the sandbox.
+    pub sandbox_seed: u64,
+    /// A one-line status message (warnings, errors, confirmations).
+    pub status: String,
+    /// Saved progress.
+    pub progress: Progress,
+    /// Where progress is saved (`None` in tests).
+    pub progress_path: Option<PathBuf>,
+    /// Set when the app should exit.
+    pub quit: bool,
+    /// Commands for the worker, collected by `update` and sent by the event loop.
+    pub outbox: Vec<Command>,
+}
+
+impl App {
+    /// A new app at the saved position (or the first step).
+    #[must_use]
+    pub fn new(course: Course, progress: Progress, progress_path: Option<PathBuf>) -> Self {
+        let config = PpoConfig::default();
+        let lesson = course.index_of(&progress.lesson).unwrap_or(0);
+        let steps = course.lessons.get(lesson).map_or(1, |l| l.steps.len());
+        let step = progress.step.min(steps.saturating_sub(1));
+        let mut snapshot = Snapshot::default();
+        set_hyper(&mut snapshot, &config, 0);
+        Self {
+            course,
+            lesson,
+            step,
+            text_scroll: 0,
+            tensor_scroll: 0,
+            overlay: Overlay::None,
+            train: TrainState::Paused,
+            snapshot,
+            frames: Vec::new(),
+            frame: 0,
+            previous: None,
+            sandbox: config.clone(),
+            config,
+            seed: 0,
+            sandbox_seed: 0,
+            status: String::new(),
+            progress,
+            progress_path,
+            quit: false,
+            outbox: Vec::new(),
+        }
+    }
+
+    /// The open lesson.
+    #[must_use]
+    pub fn current_lesson(&self) -> Option<&Lesson> {
+        self.course.lessons.get(self.lesson)
+    }
+
+    /// The open step.
+    #[must_use]
+    pub fn current_step(&self) -> Option<&Step> {
+        self.current_lesson()?.steps.get(self.step)
+    }
+
+    /// Steps seen before the current one over the whole course, and the total.
+    #[must_use]
+    pub fn position(&self) -> (usize, usize) {
+        let before: usize = self.course.lessons[..self.lesson.min(self.course.lessons.len())]
+            .iter()
+            .map(|l| l.steps.len())
+            .sum();
+        (before + self.step + 1, self.course.total_steps())
+    }
+
+    /// Applies one action from the keyboard or mouse.
+    pub fn update(&mut self, action: Action) {
+        match self.overlay {
+            Overlay::Help => match action {
+                Action::Quit => self.quit(),
+                Action::Help | Action::Back | Action::Enter => self.overlay = Overlay::None,
+                _ => {}
+            },
+            Overlay::Lessons(i) => self.update_lessons(action, i),
+            Overlay::Sandbox(i) => self.update_sandbox(action, i),
+            Overlay::None => self.update_main(action),
+        }
+    }
+
+    fn update_main(&mut self, action: Action) {
+        match action {
+            Action::Quit => self.quit(),
+            Action::Next => self.next_step(),
+            Action::Prev => self.prev_step(),
+            Action::ScrollDown => self.text_scroll = self.text_scroll.saturating_add(1),
+            Action::ScrollUp => self.text_scroll = self.text_scroll.saturating_sub(1),
+            Action::TensorDown => self.tensor_scroll = self.tensor_scroll.saturating_add(5),
+            Action::TensorUp => self.tensor_scroll = self.tensor_scroll.saturating_sub(5),
+            Action::Lessons => self.overlay = Overlay::Lessons(self.lesson),
+            Action::Help => self.overlay = Overlay::Help,
+            Action::Sandbox => {
+                self.sandbox = self.config.clone();
+                self.sandbox_seed = self.seed;
+                self.overlay = Overlay::Sandbox(0);
+            }
+            Action::TrainToggle => self.toggle_training(),
+            Action::OneEpisode => {
+                if self.train != TrainState::Finished {
+                    self.train = TrainState::Paused;
+                    self.outbox.push(Command::OneEpisode);
+                    self.status = "training one episode".into();
+                }
+            }
+            Action::ResetAgent => self.reset_agent(self.config.clone(), self.seed, false),
+            Action::Back
+            | Action::Enter
+            | Action::Up
+            | Action::Down
+            | Action::Increase
+            | Action::Decrease => {}
+        }
+    }
+
+    fn update_lessons(&mut self, action: Action, i: usize) {
+        let n = self.course.lessons.len();
+        match action {
+            Action::Quit => self.quit(),
+            Action::Up | Action::ScrollUp => self.overlay = Overlay::Lessons(i.saturating_sub(1)),
+            Action::Down | Action::ScrollDown => {
+                self.overlay = Overlay::Lessons((i + 1).min(n.saturating_sub(1)))
+            }
+            Action::Enter => {
+                self.go_to(i, 0);
+                self.overlay = Overlay::None;
+            }
+            Action::Lessons | Action::Back => self.overlay = Overlay::None,
+            _ => {}
+        }
+    }
+
+    fn update_sandbox(&mut self, action: Action, i: usize) {
+        let n = SANDBOX_FIELDS.len();
+        match action {
+            Action::Quit => self.quit(),
+            Action::Up | Action::ScrollUp => self.overlay = Overlay::Sandbox(i.saturating_sub(1)),
+            Action::Down | Action::ScrollDown => {
+                self.overlay = Overlay::Sandbox((i + 1).min(n - 1))
+            }
+            Action::Increase => self.nudge(i, true),
+            Action::Decrease => self.nudge(i, false),
+            Action::Enter => {
+                self.overlay = Overlay::None;
+                let label = format!("previous run (seed {})", self.seed);
+                if !self.snapshot.returns.is_empty() {
+                    self.previous = Some((label, self.snapshot.returns.clone()));
+                }
+                self.reset_agent(self.sandbox.clone(), self.sandbox_seed, true);
+            }
+            Action::Sandbox | Action::Back => self.overlay = Overlay::None,
+            _ => {}
+        }
+    }
+
+    /// Changes sandbox field `i` one notch up or down, within its valid range.
+    fn nudge(&mut self, i: usize, up: bool) {
+        let s = &mut self.sandbox;
+        let scale = |v: f64, f: f64| if up { v * f } else { v / f };
+        match SANDBOX_FIELDS.get(i).copied() {
+            Some("eps") => {
+                s.eps = round3((s.eps + if up { 0.05 } else { -0.05 }).clamp(0.05, 0.95))
+            }
+            Some("gamma") => {
+                s.gamma = round3((s.gamma + if up { 0.01 } else { -0.01 }).clamp(0.5, 1.0))
+            }
+            Some("lmbda") => {
+                s.lmbda = round3((s.lmbda + if up { 0.05 } else { -0.05 }).clamp(0.0, 1.0))
+            }
+            Some("actor_lr") => s.actor_lr = scale(s.actor_lr, 2.0).clamp(1e-6, 1.0),
+            Some("critic_lr") => s.critic_lr = scale(s.critic_lr, 2.0).clamp(1e-6, 1.0),
+            Some("seed") => {
+                self.sandbox_seed = if up {
+                    self.sandbox_seed.saturating_add(1)
+                } else {
+                    self.sandbox_seed.saturating_sub(1)
+                };
+            }
+            Some("bootstrap_on_truncation") => {
+                s.bootstrap_on_truncation = !s.bootstrap_on_truncation
+            }
+            Some("normalize_advantage") => s.normalize_advantage = !s.normalize_advantage,
+            Some("env") => {
+                s.env_id = match s.env_id {
+                    crate::env::EnvId::CartPoleV1 => crate::env::EnvId::CartPoleV0,
+                    crate::env::EnvId::CartPoleV0 => crate::env::EnvId::CartPoleV1,
+                };
+            }
+            _ => {}
+        }
+    }
+
+    fn toggle_training(&mut self) {
+        match self.train {
+            TrainState::Paused => {
+                self.train = TrainState::Running;
+                self.outbox.push(Command::Run);
+                self.status = "training…".into();
+            }
+            TrainState::Running => {
+                self.train = TrainState::Paused;
+                self.outbox.push(Command::Pause);
+                self.status = "paused".into();
+            }
+            TrainState::Finished => {
+                self.status = format!(
+                    "all {} episodes done: r resets the agent, s opens the sandbox",
+                    self.config.num_episodes
+                );
+            }
+        }
+    }
+
+    fn reset_agent(&mut self, config: PpoConfig, seed: u64, run: bool) {
+        self.outbox.push(Command::Reset {
+            config: Box::new(config.clone()),
+            seed,
+        });
+        self.config = config;
+        self.seed = seed;
+        self.snapshot = Snapshot::default();
+        set_hyper(&mut self.snapshot, &self.config, seed);
+        self.frames.clear();
+        self.frame = 0;
+        self.train = TrainState::Paused;
+        if run {
+            self.outbox.push(Command::Run);
+            self.train = TrainState::Running;
+        }
+        self.status = format!("fresh agent, seed {seed}");
+    }
+
+    /// Applies one event from the training worker.
+    pub fn on_worker(&mut self, event: WorkerEvent) {
+        match event {
+            WorkerEvent::Episode(data) => self.on_episode(*data),
+            WorkerEvent::Finished => {
+                self.train = TrainState::Finished;
+                self.status = format!("finished {} episodes", self.snapshot.returns.len());
+            }
+            WorkerEvent::Reset { seed } => self.status = format!("fresh agent, seed {seed}"),
+            WorkerEvent::Error(message) => {
+                self.train = TrainState::Paused;
+                self.status = format!("training stopped: {message}");
+            }
+        }
+    }
+
+    fn on_episode(&mut self, data: EpisodeData) {
+        let s = &mut self.snapshot;
+        s.episodes = data.report.episode + 1;
+        s.returns.push(data.report.episode_return);
+        s.moving_average = moving_average(&s.returns, 9).unwrap_or_default();
+        self.frames = data.report.trace.states.clone();
+        if let Some(last) = data.report.trace.next_states.last() {
+            self.frames.push(*last);
+        }
+        self.frame = 0;
+        s.trace = Some(data.report.trace);
+        s.probs = data.probs;
+        s.weights = data.weights;
+        s.terminated = data.terminated;
+        s.truncated = data.truncated;
+        if self.train == TrainState::Paused {
+            self.status = format!(
+                "episode {}: return {}",
+                data.report.episode + 1,
+                data.report.episode_return
+            );
+        }
+    }
+
+    /// Advances the cart-pole animation by one frame (called on each tick).
+    pub fn tick(&mut self) {
+        if !self.frames.is_empty() {
+            self.frame = (self.frame + 1) % self.frames.len();
+        }
+    }
+
+    fn next_step(&mut self) {
+        let Some(lesson) = self.current_lesson() else {
+            return;
+        };
+        if self.step + 1 < lesson.steps.len() {
+            self.go_to(self.lesson, self.step + 1);
+        } else {
+            let id = lesson.id.clone();
+            self.progress.lessons_done.insert(id);
+            if self.lesson + 1 < self.course.lessons.len() {
+                self.go_to(self.lesson + 1, 0);
+            } else {
+                self.status = "that was the last step: l opens the lesson list".into();
+            }
+        }
+    }
+
+    fn prev_step(&mut self) {
+        if self.step > 0 {
+            self.go_to(self.lesson, self.step - 1);
+        } else if self.lesson > 0 {
+            let steps = self.course.lessons[self.lesson - 1].steps.len();
+            self.go_to(self.lesson - 1, steps.saturating_sub(1));
+        }
+    }
+
+    fn go_to(&mut self, lesson: usize, step: usize) {
+        self.lesson = lesson.min(self.course.lessons.len().saturating_sub(1));
+        self.step = step;
+        self.text_scroll = 0;
+        self.tensor_scroll = 0;
+        if let Some(l) = self.current_lesson() {
+            self.progress.lesson = l.id.clone();
+        }
+        self.progress.step = self.step;
+        self.save_progress();
+    }
+
+    /// Writes the progress file (atomically); a failure becomes a status message.
+    pub fn save_progress(&mut self) {
+        if let Some(path) = &self.progress_path
+            && let Err(e) = self.progress.save(path)
+        {
+            self.status = format!("could not save progress to {}: {e}", path.display());
+        }
+    }
+
+    fn quit(&mut self) {
+        self.save_progress();
+        self.outbox.push(Command::Quit);
+        self.quit = true;
+    }
+}
+
+fn round3(v: f64) -> f64 {
+    (v * 1000.0).round() / 1000.0
+}
+
+/// Fills the snapshot's hyper-parameter table from a config, in the seed's order.
+pub fn set_hyper(snapshot: &mut Snapshot, c: &PpoConfig, seed: u64) {
+    snapshot.eps = c.eps as f32;
+    snapshot.hyper = vec![
+        ("actor_lr".into(), format!("{}", c.actor_lr)),
+        ("critic_lr".into(), format!("{}", c.critic_lr)),
+        ("num_episodes".into(), c.num_episodes.to_string()),
+        ("hidden_dim".into(), c.hidden_dim.to_string()),
+        ("gamma".into(), c.gamma.to_string()),
+        ("lmbda".into(), c.lmbda.to_string()),
+        ("epochs".into(), c.epochs.to_string()),
+        ("eps".into(), c.eps.to_string()),
+        ("env_name".into(), c.env_id.as_str().into()),
+        ("seed".into(), seed.to_string()),
+        (
+            "bootstrap_on_truncation".into(),
+            c.bootstrap_on_truncation.to_string(),
+        ),
+        (
+            "normalize_advantage".into(),
+            c.normalize_advantage.to_string(),
+        ),
+    ];
+}

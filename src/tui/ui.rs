@@ -1,0 +1,363 @@
+//! Drawing only: the app's state to a frame. Nothing here changes state.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Borders, Clear, Paragraph, Widget, Wrap};
+
+use super::app::{App, Overlay, SANDBOX_FIELDS, TrainState};
+use super::keys::HELP;
+use super::theme::Theme;
+use super::widgets::{cartpole::CartPoleView, clip::ClipChart, plot::ReturnPlot, tensors, text};
+use crate::lesson::{TensorView, VIEWS};
+
+/// The smallest terminal the layout fits.
+pub const MIN_SIZE: (u16, u16) = (80, 24);
+
+/// Everything `draw` needs beside the app.
+pub struct View<'a> {
+    /// The app state.
+    pub app: &'a App,
+    /// Styles.
+    pub theme: Theme,
+}
+
+impl Widget for &View<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let (app, theme) = (self.app, self.theme);
+        if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
+            let msg = format!(
+                "The terminal is {}×{}; ppo-tutor needs at least {}×{}. Enlarge it, or press q to quit.",
+                area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
+            );
+            Paragraph::new(msg)
+                .wrap(Wrap { trim: true })
+                .render(area, buf);
+            return;
+        }
+        let [header, body, footer] = Layout::vertical([
+            Constraint::Length(1),
+            Constraint::Min(0),
+            Constraint::Length(2),
+        ])
+        .areas(area);
+        draw_header(app, theme, header, buf);
+        draw_body(app, theme, body, buf);
+        draw_footer(app, theme, footer, buf);
+        match app.overlay {
+            Overlay::None => {}
+            Overlay::Help => draw_help(theme, area, buf),
+            Overlay::Lessons(i) => draw_lessons(app, theme, i, area, buf),
+            Overlay::Sandbox(i) => draw_sandbox(app, theme, i, area, buf),
+        }
+    }
+}
+
+fn draw_header(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
+    let (pos, total) = app.position();
+    let title = app.current_lesson().map_or(String::new(), |l| {
+        format!(
+            " {:02}/{:02} {} · step {}/{}",
+            l.order,
+            app.course.lessons.len(),
+            l.title,
+            app.step + 1,
+            l.steps.len()
+        )
+    });
+    let train = match app.train {
+        TrainState::Running => "training",
+        TrainState::Paused => "paused",
+        TrainState::Finished => "finished",
+    };
+    let last = app
+        .snapshot
+        .returns
+        .last()
+        .map_or(String::new(), |r| format!(" · last return {r}"));
+    let right = format!(
+        "episode {}{last} · {train} · {pos}/{total} ",
+        app.snapshot.episodes
+    );
+    let pad = (area.width as usize).saturating_sub(title.chars().count() + right.chars().count());
+    Line::from(vec![
+        Span::styled(title, theme.title()),
+        Span::raw(" ".repeat(pad)),
+        Span::styled(right, theme.dim()),
+    ])
+    .render(area, buf);
+}
+
+fn panel(title: &str, theme: Theme) -> Block<'static> {
+    Block::default()
+        .borders(Borders::ALL)
+        .border_style(theme.border())
+        .title(Span::styled(format!(" {title} "), theme.title()))
+}
+
+fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
+    let Some(step) = app.current_step() else {
+        return;
+    };
+    let [left, right] =
+        Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(area);
+    Paragraph::new(text::markdown(&step.body, theme))
+        .block(panel(&step.title, theme))
+        .wrap(Wrap { trim: false })
+        .scroll((app.text_scroll, 0))
+        .render(left, buf);
+    let code = code_lines(step, theme);
+    let code_height = (code.len() as u16 + 2).min(right.height / 3).max(5);
+    let [code_area, live] =
+        Layout::vertical([Constraint::Length(code_height), Constraint::Min(0)]).areas(right);
+    Paragraph::new(code)
+        .block(panel("the code that runs", theme))
+        .render(code_area, buf);
+    draw_live(app, theme, step, live, buf);
+}
+
+fn code_lines(step: &crate::lesson::Step, theme: Theme) -> Vec<Line<'static>> {
+    let mut lines = Vec::new();
+    if !step.python.is_empty() {
+        lines.push(Line::styled("# the seed (PyTorch)", theme.dim()));
+        lines.extend(
+            step.python
+                .lines()
+                .map(|l| Line::styled(l.to_string(), theme.python())),
+        );
+    }
+    if let Some((path, code)) = (!step.code.is_empty())
+        .then(|| crate::lesson::anchor::find(&step.code))
+        .flatten()
+    {
+        lines.push(Line::styled(
+            format!("// ppo-tutor: src/{path}"),
+            theme.dim(),
+        ));
+        lines.extend(
+            code.lines()
+                .map(|l| Line::styled(l.to_string(), theme.code())),
+        );
+    }
+    if lines.is_empty() {
+        lines.push(Line::styled("(no code in this step)", theme.dim()));
+    }
+    lines
+}
+
+fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, buf: &mut Buffer) {
+    let views: Vec<&str> = step
+        .show
+        .iter()
+        .map(String::as_str)
+        .filter(|s| VIEWS.contains(s))
+        .collect();
+    let names: Vec<&str> = step
+        .show
+        .iter()
+        .map(String::as_str)
+        .filter(|s| !VIEWS.contains(s))
+        .collect();
+    let (view_area, tensor_area) = match (views.is_empty(), names.is_empty()) {
+        (true, _) => (Rect::default(), area),
+        (false, true) => (area, Rect::default()),
+        (false, false) => {
+            let [a, b] = Layout::vertical([Constraint::Percentage(55), Constraint::Percentage(45)])
+                .areas(area);
+            (a, b)
+        }
+    };
+    if !views.is_empty() {
+        let areas = Layout::horizontal(vec![Constraint::Ratio(1, views.len() as u32); views.len()])
+            .split(view_area);
+        for (view, a) in views.iter().zip(areas.iter()) {
+            draw_view(app, theme, view, *a, buf);
+        }
+    }
+    if tensor_area.height > 0 {
+        let shown: Vec<TensorView> = names
+            .iter()
+            .filter_map(|n| app.snapshot.tensor(n))
+            .collect();
+        let block = panel("live values", theme);
+        let inner = block.inner(tensor_area);
+        block.render(tensor_area, buf);
+        let lines = if shown.is_empty() && !names.is_empty() {
+            vec![Line::styled(
+                format!(
+                    "{} appear after the first episode: press e (one episode) or t (train).",
+                    names.join(", ")
+                ),
+                theme.dim(),
+            )]
+        } else {
+            tensors::lines(&shown, app.tensor_scroll, inner.height as usize, theme)
+        };
+        Paragraph::new(lines).render(inner, buf);
+    }
+}
+
+fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) {
+    let s = &app.snapshot;
+    match view {
+        "plot" => ReturnPlot {
+            returns: &s.returns,
+            average: &s.moving_average,
+            previous: app
+                .previous
+                .as_ref()
+                .map(|(l, v)| (l.as_str(), v.as_slice())),
+            max_return: f64::from(app.config.env_id.max_episode_steps()),
+            block: panel(&format!("PPO on {}", app.config.env_id), theme),
+            theme,
+        }
+        .render(area, buf),
+        "cartpole" => {
+            let obs = app.frames.get(app.frame).copied().unwrap_or([0.0; 4]);
+            let title = format!(
+                "the latest episode, step {}/{}",
+                app.frame,
+                app.frames.len().saturating_sub(1)
+            );
+            CartPoleView {
+                obs,
+                block: panel(&title, theme),
+                color: theme.color,
+            }
+            .render(area, buf);
+        }
+        _ => {
+            let trace = s.trace.as_ref();
+            ClipChart {
+                eps: app.config.eps,
+                epoch: trace.and_then(|t| t.epochs.last()),
+                advantage: trace.map_or(&[], |t| t.advantage.as_slice()),
+                block: panel("L^CLIP against the ratio", theme),
+                theme,
+            }
+            .render(area, buf);
+        }
+    }
+}
+
+fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
+    let keys = [
+        ("←/→", "step"),
+        ("l", "lessons"),
+        ("t", "train/pause"),
+        ("e", "one episode"),
+        ("r", "reset"),
+        ("s", "sandbox"),
+        ("?", "help"),
+        ("q", "quit"),
+    ];
+    let mut spans = Vec::new();
+    for (k, what) in keys {
+        spans.push(Span::styled(format!(" {k}"), theme.key()));
+        spans.push(Span::raw(format!(" {what} ")));
+    }
+    let done = app.progress.lessons_done.len();
+    let status = format!(
+        " {} · lessons done {done}/{}",
+        app.status,
+        app.course.lessons.len()
+    );
+    Paragraph::new(vec![Line::from(spans), Line::styled(status, theme.dim())]).render(area, buf);
+}
+
+fn centered(area: Rect, width: u16, height: u16) -> Rect {
+    let w = width.min(area.width);
+    let h = height.min(area.height);
+    Rect {
+        x: area.x + (area.width - w) / 2,
+        y: area.y + (area.height - h) / 2,
+        width: w,
+        height: h,
+    }
+}
+
+fn draw_help(theme: Theme, area: Rect, buf: &mut Buffer) {
+    let rect = centered(area, 72, HELP.len() as u16 + 4);
+    Clear.render(rect, buf);
+    let lines: Vec<Line> = HELP
+        .iter()
+        .map(|(k, what)| {
+            Line::from(vec![
+                Span::styled(format!(" {k:<16}"), theme.key()),
+                Span::raw(*what),
+            ])
+        })
+        .collect();
+    Paragraph::new(lines)
+        .block(panel("keys (Esc closes)", theme))
+        .render(rect, buf);
+}
+
+fn draw_lessons(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut Buffer) {
+    let rect = centered(area, 76, app.course.lessons.len() as u16 + 4);
+    Clear.render(rect, buf);
+    let lines: Vec<Line> = app
+        .course
+        .lessons
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let mark = if app.progress.lessons_done.contains(&l.id) {
+                "✓"
+            } else {
+                " "
+            };
+            let text = format!(" {mark} {:02} {}", l.order, l.title);
+            if i == selected {
+                Line::styled(text, theme.highlight())
+            } else {
+                Line::raw(text)
+            }
+        })
+        .collect();
+    Paragraph::new(lines)
+        .block(panel("lessons (↑↓, Enter opens, Esc closes)", theme))
+        .render(rect, buf);
+}
+
+fn draw_sandbox(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut Buffer) {
+    let rect = centered(area, 64, SANDBOX_FIELDS.len() as u16 + 7);
+    Clear.render(rect, buf);
+    let s = &app.sandbox;
+    let values = [
+        s.eps.to_string(),
+        s.gamma.to_string(),
+        s.lmbda.to_string(),
+        format!("{:.2e}", s.actor_lr),
+        format!("{:.2e}", s.critic_lr),
+        app.sandbox_seed.to_string(),
+        s.bootstrap_on_truncation.to_string(),
+        s.normalize_advantage.to_string(),
+        s.env_id.to_string(),
+    ];
+    let mut lines: Vec<Line> = SANDBOX_FIELDS
+        .iter()
+        .zip(values)
+        .enumerate()
+        .map(|(i, (name, value))| {
+            let text = format!(" {name:<26} {value}");
+            if i == selected {
+                Line::styled(text, theme.highlight())
+            } else {
+                Line::raw(text)
+            }
+        })
+        .collect();
+    lines.push(Line::raw(""));
+    lines.push(Line::styled(
+        " ↑↓ choose · +/− or ←/→ change · Enter retrains",
+        theme.dim(),
+    ));
+    lines.push(Line::styled(
+        " (the current curve stays on the plot for comparison)",
+        theme.dim(),
+    ));
+    Paragraph::new(lines)
+        .block(panel("sandbox", theme))
+        .render(rect, buf);
+}

@@ -1,0 +1,138 @@
+//! Live tensors as text: per-step columns side by side, then scalars and series.
+
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+
+use crate::lesson::{Mark, TensorView};
+use crate::tui::theme::Theme;
+
+fn style_of(mark: Mark, theme: Theme) -> Style {
+    match mark {
+        Mark::Plain => Style::new(),
+        Mark::Clipped => theme.clipped(),
+        Mark::Done => theme.done(),
+        Mark::Positive => theme.positive(),
+        Mark::Negative => theme.negative(),
+    }
+}
+
+fn fmt(v: f64) -> String {
+    if v.is_nan() {
+        "nan".into()
+    } else if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+        format!("{v:.3e}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
+/// Sub-column names for 4-wide and 2-wide tensors.
+fn sub_names(t: &TensorView) -> Vec<String> {
+    match (t.name.as_str(), t.cols()) {
+        (_, 1) => vec![t.name.clone()],
+        ("probs", 2) => vec!["π(left)".into(), "π(right)".into()],
+        (name, 4) => ["x", "ẋ", "θ", "θ̇"]
+            .iter()
+            .map(|c| format!("{name}.{c}"))
+            .collect(),
+        (name, n) => (0..n).map(|i| format!("{name}[{i}]")).collect(),
+    }
+}
+
+/// Renders `tensors` into at most `height` lines, rows from `scroll`.
+#[must_use]
+pub fn lines(
+    tensors: &[TensorView],
+    scroll: usize,
+    height: usize,
+    theme: Theme,
+) -> Vec<Line<'static>> {
+    let rows_of = |t: &TensorView| t.values.len() / t.cols();
+    let per_step: Vec<&TensorView> = tensors
+        .iter()
+        .filter(|t| t.shape.len() == 2 && t.labels.is_empty())
+        .collect();
+    let others: Vec<&TensorView> = tensors
+        .iter()
+        .filter(|t| !(t.shape.len() == 2 && t.labels.is_empty()))
+        .collect();
+    let mut out = Vec::new();
+    for t in &per_step {
+        let stats = t.stats().map_or(String::new(), |(lo, hi, mean)| {
+            format!("  min {}  max {}  mean {}", fmt(lo), fmt(hi), fmt(mean))
+        });
+        let marks = match (
+            t.count(Mark::Clipped),
+            t.count(Mark::Done),
+            t.count(Mark::Positive),
+            t.count(Mark::Negative),
+        ) {
+            (c, _, _, _) if c > 0 => format!("  clipped {c}"),
+            (_, d, _, _) if d > 0 => format!("  done {d}"),
+            (_, _, p, n) if p + n > 0 => format!("  A>0 {p}  A<0 {n}"),
+            _ => String::new(),
+        };
+        out.push(Line::from(vec![
+            Span::styled(t.name.clone(), theme.title()),
+            Span::styled(format!(" {}", t.shape_text()), theme.dim()),
+            Span::raw(stats),
+            Span::styled(marks, theme.dim()),
+        ]));
+    }
+    if let Some(n) = per_step.iter().map(|t| rows_of(t)).max() {
+        let mut header = vec![Span::styled(format!("{:>4}", "t"), theme.dim())];
+        for t in &per_step {
+            for name in sub_names(t) {
+                header.push(Span::styled(format!(" {name:>11.11}"), theme.dim()));
+            }
+        }
+        out.push(Line::from(header));
+        let budget = height.saturating_sub(out.len() + others.len().min(6));
+        let start = scroll.min(n.saturating_sub(1));
+        for row in start..n.min(start + budget.max(1)) {
+            let mut spans = vec![Span::styled(format!("{row:>4}"), theme.dim())];
+            for t in &per_step {
+                let c = t.cols();
+                for k in 0..c {
+                    let i = row * c + k;
+                    let (text, mark) = t.values.get(i).map_or((String::new(), Mark::Plain), |&v| {
+                        (fmt(v), t.marks.get(i).copied().unwrap_or_default())
+                    });
+                    spans.push(Span::styled(format!(" {text:>11}"), style_of(mark, theme)));
+                }
+            }
+            out.push(Line::from(spans));
+        }
+        if n > budget {
+            out.push(Line::styled(
+                format!(
+                    "     rows {}–{} of {n} (J/K scroll)",
+                    start,
+                    (start + budget).min(n).saturating_sub(1)
+                ),
+                theme.dim(),
+            ));
+        }
+    }
+    for t in others {
+        if !t.labels.is_empty() {
+            out.push(Line::styled(
+                format!("{} {}", t.name, t.shape_text()),
+                theme.title(),
+            ));
+            out.extend(t.labels.iter().map(|l| Line::raw(format!("  {l}"))));
+            continue;
+        }
+        let mut spans = vec![
+            Span::styled(t.name.clone(), theme.title()),
+            Span::styled(format!(" {} ", t.shape_text()), theme.dim()),
+        ];
+        // Long series (returns) show their latest values.
+        let skip = t.values.len().saturating_sub(8);
+        let shown: Vec<String> = t.values[skip..].iter().map(|&v| fmt(v)).collect();
+        let more = if skip > 0 { "…, " } else { "" };
+        spans.push(Span::raw(format!("[{more}{}]", shown.join(", "))));
+        out.push(Line::from(spans));
+    }
+    out
+}
