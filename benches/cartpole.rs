@@ -22,7 +22,9 @@ fn single(c: &mut Criterion) {
         env.reset(Some(0));
         b.iter(|| {
             for &a in &actions {
-                let Ok(step) = env.step(black_box(a)) else { return };
+                let Ok(step) = env.step(black_box(a)) else {
+                    return;
+                };
                 if step.terminated || step.truncated {
                     env.reset(None);
                 }

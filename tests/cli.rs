@@ -5,7 +5,9 @@ use std::process::{Command, Output};
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 fn run(args: &[&str]) -> std::io::Result<Output> {
-    Command::new(env!("CARGO_BIN_EXE_ppo-tutor")).args(args).output()
+    Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .args(args)
+        .output()
 }
 
 #[test]
@@ -25,7 +27,10 @@ fn help_exists_for_every_subcommand() -> TestResult {
     for sub in subcommands {
         let out = run(&[sub, "--help"])?;
         assert!(out.status.success(), "{sub} --help failed");
-        assert!(String::from_utf8(out.stdout)?.contains("Usage:"), "{sub} --help has no usage");
+        assert!(
+            String::from_utf8(out.stdout)?.contains("Usage:"),
+            "{sub} --help has no usage"
+        );
     }
     Ok(())
 }
@@ -34,7 +39,10 @@ fn help_exists_for_every_subcommand() -> TestResult {
 #[test]
 fn bad_input_is_one_line_and_exit_2() -> TestResult {
     let cases: [(&[&str], &str); 6] = [
-        (&["cartpole", "--env", "CartPole-v9", "--actions", "0"], "--env"),
+        (
+            &["cartpole", "--env", "CartPole-v9", "--actions", "0"],
+            "--env",
+        ),
         (&["cartpole", "--actions", "0,x,1"], "--actions"),
         (&["cartpole", "--actions", "0,2"], "--actions"),
         (&["cartpole", "--seed", "abc", "--actions", "0"], "--seed"),
@@ -45,8 +53,15 @@ fn bad_input_is_one_line_and_exit_2() -> TestResult {
         let out = run(args)?;
         let err = String::from_utf8(out.stderr)?;
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: not one line: {err}");
-        assert!(err.contains(names), "{args:?}: does not name {names}: {err}");
+        assert_eq!(
+            err.trim_end().lines().count(),
+            1,
+            "{args:?}: not one line: {err}"
+        );
+        assert!(
+            err.contains(names),
+            "{args:?}: does not name {names}: {err}"
+        );
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
     Ok(())
@@ -54,7 +69,16 @@ fn bad_input_is_one_line_and_exit_2() -> TestResult {
 
 #[test]
 fn v0_truncates_at_200_through_the_cli() -> TestResult {
-    let out = run(&["cartpole", "--env", "CartPole-v0", "--policy", "lean", "--seed", "5", "--json"])?;
+    let out = run(&[
+        "cartpole",
+        "--env",
+        "CartPole-v0",
+        "--policy",
+        "lean",
+        "--seed",
+        "5",
+        "--json",
+    ])?;
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout)?;
     let truncated = v["truncated"].as_array().ok_or("no truncated")?;

@@ -27,7 +27,10 @@ struct ResetCase {
 }
 
 fn fixture() -> Result<Fixture, Box<dyn std::error::Error>> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/cartpole_gymnasium.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/cartpole_gymnasium.json"
+    );
     Ok(serde_json::from_str(&std::fs::read_to_string(path)?)?)
 }
 
@@ -35,16 +38,32 @@ fn fixture() -> Result<Fixture, Box<dyn std::error::Error>> {
 fn assert_bits(what: &str, got: &[f64], want: &[f64]) {
     assert_eq!(got.len(), want.len(), "{what}: length");
     for (i, (g, w)) in got.iter().zip(want).enumerate() {
-        assert_eq!(g.to_bits(), w.to_bits(), "{what}[{i}]: got {g:?}, Gymnasium {w:?}");
+        assert_eq!(
+            g.to_bits(),
+            w.to_bits(),
+            "{what}[{i}]: got {g:?}, Gymnasium {w:?}"
+        );
     }
 }
 
 fn assert_trajectory_eq(got: &Trajectory, want: &Trajectory) {
     let seed = want.seed;
-    assert_bits(&format!("seed {seed} reset_state"), &got.reset_state, &want.reset_state);
-    assert_bits(&format!("seed {seed} reset_obs"), &got.reset_obs, &want.reset_obs);
+    assert_bits(
+        &format!("seed {seed} reset_state"),
+        &got.reset_state,
+        &want.reset_state,
+    );
+    assert_bits(
+        &format!("seed {seed} reset_obs"),
+        &got.reset_obs,
+        &want.reset_obs,
+    );
     assert_eq!(got.actions, want.actions, "seed {seed} actions");
-    assert_eq!(got.states.len(), want.states.len(), "seed {seed}: episode length");
+    assert_eq!(
+        got.states.len(),
+        want.states.len(),
+        "seed {seed}: episode length"
+    );
     for (step, (g, w)) in got.states.iter().zip(&want.states).enumerate() {
         assert_bits(&format!("seed {seed} step {step} state"), g, w);
     }
@@ -82,19 +101,33 @@ fn every_reset_seed_matches_gymnasium() -> TestResult {
         let obs = env.reset(Some(case.seed));
         let state = env.state().ok_or("no state after reset")?;
         assert_bits(&format!("seed {} state", case.seed), &state, &case.state);
-        assert_bits(&format!("seed {} obs", case.seed), &obs.map(f64::from), &case.obs);
+        assert_bits(
+            &format!("seed {} obs", case.seed),
+            &obs.map(f64::from),
+            &case.obs,
+        );
         for (k, want) in case.next_resets.iter().enumerate() {
             env.reset(None);
             let state = env.state().ok_or("no state after reset")?;
-            assert_bits(&format!("seed {} unseeded reset {k}", case.seed), &state, want);
+            assert_bits(
+                &format!("seed {} unseeded reset {k}", case.seed),
+                &state,
+                want,
+            );
         }
     }
     Ok(())
 }
 
 fn cli_json(args: &[&str]) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    let out = Command::new(env!("CARGO_BIN_EXE_ppo-tutor")).args(args).output()?;
-    assert!(out.status.success(), "ppo-tutor {args:?} failed: {}", String::from_utf8_lossy(&out.stderr));
+    let out = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .args(args)
+        .output()?;
+    assert!(
+        out.status.success(),
+        "ppo-tutor {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     Ok(serde_json::from_slice(&out.stdout)?)
 }
 
@@ -104,8 +137,24 @@ fn cli_json_reproduces_every_trace() -> TestResult {
     for want in &fx.traces {
         let actions: Vec<String> = want.actions.iter().map(ToString::to_string).collect();
         let seed = want.seed.to_string();
-        let value = cli_json(&["cartpole", "--seed", &seed, "--actions", &actions.join(","), "--json"])?;
-        for key in ["reset_state", "reset_obs", "actions", "states", "obs", "rewards", "terminated", "truncated"] {
+        let value = cli_json(&[
+            "cartpole",
+            "--seed",
+            &seed,
+            "--actions",
+            &actions.join(","),
+            "--json",
+        ])?;
+        for key in [
+            "reset_state",
+            "reset_obs",
+            "actions",
+            "states",
+            "obs",
+            "rewards",
+            "terminated",
+            "truncated",
+        ] {
             assert!(value.get(key).is_some(), "--json output lacks '{key}'");
         }
         let got: Trajectory = serde_json::from_value(value)?;
@@ -118,13 +167,30 @@ fn cli_json_reproduces_every_trace() -> TestResult {
 fn cli_json_reproduces_resets() -> TestResult {
     let fx = fixture()?;
     // Every tenth seed plus the large ones keeps the number of processes small.
-    let cases = fx.resets.iter().enumerate().filter(|(i, r)| i % 10 == 0 || r.seed > 1000);
+    let cases = fx
+        .resets
+        .iter()
+        .enumerate()
+        .filter(|(i, r)| i % 10 == 0 || r.seed > 1000);
     for (_, case) in cases {
         let seed = case.seed.to_string();
-        let value = cli_json(&["cartpole", "--seed", &seed, "--actions", "", "--json", "--resets", "3"])?;
+        let value = cli_json(&[
+            "cartpole",
+            "--seed",
+            &seed,
+            "--actions",
+            "",
+            "--json",
+            "--resets",
+            "3",
+        ])?;
         let got: Trajectory = serde_json::from_value(value)?;
         assert!(got.actions.is_empty(), "--actions '' must only reset");
-        assert_bits(&format!("seed {seed} reset_state"), &got.reset_state, &case.state);
+        assert_bits(
+            &format!("seed {seed} reset_state"),
+            &got.reset_state,
+            &case.state,
+        );
         assert_bits(&format!("seed {seed} reset_obs"), &got.reset_obs, &case.obs);
         assert_eq!(got.next_resets.len(), 3);
         for (g, w) in got.next_resets.iter().zip(&case.next_resets) {

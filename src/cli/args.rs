@@ -7,9 +7,12 @@ use crate::env::EnvId;
 /// # Errors
 /// A message naming the accepted range.
 pub fn parse_seed(s: &str) -> Result<u64, String> {
-    s.trim()
-        .parse::<u64>()
-        .map_err(|_| format!("expected a non-negative integer up to {}, got '{s}'", u64::MAX))
+    s.trim().parse::<u64>().map_err(|_| {
+        format!(
+            "expected a non-negative integer up to {}, got '{s}'",
+            u64::MAX
+        )
+    })
 }
 
 /// Parses a Gymnasium environment id.
@@ -19,7 +22,10 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
 pub fn parse_env(s: &str) -> Result<EnvId, String> {
     s.parse::<EnvId>().map_err(|_| {
         let ids: Vec<_> = EnvId::ALL.iter().map(|id| id.as_str()).collect();
-        format!("unknown environment '{s}': expected one of {}", ids.join(", "))
+        format!(
+            "unknown environment '{s}': expected one of {}",
+            ids.join(", ")
+        )
     })
 }
 

@@ -42,7 +42,9 @@ fn hashmix(value: u32, hash_const: &mut u32) -> u32 {
 
 /// numpy's `SeedSequence` mixing of two pool words.
 fn mix(x: u32, y: u32) -> u32 {
-    let result = MIX_MULT_L.wrapping_mul(x).wrapping_sub(MIX_MULT_R.wrapping_mul(y));
+    let result = MIX_MULT_L
+        .wrapping_mul(x)
+        .wrapping_sub(MIX_MULT_R.wrapping_mul(y));
     result ^ (result >> XSHIFT)
 }
 

@@ -142,7 +142,11 @@ impl CartPoleVec {
         }
         let integrator: Integrator = self.config.integrator;
         let limit = self.config.env_id.max_episode_steps();
-        let reward = if self.config.sutton_barto_reward { 0.0 } else { 1.0 };
+        let reward = if self.config.sutton_barto_reward {
+            0.0
+        } else {
+            1.0
+        };
         for (i, &action) in actions.iter().enumerate() {
             let s = physics(
                 [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]],
