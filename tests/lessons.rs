@@ -1,0 +1,190 @@
+//! The course's content check: every lesson parses, references real code and live
+//! values, and the headless commands print it.
+
+use std::collections::BTreeSet;
+use std::process::Command;
+
+use ppo_tutor::lesson::{Course, VIEWS, anchor, live};
+
+type TestResult = Result<(), Box<dyn std::error::Error>>;
+
+#[test]
+fn the_course_is_complete_and_consistent() -> TestResult {
+    let course = Course::embedded()?;
+    assert_eq!(course.lessons.len(), 13, "the outline has 13 lessons");
+    let orders: Vec<u32> = course.lessons.iter().map(|l| l.order).collect();
+    assert_eq!(orders, (1..=13).collect::<Vec<_>>());
+    let ids: BTreeSet<&str> = course.lessons.iter().map(|l| l.id.as_str()).collect();
+    assert_eq!(ids.len(), course.lessons.len(), "ids are unique");
+    for l in &course.lessons {
+        assert!(
+            !l.title.is_empty() && !l.summary.is_empty(),
+            "{}: title and summary",
+            l.id
+        );
+        assert!(l.steps.len() >= 3, "{}: at least three steps", l.id);
+        for (i, s) in l.steps.iter().enumerate() {
+            assert!(
+                s.body.split_whitespace().count() >= 40,
+                "{} step {}: body too short",
+                l.id,
+                i + 1
+            );
+            if !s.code.is_empty() {
+                assert!(
+                    anchor::find(&s.code).is_some(),
+                    "{} step {}: anchor {}",
+                    l.id,
+                    i + 1,
+                    s.code
+                );
+            }
+            for name in &s.show {
+                assert!(
+                    live::is_known(name) || VIEWS.contains(&name.as_str()),
+                    "{}: {name}",
+                    l.id
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn anchors_are_unique_and_the_required_ones_exist() {
+    let all = anchor::all();
+    let unique: BTreeSet<&String> = all.iter().collect();
+    assert_eq!(
+        unique.len(),
+        all.len(),
+        "an anchor is defined twice: {all:?}"
+    );
+    for name in [
+        "physics",
+        "termination",
+        "reset_seed",
+        "env_step",
+        "hyper",
+        "td_target",
+        "compute_advantage",
+        "ratio",
+        "surrogate",
+        "actor_loss",
+        "critic_loss",
+        "moving_average",
+    ] {
+        assert!(anchor::find(name).is_some(), "missing anchor {name}");
+    }
+}
+
+#[test]
+fn a_broken_lesson_is_reported_with_its_folder_and_step() {
+    let text = "+++\nid = \"x\"\ntitle = \"X\"\n[[steps]]\ntitle = \"A\"\ncode = \"no_such_anchor\"\n+++\n## A\nbody\n";
+    let err = ppo_tutor::lesson::loader::parse_lesson("01-x", text)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        err.contains("lessons/01-x") && err.contains("step 1") && err.contains("no_such_anchor"),
+        "{err}"
+    );
+    let err = ppo_tutor::lesson::loader::parse_lesson("01-y", text)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(err.contains("slug"), "{err}");
+    let mismatch = "+++\nid = \"x\"\ntitle = \"X\"\n[[steps]]\ntitle = \"A\"\n+++\n## B\nbody\n";
+    let err = ppo_tutor::lesson::loader::parse_lesson("01-x", mismatch)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(err.contains("heading"), "{err}");
+}
+
+fn run(args: &[&str]) -> std::io::Result<std::process::Output> {
+    Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .args(args)
+        .output()
+}
+
+#[test]
+fn lessons_command_lists_id_tab_title_in_order() -> TestResult {
+    let course = Course::embedded()?;
+    let out = run(&["lessons"])?;
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout)?;
+    let want: Vec<String> = course
+        .lessons
+        .iter()
+        .map(|l| format!("{}\t{}", l.id, l.title))
+        .collect();
+    assert_eq!(text.lines().collect::<Vec<_>>(), want);
+    Ok(())
+}
+
+/// Reads the rows printed under `## name ...` by `show`.
+fn column(text: &str, name: &str) -> Vec<f64> {
+    text.lines()
+        .skip_while(|l| !l.starts_with(&format!("## {name} ")))
+        .skip(1)
+        .take_while(|l| l.starts_with("  ["))
+        .filter_map(|l| l.split_whitespace().nth(1)?.parse().ok())
+        .collect()
+}
+
+#[test]
+fn show_prints_live_values_that_obey_the_td_target_formula() -> TestResult {
+    let out = run(&["show", "td-target", "--step", "2", "--episodes", "2"])?;
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout)?;
+    assert!(text.contains("The TD target"), "{text}");
+    let (r, v, d, y) = (
+        column(&text, "rewards"),
+        column(&text, "next_values"),
+        column(&text, "dones"),
+        column(&text, "td_target"),
+    );
+    assert!(
+        !y.is_empty() && y.len() == r.len() && y.len() == v.len() && y.len() == d.len(),
+        "{text}"
+    );
+    for i in 0..y.len() {
+        let want = r[i] + 0.98 * v[i] * (1.0 - d[i]);
+        assert!((want - y[i]).abs() < 1e-5, "row {i}: {want} vs {}", y[i]);
+    }
+    Ok(())
+}
+
+#[test]
+fn show_rejects_unknown_lessons_and_steps() -> TestResult {
+    for args in [
+        &["show", "no-such-lesson"][..],
+        &["show", "gae", "--step", "99"][..],
+    ] {
+        let out = run(args)?;
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+    Ok(())
+}
+
+#[test]
+fn without_a_terminal_the_tutor_says_so_in_one_line() -> TestResult {
+    let out = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .stdin(std::process::Stdio::null())
+        .output()?;
+    assert!(!out.status.success());
+    let err = String::from_utf8(out.stderr)?;
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(
+        err.contains("ppo-tutor lessons") && err.contains("ppo-tutor show"),
+        "{err}"
+    );
+    Ok(())
+}

@@ -1,0 +1,172 @@
+//! The terminal app without a terminal: every lesson step's screen as an insta snapshot
+//! (drawn on ratatui's `TestBackend` from a real 3-episode run, seed 0), and key → state.
+
+use ppo_tutor::cli::lessons::live_snapshot;
+use ppo_tutor::lesson::{Course, Progress};
+use ppo_tutor::ppo::PpoConfig;
+use ppo_tutor::tui::app::{App, Overlay, TrainState};
+use ppo_tutor::tui::keys::Action;
+use ppo_tutor::tui::theme::Theme;
+use ppo_tutor::tui::ui::View;
+use ppo_tutor::tui::worker::Command;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+
+type TestResult = Result<(), Box<dyn std::error::Error>>;
+
+fn app() -> Result<App, Box<dyn std::error::Error>> {
+    let mut app = App::new(Course::embedded()?, Progress::default(), None);
+    let snapshot = live_snapshot(PpoConfig::default(), 0, 3)?;
+    app.frames = snapshot
+        .trace
+        .as_ref()
+        .map(|t| t.states.clone())
+        .unwrap_or_default();
+    app.snapshot = snapshot;
+    Ok(app)
+}
+
+fn screen(app: &App, width: u16, height: u16) -> Result<String, Box<dyn std::error::Error>> {
+    let mut terminal = Terminal::new(TestBackend::new(width, height))?;
+    terminal.draw(|f| {
+        f.render_widget(
+            &View {
+                app,
+                theme: Theme { color: false },
+            },
+            f.area(),
+        )
+    })?;
+    Ok(terminal.backend().to_string())
+}
+
+#[test]
+fn every_step_of_every_lesson() -> TestResult {
+    let mut app = app()?;
+    let total = app.course.total_steps();
+    for i in 0..total {
+        let lesson = app.current_lesson().ok_or("no lesson")?;
+        let name = format!("{:02}-{}-step{}", lesson.order, lesson.id, app.step + 1);
+        let text = screen(&app, 140, 45)?;
+        assert!(text.contains(&lesson.title), "{name}: title missing");
+        insta::assert_snapshot!(name, text);
+        if i + 1 < total {
+            app.update(Action::Next);
+        }
+    }
+    assert_eq!(app.position(), (total, total));
+    Ok(())
+}
+
+#[test]
+fn overlays_and_small_terminals() -> TestResult {
+    let mut app = app()?;
+    app.update(Action::Help);
+    insta::assert_snapshot!("help", screen(&app, 140, 45)?);
+    app.update(Action::Back);
+    app.update(Action::Lessons);
+    insta::assert_snapshot!("lesson_list", screen(&app, 140, 45)?);
+    app.update(Action::Back);
+    app.update(Action::Sandbox);
+    insta::assert_snapshot!("sandbox", screen(&app, 140, 45)?);
+    app.update(Action::Back);
+    let small = screen(&app, 60, 20)?;
+    assert!(small.contains("needs at least 80×24"), "{small}");
+    Ok(())
+}
+
+#[test]
+fn keys_move_through_the_course() -> TestResult {
+    let mut app = app()?;
+    app.update(Action::Prev);
+    assert_eq!((app.lesson, app.step), (0, 0), "← at the start stays");
+    app.update(Action::Next);
+    assert_eq!((app.lesson, app.step), (0, 1));
+    let steps = app.course.lessons[0].steps.len();
+    for _ in 1..steps {
+        app.update(Action::Next);
+    }
+    assert_eq!(
+        (app.lesson, app.step),
+        (1, 0),
+        "→ at a lesson's end opens the next"
+    );
+    assert!(app.progress.lessons_done.contains("what-is-ppo"));
+    app.update(Action::Prev);
+    assert_eq!((app.lesson, app.step), (0, steps - 1));
+    app.update(Action::Lessons);
+    assert_eq!(app.overlay, Overlay::Lessons(0));
+    app.update(Action::Down);
+    app.update(Action::Down);
+    app.update(Action::Enter);
+    assert_eq!((app.lesson, app.step, app.overlay), (2, 0, Overlay::None));
+    assert_eq!(app.progress.lesson, app.course.lessons[2].id);
+    Ok(())
+}
+
+#[test]
+fn training_keys_send_commands_to_the_worker() -> TestResult {
+    let mut app = app()?;
+    app.update(Action::TrainToggle);
+    assert_eq!(app.train, TrainState::Running);
+    assert_eq!(app.outbox.pop(), Some(Command::Run));
+    app.update(Action::TrainToggle);
+    assert_eq!(
+        (app.train, app.outbox.pop()),
+        (TrainState::Paused, Some(Command::Pause))
+    );
+    app.update(Action::OneEpisode);
+    assert_eq!(app.outbox.pop(), Some(Command::OneEpisode));
+    app.update(Action::ResetAgent);
+    assert!(matches!(
+        app.outbox.pop(),
+        Some(Command::Reset { seed: 0, .. })
+    ));
+    assert!(app.snapshot.returns.is_empty(), "reset clears the curve");
+    Ok(())
+}
+
+#[test]
+fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
+    let mut app = app()?;
+    let old_returns = app.snapshot.returns.clone();
+    app.update(Action::Sandbox);
+    app.update(Action::Increase); // eps 0.2 -> 0.25
+    app.update(Action::Down);
+    app.update(Action::Decrease); // gamma 0.98 -> 0.97
+    assert!((app.sandbox.eps - 0.25).abs() < 1e-12);
+    assert!((app.sandbox.gamma - 0.97).abs() < 1e-12);
+    assert!(
+        (app.config.eps - 0.2).abs() < 1e-12,
+        "nothing changes before Enter"
+    );
+    app.update(Action::Enter);
+    assert!((app.config.eps - 0.25).abs() < 1e-12);
+    assert_eq!(
+        app.previous.as_ref().map(|(_, r)| r.clone()),
+        Some(old_returns)
+    );
+    let sent: Vec<Command> = app.outbox.drain(..).collect();
+    assert!(
+        matches!(sent.first(), Some(Command::Reset { config, .. }) if (config.eps - 0.25).abs() < 1e-12)
+    );
+    assert_eq!(sent.last(), Some(&Command::Run));
+    Ok(())
+}
+
+#[test]
+fn quitting_saves_progress() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let path = dir.path().join("state.json");
+    let mut app = App::new(Course::embedded()?, Progress::default(), Some(path.clone()));
+    app.update(Action::Next);
+    app.update(Action::Quit);
+    assert!(app.quit);
+    assert_eq!(app.outbox.last(), Some(&Command::Quit));
+    let (saved, warning) = Progress::load(&path);
+    assert!(warning.is_none());
+    assert_eq!((saved.lesson.as_str(), saved.step), ("what-is-ppo", 1));
+    let restored = App::new(Course::embedded()?, saved, None);
+    assert_eq!((restored.lesson, restored.step), (0, 1));
+    Ok(())
+}
