@@ -1,0 +1,288 @@
+//! The two networks: the actor `π(a|s)` and the critic `V(s)`, as in the seed.
+//!
+//! ```text
+//! PolicyNet: probs  = softmax(fc2(relu(fc1(states))))   states (N, 4) -> (N, 128) -> probs (N, 2)
+//! ValueNet:  values = fc2(relu(fc1(states)))            states (N, 4) -> (N, 128) -> values (N, 1)
+//! fc(x) = x · Wᵀ + b, W of shape (out, in) as PyTorch stores it, b of shape (out,)
+//! ```
+//!
+//! Both layers of both networks start as PyTorch's `nn.Linear` does: every weight and bias
+//! from `U(-1/√fan_in, 1/√fan_in)` (candle's `linear` would draw Kaiming-normal weights).
+//! The draws come from a seeded [`NumpyRng`], so a seed gives the same network everywhere.
+//!
+//! ```
+//! use candle_core::{Device, Tensor};
+//! use ppo_tutor::env::seeding::NumpyRng;
+//! use ppo_tutor::ppo::PolicyNet;
+//!
+//! let actor = PolicyNet::new(4, 128, 2, &mut NumpyRng::from_seed(0))?;
+//! let states = Tensor::zeros((3, 4), candle_core::DType::F32, &Device::Cpu)?;
+//! let probs = actor.forward(&states)?; // (3, 2), each row sums to 1
+//! let row = &probs.to_vec2::<f32>()?[0];
+//! assert!((row[0] + row[1] - 1.0).abs() < 1e-6);
+//! # Ok::<(), candle_core::Error>(())
+//! ```
+
+use std::collections::BTreeMap;
+
+use candle_core::{Device, Tensor, Var};
+use serde::{Deserialize, Serialize};
+
+use crate::env::seeding::NumpyRng;
+
+/// One parameter as plain data: its shape (PyTorch's layout) and values in row-major order.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WeightTensor {
+    /// `[out, in]` for a weight, `[out]` for a bias.
+    pub shape: Vec<usize>,
+    /// The values, row-major.
+    pub data: Vec<f32>,
+}
+
+/// Every parameter of an agent by PyTorch name (`actor.fc1.weight`, ..., `critic.fc2.bias`).
+pub type NamedWeights = BTreeMap<String, WeightTensor>;
+
+/// A fully connected layer `y = x · Wᵀ + b` whose parameters are trainable candle [`Var`]s.
+#[derive(Debug, Clone)]
+pub struct Linear {
+    /// `W`, shape `(out, in)`.
+    pub weight: Var,
+    /// `b`, shape `(out,)`.
+    pub bias: Var,
+}
+
+impl Linear {
+    // ANCHOR: linear_init
+    /// PyTorch's `nn.Linear(in_dim, out_dim)` initialisation: `kaiming_uniform_(a=√5)` for the
+    /// weight, which is `U(-1/√in, 1/√in)`, and the same bound for the bias. The weight is
+    /// drawn first, row by row, then the bias.
+    ///
+    /// # Errors
+    /// Only if candle cannot allocate the tensors.
+    pub fn pytorch_init(
+        in_dim: usize,
+        out_dim: usize,
+        rng: &mut NumpyRng,
+    ) -> candle_core::Result<Self> {
+        let bound = 1.0 / (in_dim as f64).sqrt();
+        let mut draw =
+            |n: usize| -> Vec<f32> { (0..n).map(|_| rng.uniform(-bound, bound) as f32).collect() };
+        let weight = draw(out_dim * in_dim);
+        let bias = draw(out_dim);
+        Self::from_data(in_dim, out_dim, weight, bias)
+    }
+    // ANCHOR_END: linear_init
+
+    /// A layer holding the given values (`weight` row-major `(out, in)`).
+    ///
+    /// # Errors
+    /// When the lengths do not match `out * in` and `out`.
+    pub fn from_data(
+        in_dim: usize,
+        out_dim: usize,
+        weight: Vec<f32>,
+        bias: Vec<f32>,
+    ) -> candle_core::Result<Self> {
+        Ok(Self {
+            weight: Var::from_vec(weight, (out_dim, in_dim), &Device::Cpu)?,
+            bias: Var::from_vec(bias, out_dim, &Device::Cpu)?,
+        })
+    }
+
+    /// `x · Wᵀ + b` for `x` of shape `(N, in)`, giving `(N, out)`.
+    ///
+    /// # Errors
+    /// When `x`'s last dimension is not `in`.
+    pub fn forward(&self, x: &Tensor) -> candle_core::Result<Tensor> {
+        x.matmul(&self.weight.as_tensor().t()?)?
+            .broadcast_add(self.bias.as_tensor())
+    }
+
+    /// The two parameters, weight first.
+    #[must_use]
+    pub fn vars(&self) -> [&Var; 2] {
+        [&self.weight, &self.bias]
+    }
+}
+
+// ANCHOR: policy_net
+/// The actor: `probs = softmax(fc2(relu(fc1(states))))`, one probability per action.
+#[derive(Debug, Clone)]
+pub struct PolicyNet {
+    /// `Linear(state_dim, hidden_dim)`.
+    pub fc1: Linear,
+    /// `Linear(hidden_dim, action_dim)`.
+    pub fc2: Linear,
+}
+
+impl PolicyNet {
+    /// A freshly initialised actor (fc1 then fc2, as PyTorch builds them).
+    ///
+    /// # Errors
+    /// Only if candle cannot allocate the tensors.
+    pub fn new(
+        state_dim: usize,
+        hidden_dim: usize,
+        action_dim: usize,
+        rng: &mut NumpyRng,
+    ) -> candle_core::Result<Self> {
+        let fc1 = Linear::pytorch_init(state_dim, hidden_dim, rng)?;
+        let fc2 = Linear::pytorch_init(hidden_dim, action_dim, rng)?;
+        Ok(Self { fc1, fc2 })
+    }
+
+    /// `states (N, state_dim)` → `probs (N, action_dim)`.
+    ///
+    /// # Errors
+    /// When `states` has the wrong width.
+    pub fn forward(&self, states: &Tensor) -> candle_core::Result<Tensor> {
+        let hidden = self.fc1.forward(states)?.relu()?;
+        candle_nn::ops::softmax(&self.fc2.forward(&hidden)?, 1)
+    }
+}
+// ANCHOR_END: policy_net
+
+// ANCHOR: value_net
+/// The critic: `values = fc2(relu(fc1(states)))`, one state value `V(s)` per row.
+#[derive(Debug, Clone)]
+pub struct ValueNet {
+    /// `Linear(state_dim, hidden_dim)`.
+    pub fc1: Linear,
+    /// `Linear(hidden_dim, 1)`.
+    pub fc2: Linear,
+}
+
+impl ValueNet {
+    /// A freshly initialised critic.
+    ///
+    /// # Errors
+    /// Only if candle cannot allocate the tensors.
+    pub fn new(
+        state_dim: usize,
+        hidden_dim: usize,
+        rng: &mut NumpyRng,
+    ) -> candle_core::Result<Self> {
+        let fc1 = Linear::pytorch_init(state_dim, hidden_dim, rng)?;
+        let fc2 = Linear::pytorch_init(hidden_dim, 1, rng)?;
+        Ok(Self { fc1, fc2 })
+    }
+
+    /// `states (N, state_dim)` → `values (N, 1)`.
+    ///
+    /// # Errors
+    /// When `states` has the wrong width.
+    pub fn forward(&self, states: &Tensor) -> candle_core::Result<Tensor> {
+        let hidden = self.fc1.forward(states)?.relu()?;
+        self.fc2.forward(&hidden)
+    }
+}
+// ANCHOR_END: value_net
+
+/// The actor's weights copied out of candle, for acting on one observation at a time.
+///
+/// Computes exactly the formula of [`PolicyNet::forward`] with plain loops: a 4-128-2
+/// network is ~1k multiply-adds, far below the cost of building tensors for it.
+#[derive(Debug, Clone, Default)]
+pub struct ActorSnapshot {
+    w1: Vec<f32>,
+    b1: Vec<f32>,
+    w2: Vec<f32>,
+    b2: Vec<f32>,
+    state_dim: usize,
+}
+
+impl ActorSnapshot {
+    /// Copies the current weights of `actor`.
+    ///
+    /// # Errors
+    /// Only if candle cannot read the tensors.
+    pub fn of(actor: &PolicyNet) -> candle_core::Result<Self> {
+        let flat = |v: &Var| v.as_tensor().flatten_all()?.to_vec1::<f32>();
+        Ok(Self {
+            w1: flat(&actor.fc1.weight)?,
+            b1: flat(&actor.fc1.bias)?,
+            w2: flat(&actor.fc2.weight)?,
+            b2: flat(&actor.fc2.bias)?,
+            state_dim: actor
+                .fc1
+                .weight
+                .as_tensor()
+                .dims()
+                .get(1)
+                .copied()
+                .unwrap_or(0),
+        })
+    }
+
+    /// `softmax(fc2(relu(fc1(state))))` for one state, in f32.
+    #[must_use]
+    pub fn probs(&self, state: &[f32]) -> Vec<f32> {
+        let hidden: Vec<f32> = self
+            .w1
+            .chunks_exact(self.state_dim.max(1))
+            .zip(&self.b1)
+            .map(|(row, b)| (dot(row, state) + b).max(0.0))
+            .collect();
+        let logits: Vec<f32> = self
+            .w2
+            .chunks_exact(hidden.len().max(1))
+            .zip(&self.b2)
+            .map(|(row, b)| dot(row, &hidden) + b)
+            .collect();
+        softmax(&logits)
+    }
+}
+
+fn dot(a: &[f32], b: &[f32]) -> f32 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// `exp(z - max z) / Σ exp(z - max z)`, as candle's `softmax` computes it.
+fn softmax(logits: &[f32]) -> Vec<f32> {
+    let max = logits.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    let exps: Vec<f32> = logits.iter().map(|z| (z - max).exp()).collect();
+    let sum: f32 = exps.iter().sum();
+    exps.iter().map(|e| e / sum).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn init_is_in_pytorch_bounds_and_seeded() -> candle_core::Result<()> {
+        let net = PolicyNet::new(4, 128, 2, &mut NumpyRng::from_seed(3))?;
+        let w1 = net.fc1.weight.as_tensor().flatten_all()?.to_vec1::<f32>()?;
+        assert!(w1.iter().all(|w| w.abs() <= 0.5));
+        let w2 = net.fc2.weight.as_tensor().flatten_all()?.to_vec1::<f32>()?;
+        let bound = 1.0 / 128f32.sqrt();
+        assert!(w2.iter().all(|w| w.abs() <= bound));
+        assert!(
+            w2.iter().any(|w| w.abs() > bound * 0.9),
+            "uses the full range"
+        );
+        let again = PolicyNet::new(4, 128, 2, &mut NumpyRng::from_seed(3))?;
+        let w1b = again
+            .fc1
+            .weight
+            .as_tensor()
+            .flatten_all()?
+            .to_vec1::<f32>()?;
+        assert_eq!(w1, w1b);
+        Ok(())
+    }
+
+    #[test]
+    fn snapshot_matches_candle_forward() -> candle_core::Result<()> {
+        let net = PolicyNet::new(4, 128, 2, &mut NumpyRng::from_seed(1))?;
+        let snap = ActorSnapshot::of(&net)?;
+        let state = [0.03_f32, -0.4, 0.1, 0.7];
+        let t = Tensor::from_slice(&state, (1, 4), &Device::Cpu)?;
+        let want = net.forward(&t)?.to_vec2::<f32>()?;
+        let got = snap.probs(&state);
+        for (a, b) in got.iter().zip(&want[0]) {
+            assert!((a - b).abs() < 1e-6, "{got:?} vs {want:?}");
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,89 @@
+//! Every intermediate of one [`Agent::update`](crate::ppo::Agent::update), as plain data.
+//!
+//! The lessons, the terminal app and the notebooks display these; nothing here holds a
+//! tensor. Shapes, for an episode of `N` steps (column tensors `(N, 1)` stored flat):
+//!
+//! ```text
+//! states, next_states (N, 4)      actions, rewards, dones (N)
+//! values = V(s), next_values = V(s') (N)
+//! td_target, td_delta, advantage, old_log_probs (N)
+//! per epoch: log_probs, ratio, surr1, surr2, clipped (N); actor_loss, critic_loss, approx_kl,
+//!            clip_fraction (scalars)
+//! ```
+
+use serde::Serialize;
+
+/// One episode's batch and everything the update computed from it.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct UpdateTrace {
+    /// `s_t`, the observation each action was taken in.
+    pub states: Vec<[f32; 4]>,
+    /// `a_t`, 0 (left) or 1 (right).
+    pub actions: Vec<usize>,
+    /// `r_t` as the update saw it (f32).
+    pub rewards: Vec<f32>,
+    /// `s_{t+1}`.
+    pub next_states: Vec<[f32; 4]>,
+    /// `done_t`, as used in the TD target (the seed's `terminated or truncated`, or only
+    /// `terminated` with the truncation switch).
+    pub dones: Vec<bool>,
+    /// `V(s_t)` before the update.
+    pub values: Vec<f32>,
+    /// `V(s_{t+1})` before the update.
+    pub next_values: Vec<f32>,
+    /// `r_t + γ V(s_{t+1}) (1 - done_t)`.
+    pub td_target: Vec<f32>,
+    /// `td_target_t - V(s_t)`.
+    pub td_delta: Vec<f32>,
+    /// GAE of `td_delta`, as the epochs used it (normalised if the switch is on).
+    pub advantage: Vec<f32>,
+    /// `log π_old(a_t|s_t)` before the first epoch, held fixed.
+    pub old_log_probs: Vec<f32>,
+    /// One entry per epoch, in order.
+    pub epochs: Vec<EpochTrace>,
+}
+
+/// One pass over the batch: values before that epoch's optimizer step.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct EpochTrace {
+    /// `log π(a_t|s_t)` under the current actor.
+    pub log_probs: Vec<f32>,
+    /// `exp(log_probs - old_log_probs)`.
+    pub ratio: Vec<f32>,
+    /// `ratio · advantage`.
+    pub surr1: Vec<f32>,
+    /// `clamp(ratio, 1-ε, 1+ε) · advantage`.
+    pub surr2: Vec<f32>,
+    /// Whether the ratio left `[1-ε, 1+ε]` (CleanRL's `clipfrac` counts these).
+    pub clipped: Vec<bool>,
+    /// `mean(-min(surr1, surr2))` (minus the entropy bonus when that switch is on).
+    pub actor_loss: f32,
+    /// `mean((V(s_t) - td_target_t)²)`.
+    pub critic_loss: f32,
+    /// `mean((ratio - 1) - log ratio)`, CleanRL's estimate of KL(π_old ‖ π).
+    pub approx_kl: f32,
+    /// The share of `clipped` entries.
+    pub clip_fraction: f32,
+    /// Mean policy entropy over the batch, `-Σ_a π log π`.
+    pub entropy: f32,
+}
+
+impl UpdateTrace {
+    /// The number of transitions in the batch.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.actions.len()
+    }
+
+    /// Whether the batch is empty.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.actions.is_empty()
+    }
+
+    /// The last epoch, whose losses summarise the update.
+    #[must_use]
+    pub fn last_epoch(&self) -> Option<&EpochTrace> {
+        self.epochs.last()
+    }
+}
