@@ -129,7 +129,13 @@ fn training_keys_send_commands_to_the_worker() -> TestResult {
 #[test]
 fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
     let mut app = app()?;
-    let old_returns = app.snapshot.returns.clone();
+    let old_curve = app.snapshot.moving_average.clone();
+    assert!(!old_curve.is_empty() || app.snapshot.returns.len() < 9);
+    let old_curve = if old_curve.is_empty() {
+        app.snapshot.returns.clone()
+    } else {
+        old_curve
+    };
     app.update(Action::Sandbox);
     app.update(Action::Increase); // eps 0.2 -> 0.25
     app.update(Action::Down);
@@ -144,7 +150,7 @@ fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
     assert!((app.config.eps - 0.25).abs() < 1e-12);
     assert_eq!(
         app.previous.as_ref().map(|(_, r)| r.clone()),
-        Some(old_returns)
+        Some(old_curve)
     );
     let sent: Vec<Command> = app.outbox.drain(..).collect();
     assert!(

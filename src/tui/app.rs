@@ -226,9 +226,15 @@ impl App {
             Action::Decrease => self.nudge(i, false),
             Action::Enter => {
                 self.overlay = Overlay::None;
-                let label = format!("previous run (seed {})", self.seed);
-                if !self.snapshot.returns.is_empty() {
-                    self.previous = Some((label, self.snapshot.returns.clone()));
+                // Keep the current run's smoothed curve on the plot for comparison.
+                let s = &self.snapshot;
+                if !s.returns.is_empty() {
+                    let (what, curve) = if s.moving_average.is_empty() {
+                        ("returns", s.returns.clone())
+                    } else {
+                        ("moving average", s.moving_average.clone())
+                    };
+                    self.previous = Some((format!("before: {what} (seed {})", self.seed), curve));
                 }
                 self.reset_agent(self.sandbox.clone(), self.sandbox_seed, true);
             }
