@@ -12,6 +12,9 @@ use clap::{Parser, Subcommand};
 pub mod args;
 pub mod cartpole;
 pub mod lessons;
+pub mod play;
+pub mod replay;
+pub mod train;
 
 /// Learn Proximal Policy Optimization by running it: a terminal tutor over a native
 /// CartPole-v1 and a candle PPO identical to the seed's PyTorch code.
@@ -32,6 +35,12 @@ pub enum Command {
     Lessons,
     /// Print one lesson step (or all steps) as plain text with its live values.
     Show(lessons::ShowArgs),
+    /// Train the seed's PPO on CartPole-v1: progress bars, a summary and the return curve.
+    Train(train::TrainArgs),
+    /// Watch a saved agent (`train --save`) balance the pole in the terminal.
+    Play(play::PlayArgs),
+    /// Re-run recorded PyTorch updates (ppo_update_pytorch.json schema) and print ours.
+    Replay(replay::ReplayArgs),
 }
 
 /// Exit code for bad command-line input (as clap uses).
@@ -87,6 +96,9 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Cartpole(args)) => cartpole::run(&args),
         Some(Command::Lessons) => lessons::list(),
         Some(Command::Show(args)) => lessons::show(&args),
+        Some(Command::Train(args)) => train::run(&args),
+        Some(Command::Play(args)) => play::run(&args),
+        Some(Command::Replay(args)) => replay::run(&args),
         None => {
             crate::tui::run()?;
             Ok(ExitCode::SUCCESS)

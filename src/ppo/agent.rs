@@ -221,6 +221,7 @@ impl Agent {
         let critic_optimizer = Adam::new(critic_params, config.critic_lr);
         // ANCHOR_END: optimizers
         let acting = ActorSnapshot::of(&actor)?;
+        keep_freed_memory();
         Ok(Self {
             config: config.clone(),
             actor,
@@ -486,6 +487,18 @@ impl Agent {
         // ANCHOR_END: backprop
         Ok(record)
     }
+}
+
+/// Asks glibc's allocator to keep freed memory instead of returning it to the OS at once.
+///
+/// Each update allocates and frees dozens of `(N, 128)` tensors (~250 KB). By default glibc
+/// gives the top of the heap back to the OS when more than 128 KB is free there, so every
+/// epoch faults the same pages in again: this tripled training time (measured 17 s vs 5 s).
+/// Freeing one 16 MB block raises glibc's dynamic mmap and trim thresholds (to 16 and 32 MB)
+/// for the rest of the process; other allocators ignore it. Safe Rust, done once.
+fn keep_freed_memory() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| drop(std::hint::black_box(vec![0_u8; 16 << 20])));
 }
 
 /// The tensors every epoch reads, built once per update.

@@ -94,8 +94,12 @@ impl Linear {
     /// # Errors
     /// When `x`'s last dimension is not `in`.
     pub fn forward(&self, x: &Tensor) -> candle_core::Result<Tensor> {
-        x.matmul(&self.weight.as_tensor().t()?)?
-            .broadcast_add(self.bias.as_tensor())
+        // `+ 1·bᵀ` adds b to every row, the same numbers as `broadcast_add(b)`; written as
+        // an outer product, b's gradient `1ᵀ·grad` is a matrix product too, where candle's
+        // backward of a broadcast is a slow sum over the batch dimension.
+        let ones = Tensor::ones((x.dim(0)?, 1), x.dtype(), x.device())?;
+        let bias_rows = ones.matmul(&self.bias.as_tensor().unsqueeze(0)?)?;
+        x.matmul(&self.weight.as_tensor().t()?)? + bias_rows
     }
 
     /// The two parameters, weight first.

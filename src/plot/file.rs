@@ -1,0 +1,150 @@
+//! The seed's figure (`plt.plot(episodes_list, return_list)`, then the moving average,
+//! xlabel "Episodes", ylabel "Returns", title "PPO on CartPole-v1") drawn with plotters.
+//!
+//! The format follows the file extension: `.svg` or `.png`. Text is set in DejaVu Sans,
+//! shipped in `assets/` and compiled in, so no system font is needed.
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+/// The font every label uses (DejaVu Sans, Bitstream Vera license: assets/DejaVuSans-LICENSE.txt).
+static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+static REGISTER: Once = Once::new();
+
+/// What can go wrong writing a figure.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// The extension is neither `.png` nor `.svg`.
+    #[error("{path}: cannot tell the format from the extension; use FILE.png or FILE.svg")]
+    UnknownFormat {
+        /// The path given.
+        path: String,
+    },
+    /// plotters failed (usually: the file could not be written).
+    #[error("{path}: could not draw the figure: {reason}")]
+    Draw {
+        /// The path given.
+        path: String,
+        /// plotters' message.
+        reason: String,
+    },
+}
+
+/// Writes the return curve and its moving average to `path` (`.png`, 1000x600, or `.svg`).
+///
+/// # Errors
+/// [`PlotError::UnknownFormat`] for another extension; [`PlotError::Draw`] when writing fails.
+pub fn save_return_plot(
+    path: &Path,
+    title: &str,
+    returns: &[f64],
+    smoothed: &[f64],
+) -> Result<(), PlotError> {
+    REGISTER.call_once(|| {
+        // The bytes are a valid TrueType file compiled in; a failure would only lose text.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+    let shown = path.display().to_string();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+        path: shown.clone(),
+        reason: e.to_string(),
+    };
+    match ext.as_deref() {
+        Some("svg") => {
+            let root = SVGBackend::new(path, (1000, 600)).into_drawing_area();
+            draw(&root, title, returns, smoothed).map_err(|e| draw_err(&e))?;
+            root.present().map_err(|e| draw_err(&e))
+        }
+        Some("png") => {
+            let root = BitMapBackend::new(path, (1000, 600)).into_drawing_area();
+            draw(&root, title, returns, smoothed).map_err(|e| draw_err(&e))?;
+            root.present().map_err(|e| draw_err(&e))
+        }
+        _ => Err(PlotError::UnknownFormat { path: shown }),
+    }
+}
+
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    returns: &[f64],
+    smoothed: &[f64],
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    root.fill(&WHITE)?;
+    let x_max = returns.len().saturating_sub(1).max(1) as f64;
+    let y_max = returns.iter().chain(smoothed).copied().fold(1.0, f64::max) * 1.05;
+    let mut chart = ChartBuilder::on(root)
+        .caption(title, ("sans-serif", 28))
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..x_max, 0.0..y_max)?;
+    chart
+        .configure_mesh()
+        .x_desc("Episodes")
+        .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_label_formatter(&|y| format!("{y:.0}"))
+        .y_desc("Returns")
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 20))
+        .draw()?;
+    let blue = RGBColor(31, 119, 180); // matplotlib's first colour
+    let orange = RGBColor(255, 127, 14);
+    let points = |ys: &[f64]| {
+        ys.iter()
+            .enumerate()
+            .map(|(i, &y)| (i as f64, y))
+            .collect::<Vec<_>>()
+    };
+    chart
+        .draw_series(LineSeries::new(points(returns), blue.stroke_width(1)))?
+        .label("returns")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], blue));
+    chart
+        .draw_series(LineSeries::new(points(smoothed), orange.stroke_width(2)))?
+        .label("moving average (9)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], orange));
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .label_font(("sans-serif", 16))
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn writes_png_and_svg_and_rejects_others() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let returns: Vec<f64> = (0..50).map(|i| f64::from(i * 10)).collect();
+        for name in ["curve.png", "curve.svg"] {
+            let path = dir.path().join(name);
+            save_return_plot(&path, "PPO on CartPole-v1", &returns, &returns)?;
+            assert!(
+                std::fs::metadata(&path)?.len() > 1000,
+                "{name} is too small"
+            );
+        }
+        let svg = std::fs::read_to_string(dir.path().join("curve.svg"))?;
+        assert!(
+            svg.contains("Episodes")
+                && svg.contains("Returns")
+                && svg.contains("PPO on CartPole-v1")
+        );
+        let err = save_return_plot(&dir.path().join("curve.jpg"), "t", &returns, &returns);
+        assert!(matches!(err, Err(PlotError::UnknownFormat { .. })));
+        Ok(())
+    }
+}
