@@ -169,15 +169,32 @@ pub const STEP_AFTER_TERMINATED: &str = "You are calling 'step()' even though th
 /// One physics step from `state` under `action` (0 = left, 1 = right), in Gymnasium's
 /// exact operation order.
 #[must_use]
+#[inline]
 pub fn physics(state: [f64; 4], action: usize, integrator: Integrator) -> [f64; 4] {
-    let [mut x, mut x_dot, mut theta, mut theta_dot] = state;
-    let force = if action == 1 { FORCE_MAG } else { -FORCE_MAG };
+    let theta = state[2];
     let costheta = theta.cos();
     let sintheta = theta.sin();
+    let (xacc, thetaacc) = accelerations(action, state[3], sintheta, costheta);
+    integrate(state, xacc, thetaacc, integrator)
+}
+
+/// The cart's and the pole's accelerations `(ẍ, θ̈)`, given `sin θ` and `cos θ`.
+#[must_use]
+#[inline]
+pub fn accelerations(action: usize, theta_dot: f64, sintheta: f64, costheta: f64) -> (f64, f64) {
+    let force = if action == 1 { FORCE_MAG } else { -FORCE_MAG };
     let temp = (force + POLEMASS_LENGTH * (theta_dot * theta_dot) * sintheta) / TOTAL_MASS;
     let thetaacc = (GRAVITY * sintheta - costheta * temp)
         / (LENGTH * (4.0 / 3.0 - MASS_POLE * (costheta * costheta) / TOTAL_MASS));
     let xacc = temp - POLEMASS_LENGTH * thetaacc * costheta / TOTAL_MASS;
+    (xacc, thetaacc)
+}
+
+/// Advances `state` by one time step `τ` with the given accelerations.
+#[must_use]
+#[inline]
+pub fn integrate(state: [f64; 4], xacc: f64, thetaacc: f64, integrator: Integrator) -> [f64; 4] {
+    let [mut x, mut x_dot, mut theta, mut theta_dot] = state;
     match integrator {
         Integrator::Euler => {
             x += TAU * x_dot;
@@ -199,6 +216,7 @@ pub fn physics(state: [f64; 4], action: usize, integrator: Integrator) -> [f64; 
 // ANCHOR: termination
 /// Gymnasium's termination test, on the f64 state.
 #[must_use]
+#[inline]
 #[allow(clippy::manual_range_contains)] // Gymnasium's exact comparisons (NaN included)
 pub fn is_terminated(state: &[f64; 4]) -> bool {
     let [x, _, theta, _] = *state;
@@ -211,11 +229,13 @@ pub fn is_terminated(state: &[f64; 4]) -> bool {
 
 /// The f32 observation Gymnasium returns for an f64 state.
 #[must_use]
+#[inline]
 pub fn observe(state: &[f64; 4]) -> [f32; 4] {
     state.map(|v| v as f32)
 }
 
 /// Gymnasium's reward for a step, given how many steps the episode has gone past termination.
+#[inline]
 fn reward(terminated: bool, steps_beyond: Option<u32>, sutton_barto: bool) -> f64 {
     match (terminated, steps_beyond, sutton_barto) {
         (false, _, false) => 1.0,
@@ -303,6 +323,7 @@ impl CartPole {
     /// # Errors
     /// [`EnvError::NotReset`] before the first reset; [`EnvError::InvalidAction`] for an action
     /// other than 0 or 1.
+    #[inline]
     pub fn step(&mut self, action: usize) -> Result<Step, EnvError> {
         if action > 1 {
             return Err(EnvError::InvalidAction(action));

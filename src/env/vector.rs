@@ -16,7 +16,7 @@
 //! ```
 
 use super::EnvError;
-use super::cartpole::{CartPoleConfig, Integrator, is_terminated, physics};
+use super::cartpole::{CartPoleConfig, accelerations, integrate, is_terminated};
 use super::seeding::NumpyRng;
 
 /// What one vector step returns, one entry per environment.
@@ -45,6 +45,8 @@ pub struct CartPoleVec {
     theta_dot: Vec<f64>,
     elapsed: Vec<u32>,
     rngs: Vec<NumpyRng>,
+    sin: Vec<f64>,
+    cos: Vec<f64>,
     out: VecStep,
 }
 
@@ -62,6 +64,8 @@ impl CartPoleVec {
             rngs: (0..n as u64)
                 .map(|i| NumpyRng::from_seed(seed.wrapping_add(i)))
                 .collect(),
+            sin: vec![0.0; n],
+            cos: vec![0.0; n],
             out: VecStep {
                 obs: vec![[0.0; 4]; n],
                 rewards: vec![0.0; n],
@@ -140,20 +144,28 @@ impl CartPoleVec {
         if let Some(&bad) = actions.iter().find(|&&a| a > 1) {
             return Err(EnvError::InvalidAction(bad));
         }
-        let integrator: Integrator = self.config.integrator;
+        let integrator = self.config.integrator;
         let limit = self.config.env_id.max_episode_steps();
         let reward = if self.config.sutton_barto_reward {
             0.0
         } else {
             1.0
         };
+        // Three passes so the CPU can overlap independent environments: the sines and
+        // cosines (library calls), the arithmetic (no calls), then flags and resets.
+        for (i, &theta) in self.theta.iter().enumerate() {
+            // One sincos call: the same values as separate sin and cos calls.
+            (self.sin[i], self.cos[i]) = theta.sin_cos();
+        }
         for (i, &action) in actions.iter().enumerate() {
-            let s = physics(
-                [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]],
-                action,
-                integrator,
-            );
-            [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]] = s;
+            let (xacc, thetaacc) =
+                accelerations(action, self.theta_dot[i], self.sin[i], self.cos[i]);
+            let s = [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]];
+            [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]] =
+                integrate(s, xacc, thetaacc, integrator);
+        }
+        for i in 0..actions.len() {
+            let s = [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]];
             let terminated = is_terminated(&s);
             self.elapsed[i] += 1;
             let truncated = self.elapsed[i] >= limit;
