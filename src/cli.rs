@@ -11,6 +11,7 @@ use clap::{Parser, Subcommand};
 
 pub mod args;
 pub mod cartpole;
+pub mod grade;
 pub mod lessons;
 pub mod play;
 pub mod replay;
@@ -41,6 +42,10 @@ pub enum Command {
     Play(play::PlayArgs),
     /// Re-run recorded PyTorch updates (ppo_update_pytorch.json schema) and print ours.
     Replay(replay::ReplayArgs),
+    /// Grade your solution of an exercise (or all): checks, first failing input, hints.
+    Grade(grade::GradeArgs),
+    /// Restore an exercise's starter file (lessons/<lesson>/exercise.rs).
+    Reset(grade::ResetArgs),
 }
 
 /// Exit code for bad command-line input (as clap uses).
@@ -99,6 +104,8 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Train(args)) => train::run(&args),
         Some(Command::Play(args)) => play::run(&args),
         Some(Command::Replay(args)) => replay::run(&args),
+        Some(Command::Grade(args)) => grade::run(&args),
+        Some(Command::Reset(args)) => grade::reset(&args),
         None => {
             crate::tui::run()?;
             Ok(ExitCode::SUCCESS)

@@ -5,6 +5,7 @@
 //! - [`env`]: a native CartPole-v1 identical to Gymnasium's (same states, bit for bit, same seeds).
 //! - [`ppo`]: the seed's PPO (*Hands-on RL*, `task_PPO.py`) on candle, same numbers as PyTorch.
 //! - [`plot`]: return curves in the terminal and as PNG/SVG figures (plotters).
+//! - [`grade`]: graded exercises: the learner's plain-Rust PPO pieces against the references.
 //! - [`lesson`]: the course as data (`lessons/`, embedded), code anchors, live values, progress.
 //! - [`tui`]: the terminal app (ratatui), training on a worker thread.
 //! - [`cli`]: the `ppo-tutor` command line (the binary only parses arguments and calls it).
@@ -14,6 +15,7 @@
 
 pub mod cli;
 pub mod env;
+pub mod grade;
 pub mod lesson;
 pub mod plot;
 pub mod ppo;

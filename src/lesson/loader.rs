@@ -7,6 +7,13 @@ use super::{Exercise, Lesson, Step, VIEWS, anchor};
 
 static LESSONS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/lessons");
 
+/// A file embedded from `lessons/`, by its path under that folder (for example
+/// `07-td-target/exercise.rs`), as text.
+#[must_use]
+pub fn embedded_file(path: &str) -> Option<&'static str> {
+    LESSONS.get_file(path).and_then(|f| f.contents_utf8())
+}
+
 /// A lesson file that cannot be used, with where and how to fix it.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum LessonError {

@@ -1,0 +1,139 @@
+//! `ppo-tutor grade [EXERCISE] [--file PATH]` and `ppo-tutor reset EXERCISE`: the graded
+//! exercises from the command line, like rustlings.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
+
+use clap::Args;
+
+use crate::grade::{self, GradeError, GradeOptions, Report};
+use crate::lesson::Progress;
+
+/// Arguments of `ppo-tutor grade`.
+#[derive(Debug, Args)]
+pub struct GradeArgs {
+    /// The exercise (its function name, e.g. td_target); all exercises when omitted.
+    pub exercise: Option<String>,
+    /// Grade this file instead of the starter's path (lessons/<lesson>/exercise.rs).
+    #[arg(long, value_name = "PATH")]
+    pub file: Option<PathBuf>,
+    /// Seconds the learner's code may run on all cases of one exercise.
+    #[arg(long, default_value_t = 10, value_name = "SECS")]
+    pub time_limit: u64,
+}
+
+/// Arguments of `ppo-tutor reset`.
+#[derive(Debug, Args)]
+pub struct ResetArgs {
+    /// The exercise whose starter file to restore (the whole file is rewritten).
+    pub exercise: String,
+}
+
+fn usage(message: &str) -> ExitCode {
+    eprintln!("error: {message} (see --help)");
+    ExitCode::from(super::EXIT_USAGE)
+}
+
+/// Grades one exercise (details) or all of them (a score table). Exit code 0 exactly when
+/// every check of every graded exercise passes, 1 otherwise, 2 for a usage error.
+///
+/// # Errors
+/// Grading cannot happen at all (no rustc, unwritable cache).
+pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
+    let opts = GradeOptions {
+        time_limit: Duration::from_secs(args.time_limit.max(1)),
+        ..GradeOptions::default()
+    };
+    let Some(name) = &args.exercise else {
+        if args.file.is_some() {
+            return Ok(usage(
+                "--file needs an exercise name: ppo-tutor grade NAME --file PATH",
+            ));
+        }
+        return grade_all(&opts);
+    };
+    let report = match grade::grade(name, args.file.as_deref(), &opts) {
+        Err(e @ GradeError::UnknownExercise { .. }) => return Ok(usage(&e.to_string())),
+        Err(e @ GradeError::Read { .. }) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::FAILURE);
+        }
+        other => other?,
+    };
+    print!("{}", report.render());
+    if report.passed() {
+        record_pass(&report);
+        if args.file.is_none() {
+            println!(
+                "  The reference solution: lessons/{}/solution.rs",
+                lesson_of(name)
+            );
+        }
+        Ok(ExitCode::SUCCESS)
+    } else {
+        Ok(ExitCode::FAILURE)
+    }
+}
+
+fn lesson_of(name: &str) -> &'static str {
+    grade::catalog::find(name).map_or("", |s| s.lesson)
+}
+
+fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
+    println!("{:<22} {:<38} result", "exercise", "file");
+    let mut passed = 0;
+    let names = grade::exercise_names();
+    for name in &names {
+        let spec = grade::spec(name)?;
+        let path = spec.starter_path();
+        let result = match grade::grade(name, None, opts) {
+            Ok(report) => {
+                if report.passed() {
+                    passed += 1;
+                    record_pass(&report);
+                }
+                report.summary()
+            }
+            Err(GradeError::Read { .. }) => format!("missing: ppo-tutor reset {name}"),
+            Err(e) => return Err(e.into()),
+        };
+        println!("{name:<22} {path:<38} {result}");
+    }
+    println!("score: {passed}/{} exercises pass", names.len());
+    println!("details: ppo-tutor grade <exercise>");
+    Ok(if passed == names.len() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+/// Adds a passed exercise to the progress file (a failure to save is only a warning).
+fn record_pass(report: &Report) {
+    let path = Progress::default_path();
+    let (mut progress, _) = Progress::load(&path);
+    if progress.exercises_done.insert(report.exercise.clone())
+        && let Err(e) = progress.save(&path)
+    {
+        eprintln!(
+            "warning: could not record the pass in {}: {e}",
+            path.display()
+        );
+    }
+}
+
+/// Restores an exercise's starter file under the current folder.
+///
+/// # Errors
+/// The file cannot be written.
+pub fn reset(args: &ResetArgs) -> anyhow::Result<ExitCode> {
+    match grade::reset(&args.exercise, Path::new(".")) {
+        Err(e @ GradeError::UnknownExercise { .. }) => Ok(usage(&e.to_string())),
+        Err(e) => Err(e.into()),
+        Ok(path) => {
+            println!("restored the starter {}", path.display());
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}

@@ -1,0 +1,26 @@
+//! The reference solutions, compiled from the very files the tutor shows after a pass
+//! (`lessons/NN-slug/solution.rs`), so what is shown is what grades.
+
+#[allow(clippy::needless_range_loop)]
+#[path = "../../lessons/06-episode-loop/solution.rs"]
+pub mod episode_loop;
+
+#[path = "../../lessons/07-td-target/solution.rs"]
+pub mod td_target;
+
+#[allow(clippy::needless_range_loop)]
+#[path = "../../lessons/08-gae/solution.rs"]
+pub mod gae;
+
+#[path = "../../lessons/09-ratio/solution.rs"]
+pub mod ratio;
+
+#[path = "../../lessons/10-clipping/solution.rs"]
+pub mod clipping;
+
+#[path = "../../lessons/11-losses/solution.rs"]
+pub mod losses;
+
+#[allow(clippy::needless_range_loop)]
+#[path = "../../lessons/12-training/solution.rs"]
+pub mod training;

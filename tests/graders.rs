@@ -1,0 +1,348 @@
+//! The graders: every reference solution passes, every shipped starter fails, and every
+//! typical wrong answer in `tests/wrong_answers/<exercise>/<mistake>.rs` fails with the hint
+//! that names its mistake. Plus the grader's robustness (compile errors, a wrong signature,
+//! panics, endless loops) and the `grade` / `reset` commands.
+//!
+//! Each wrong answer is written the way a learner would write it (loops, indexing), not
+//! copied from the grader's compact variants, so a diagnosis that only matches its own
+//! code would fail here.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Duration;
+
+use ppo_tutor::grade::{self, CheckStatus, GradeOptions, Problem, Report, catalog};
+
+type TestResult = Result<(), Box<dyn std::error::Error>>;
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+fn opts() -> GradeOptions {
+    GradeOptions::default()
+}
+
+fn grade_file(name: &str, path: &Path) -> Result<Report, Box<dyn std::error::Error>> {
+    Ok(grade::grade(name, Some(path), &opts())?)
+}
+
+fn grade_text(
+    name: &str,
+    text: &str,
+    limit: Duration,
+) -> Result<Report, Box<dyn std::error::Error>> {
+    let spec = grade::spec(name)?;
+    let options = GradeOptions {
+        time_limit: limit,
+        ..opts()
+    };
+    Ok(grade::grade_source(
+        spec,
+        text,
+        "learner_test.rs",
+        &options,
+    )?)
+}
+
+#[test]
+fn every_reference_solution_passes() -> TestResult {
+    for spec in catalog::SPECS {
+        let path = Path::new(ROOT).join(format!("lessons/{}/solution.rs", spec.lesson));
+        let report = grade_file(spec.name, &path)?;
+        assert!(report.passed(), "{}", report.render());
+        assert!(grade::solution(spec.name).is_some());
+    }
+    Ok(())
+}
+
+#[test]
+fn every_shipped_starter_fails() -> TestResult {
+    for spec in catalog::SPECS {
+        let path = Path::new(ROOT).join(spec.starter_path());
+        let report = grade_file(spec.name, &path)?;
+        assert!(!report.passed(), "{}", report.render());
+        assert_eq!(
+            report.summary(),
+            "not started (todo!() left)",
+            "{}",
+            spec.name
+        );
+        let text = report.render();
+        assert!(text.contains("todo!() is still there"), "{text}");
+        let (rel, embedded) = grade::starter(spec.name).ok_or("no embedded starter")?;
+        assert_eq!(
+            std::fs::read_to_string(Path::new(ROOT).join(rel))?,
+            embedded
+        );
+    }
+    Ok(())
+}
+
+/// Grades every wrong answer of `name` and checks each fails, naming its own mistake.
+fn catalogue(name: &str) -> TestResult {
+    let spec = grade::spec(name)?;
+    let dir = Path::new(ROOT).join("tests/wrong_answers").join(name);
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)?
+        .map(|e| e.map(|e| e.path()))
+        .collect::<Result<_, _>>()?;
+    files.sort();
+    let ids: Vec<&str> = spec.mistakes.iter().map(|m| m.id).collect();
+    let stems: Vec<String> = files
+        .iter()
+        .filter_map(|f| Some(f.file_stem()?.to_str()?.to_string()))
+        .collect();
+    let mut sorted_ids = ids.clone();
+    sorted_ids.sort_unstable();
+    assert_eq!(
+        stems, sorted_ids,
+        "{name}: one wrong answer file per known mistake"
+    );
+    for mistake in spec.mistakes {
+        let report = grade_file(name, &dir.join(format!("{}.rs", mistake.id)))?;
+        let text = report.render();
+        assert!(!report.passed(), "{name}/{} passed:\n{text}", mistake.id);
+        assert_eq!(
+            report.mistake.as_deref(),
+            Some(mistake.id),
+            "{name}/{}: wrong diagnosis\n{text}",
+            mistake.id
+        );
+        let title = mistake.hint.split(':').next().unwrap_or(mistake.hint);
+        assert!(
+            text.contains(title),
+            "{name}/{}: hint missing\n{text}",
+            mistake.id
+        );
+    }
+    Ok(())
+}
+
+#[test]
+fn wrong_sample_action() -> TestResult {
+    catalogue("sample_action")
+}
+#[test]
+fn wrong_td_target() -> TestResult {
+    catalogue("td_target")
+}
+#[test]
+fn wrong_td_delta() -> TestResult {
+    catalogue("td_delta")
+}
+#[test]
+fn wrong_compute_advantage() -> TestResult {
+    catalogue("compute_advantage")
+}
+#[test]
+fn wrong_log_prob_of_actions() -> TestResult {
+    catalogue("log_prob_of_actions")
+}
+#[test]
+fn wrong_ratio() -> TestResult {
+    catalogue("ratio")
+}
+#[test]
+fn wrong_actor_loss() -> TestResult {
+    catalogue("actor_loss")
+}
+#[test]
+fn wrong_critic_loss() -> TestResult {
+    catalogue("critic_loss")
+}
+#[test]
+fn wrong_moving_average() -> TestResult {
+    catalogue("moving_average")
+}
+
+#[test]
+fn every_mistake_differs_from_the_reference_somewhere() {
+    for spec in catalog::SPECS {
+        let checks = (spec.checks)();
+        for m in spec.mistakes {
+            let differs = checks.iter().flat_map(|c| &c.cases).any(|case| {
+                !(m.answer)(grade::Args(case))
+                    .matches(&(spec.reference)(grade::Args(case)), spec.tolerance)
+            });
+            assert!(differs, "{}/{} is never caught", spec.name, m.id);
+        }
+    }
+}
+
+#[test]
+fn references_agree_with_the_library_and_numpy() {
+    use ppo_tutor::grade::value::Output;
+    let ma = grade::spec("moving_average")
+        .map(|s| (s.checks)())
+        .unwrap_or_default();
+    let numpy = &ma[1];
+    assert_eq!(numpy.cases.len(), 5, "the numpy fixture is embedded");
+    for (case, want) in numpy.cases.iter().zip(grade::cases::numpy_outputs()) {
+        let got =
+            (catalog::find("moving_average").map(|s| s.reference)).map(|f| f(grade::Args(case)));
+        assert_eq!(got, Some(Output::F64s(want)));
+    }
+    let batches = grade::cases::fixture_batches();
+    assert_eq!(batches.len(), 3, "the PyTorch fixture replays");
+    for b in batches {
+        let ours = ppo_tutor::ppo::compute_advantage(b.config.gamma, b.config.lmbda, &b.td_delta);
+        let reference = ppo_tutor::grade::solutions::gae::compute_advantage(
+            b.config.gamma as f32,
+            b.config.lmbda as f32,
+            &b.td_delta,
+        );
+        for (x, y) in ours.iter().zip(&reference) {
+            assert!((x - y).abs() <= 1e-5 + 1e-5 * x.abs(), "{x} vs {y}");
+        }
+    }
+}
+
+#[test]
+fn a_file_that_does_not_compile_shows_rustc_errors() -> TestResult {
+    let report = grade_text(
+        "ratio",
+        "pub fn ratio(log_probs: &[f32], old_log_probs: &[f32]) -> Vec<f32> {\n    let x: u32 = \"no\";\n    todo!()\n}\n",
+        Duration::from_secs(10),
+    )?;
+    let (summary, compiler) = report.compile_error.clone().ok_or("compiled")?;
+    assert!(summary.contains("does not compile"), "{summary}");
+    assert!(compiler.contains("error[E0308]"), "{compiler}");
+    assert!(compiler.contains("learner_test.rs:2"), "{compiler}");
+    assert!(!report.passed());
+    assert!(report.render().contains("mismatched types"));
+    Ok(())
+}
+
+#[test]
+fn a_missing_or_mistyped_function_is_named() -> TestResult {
+    let report = grade_text("ratio", "pub fn other() {}\n", Duration::from_secs(10))?;
+    let (summary, _) = report.compile_error.ok_or("compiled")?;
+    assert!(summary.contains("has no function `ratio`"), "{summary}");
+    let report = grade_text(
+        "ratio",
+        "pub fn ratio(log_probs: &[f64], old: &[f64]) -> Vec<f64> { vec![] }\n",
+        Duration::from_secs(10),
+    )?;
+    let (summary, _) = report.compile_error.ok_or("compiled")?;
+    assert!(summary.contains("signature"), "{summary}");
+    assert!(summary.contains("pub fn ratio(log_probs: &[f32], old_log_probs: &[f32]) -> Vec<f32>"));
+    let report = grade_text(
+        "ratio",
+        "fn ratio(a: &[f32], b: &[f32]) -> Vec<f32> { vec![] }\n",
+        Duration::from_secs(10),
+    )?;
+    let (summary, _) = report.compile_error.ok_or("compiled")?;
+    assert!(summary.contains("private"), "{summary}");
+    Ok(())
+}
+
+#[test]
+fn a_panic_is_reported_with_its_message_and_input() -> TestResult {
+    let report = grade_text(
+        "td_delta",
+        "pub fn td_delta(t: &[f32], v: &[f32]) -> Vec<f32> {\n    (0..=t.len()).map(|i| t[i] - v[i]).collect()\n}\n",
+        Duration::from_secs(10),
+    )?;
+    let failure = report.first_failure().ok_or("no failure")?;
+    match &failure.problem {
+        Problem::Panicked(m) => {
+            assert!(m.contains("index out of bounds"), "{m}");
+            assert!(m.contains("learner_test.rs:2"), "{m}");
+        }
+        other => return Err(format!("expected a panic, got {other:?}").into()),
+    }
+    assert!(failure.hint.contains("past the end"));
+    assert!(!failure.input.is_empty());
+    Ok(())
+}
+
+#[test]
+fn an_endless_loop_is_reported_as_never_returning() -> TestResult {
+    let report = grade_text(
+        "critic_loss",
+        "pub fn critic_loss(v: &[f32], t: &[f32]) -> f32 {\n    let mut i = 0;\n    while i < v.len() { if v.len() > 1 { continue; } i += 1; }\n    0.0\n}\n",
+        Duration::from_secs(1),
+    )?;
+    let failed: Vec<&Problem> = report
+        .checks
+        .iter()
+        .filter_map(|c| match &c.status {
+            CheckStatus::Failed(f) => Some(&f.problem),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        failed.first(),
+        Some(&&Problem::TimedOut(1)),
+        "{}",
+        report.render()
+    );
+    assert!(report.render().contains("never returned within 1 s"));
+    assert!(
+        report
+            .checks
+            .iter()
+            .any(|c| matches!(c.status, CheckStatus::NotRun(_)))
+    );
+    Ok(())
+}
+
+fn ppo_tutor(dir: &Path, args: &[&str]) -> Result<(i32, String), Box<dyn std::error::Error>> {
+    let out = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .args(args)
+        .current_dir(dir)
+        .env("PPO_TUTOR_STATE", dir.join("state.json"))
+        .env("NO_COLOR", "1")
+        .output()?;
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    Ok((out.status.code().unwrap_or(-1), text))
+}
+
+#[test]
+fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let d = dir.path();
+    let wrong = Path::new(ROOT).join("tests/wrong_answers/actor_loss/clamp_advantage.rs");
+    let wrong = wrong.to_str().ok_or("path")?;
+    let (code, text) = ppo_tutor(d, &["grade", "actor_loss", "--file", wrong])?;
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("✗") && text.contains("expected:") && text.contains("got:"));
+    assert!(text.contains("The clamp is applied to the advantage instead of the ratio"));
+
+    let (code, text) = ppo_tutor(d, &["grade", "no_such_exercise"])?;
+    assert_eq!(code, 2, "{text}");
+    assert_eq!(text.lines().count(), 1, "{text}");
+    let (code, _) = ppo_tutor(d, &["grade", "--file", "x.rs"])?;
+    assert_eq!(code, 2);
+    let (code, text) = ppo_tutor(d, &["grade", "ratio"])?;
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("ppo-tutor reset ratio"), "{text}");
+
+    for name in grade::exercise_names() {
+        let (code, text) = ppo_tutor(d, &["reset", name])?;
+        assert_eq!(code, 0, "{text}");
+    }
+    std::fs::copy(
+        Path::new(ROOT).join("lessons/07-td-target/solution.rs"),
+        d.join("lessons/07-td-target/exercise.rs"),
+    )?;
+    let (code, text) = ppo_tutor(d, &["grade", "td_target"])?;
+    assert_eq!(code, 0, "{text}");
+    let (code, text) = ppo_tutor(d, &["grade"])?;
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("score: 2/9 exercises pass"), "{text}");
+    assert!(text.contains("not started (todo!() left)"), "{text}");
+    let state = std::fs::read_to_string(d.join("state.json"))?;
+    assert!(
+        state.contains("td_target") && state.contains("td_delta"),
+        "{state}"
+    );
+
+    let (code, _) = ppo_tutor(d, &["reset", "td_delta"])?;
+    assert_eq!(code, 0);
+    let (code, text) = ppo_tutor(d, &["grade", "td_target"])?;
+    assert_eq!(code, 1, "reset restores the starter: {text}");
+    Ok(())
+}
