@@ -4,6 +4,7 @@
 //!
 //! - [`config`]: [`PpoConfig`], whose `Default` is the seed's hyper-parameters.
 //! - [`model`]: [`PolicyNet`] `π(a|s)` and [`ValueNet`] `V(s)`, initialised like PyTorch.
+//! - [`ops`]: `relu` and the bias add as candle ops with a lean backward pass.
 //! - [`adam`]: [`Adam`], `torch.optim.Adam` step for step.
 //! - [`advantage`]: GAE, `compute_advantage` in f32 as numpy runs it.
 //! - [`agent`]: [`Agent`] with `take_action` and `update`, which returns an [`UpdateTrace`].
@@ -24,6 +25,7 @@ pub mod checkpoint;
 pub mod config;
 pub mod model;
 pub mod moving_average;
+pub mod ops;
 pub mod replay;
 pub mod trace;
 pub mod train;

@@ -429,7 +429,9 @@ impl Agent {
         let surr1 = (&ratio * b.advantage)?;
         let surr2 = (ratio.clamp(1.0 - eps, 1.0 + eps)? * b.advantage)?;
         // ANCHOR_END: surrogate
-        let entropy = (&probs * probs.log()?)?.sum(1)?.neg()?.mean_all()?;
+        // -Σ π log π, with π floored so that an underflowed probability counts 0, not NaN
+        let log_probs_all = probs.clamp(f32::MIN_POSITIVE, 1.0)?.log()?;
+        let entropy = (&probs * log_probs_all)?.sum(1)?.neg()?.mean_all()?;
         // ANCHOR: actor_loss
         let mut actor_loss = surr1.minimum(&surr2)?.neg()?.mean_all()?;
         if self.config.entropy_coef > 0.0 {

@@ -28,6 +28,7 @@ use std::collections::BTreeMap;
 use candle_core::{Device, Tensor, Var};
 use serde::{Deserialize, Serialize};
 
+use super::ops::{add_bias, relu};
 use crate::env::seeding::NumpyRng;
 
 /// One parameter as plain data: its shape (PyTorch's layout) and values in row-major order.
@@ -94,12 +95,11 @@ impl Linear {
     /// # Errors
     /// When `x`'s last dimension is not `in`.
     pub fn forward(&self, x: &Tensor) -> candle_core::Result<Tensor> {
-        // `+ 1·bᵀ` adds b to every row, the same numbers as `broadcast_add(b)`; written as
-        // an outer product, b's gradient `1ᵀ·grad` is a matrix product too, where candle's
-        // backward of a broadcast is a slow sum over the batch dimension.
-        let ones = Tensor::ones((x.dim(0)?, 1), x.dtype(), x.device())?;
-        let bias_rows = ones.matmul(&self.bias.as_tensor().unsqueeze(0)?)?;
-        x.matmul(&self.weight.as_tensor().t()?)? + bias_rows
+        // add_bias is broadcast_add with a faster backward (see `ops`)
+        add_bias(
+            &x.matmul(&self.weight.as_tensor().t()?)?,
+            self.bias.as_tensor(),
+        )
     }
 
     /// The two parameters, weight first.
@@ -140,7 +140,7 @@ impl PolicyNet {
     /// # Errors
     /// When `states` has the wrong width.
     pub fn forward(&self, states: &Tensor) -> candle_core::Result<Tensor> {
-        let hidden = self.fc1.forward(states)?.relu()?;
+        let hidden = relu(&self.fc1.forward(states)?)?;
         candle_nn::ops::softmax(&self.fc2.forward(&hidden)?, 1)
     }
 }
@@ -176,7 +176,7 @@ impl ValueNet {
     /// # Errors
     /// When `states` has the wrong width.
     pub fn forward(&self, states: &Tensor) -> candle_core::Result<Tensor> {
-        let hidden = self.fc1.forward(states)?.relu()?;
+        let hidden = relu(&self.fc1.forward(states)?)?;
         self.fc2.forward(&hidden)
     }
 }

@@ -1,0 +1,225 @@
+//! `ppo-tutor train`, `replay` and `play` as a user runs them, including bad input.
+
+use std::collections::HashMap;
+use std::process::{Command, Output};
+
+use candle_core::{Device, Tensor};
+use serde_json::Value;
+
+type TestResult = Result<(), Box<dyn std::error::Error>>;
+
+const FIXTURE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/fixtures/ppo_update_pytorch.json"
+);
+
+fn ppo_tutor(args: &[&str]) -> Result<Output, std::io::Error> {
+    Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .args(args)
+        .output()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn train_writes_json_checkpoint_and_figure() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let json = dir.path().join("run.json");
+    let agent = dir.path().join("agent.safetensors");
+    let plot = dir.path().join("returns.svg");
+    let out = ppo_tutor(&[
+        "train",
+        "--episodes",
+        "12",
+        "--seed",
+        "4",
+        "--json",
+        path(&json)?,
+        "--save",
+        path(&agent)?,
+        "--plot",
+        path(&plot)?,
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8(out.stdout)?;
+    assert!(
+        stdout.contains("PPO on CartPole-v1, seed 4: 12 episodes"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("Episodes"),
+        "the terminal plot is drawn: {stdout}"
+    );
+    let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+    let returns = run["returns"].as_array().ok_or("no returns")?;
+    assert_eq!(returns.len(), 12);
+    let total: f64 = returns.iter().filter_map(Value::as_f64).sum();
+    assert_eq!(run["env_steps"].as_f64(), Some(total), "reward 1 per step");
+    assert!(run["wall_s"].as_f64().is_some_and(|s| s > 0.0));
+    assert!(std::fs::read_to_string(&plot)?.contains("PPO on CartPole-v1"));
+
+    let out = ppo_tutor(&[
+        "play",
+        "--load",
+        path(&agent)?,
+        "--episodes",
+        "2",
+        "--no-render",
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(String::from_utf8(out.stdout)?.matches("return").count(), 2);
+    Ok(())
+}
+
+#[test]
+fn out_of_range_hyper_parameters_are_usage_errors() -> TestResult {
+    for (flag, value, expected) in [
+        ("--eps", "0", "(0, 1)"),
+        ("--eps", "1", "(0, 1)"),
+        ("--gamma", "1.5", "(0, 1]"),
+        ("--actor-lr", "0", "> 0"),
+        ("--critic-lr", "-0.1", "> 0"),
+        ("--episodes", "0", "at least 1"),
+    ] {
+        let out = ppo_tutor(&["train", flag, value])?;
+        assert_eq!(out.status.code(), Some(2), "{flag} {value}");
+        let err = stderr(&out);
+        assert!(
+            err.contains(&format!("invalid {flag} {value}")) && err.contains(expected),
+            "{err}"
+        );
+    }
+    Ok(())
+}
+
+#[test]
+fn replay_prints_the_fixture_schema() -> TestResult {
+    let out = ppo_tutor(&["replay", FIXTURE, "--json"])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let ours: Value = serde_json::from_slice(&out.stdout)?;
+    let fixture: Value = serde_json::from_str(&std::fs::read_to_string(FIXTURE)?)?;
+    let cases = ours["cases"].as_array().ok_or("no cases")?;
+    assert_eq!(cases.len(), 3);
+    for (case, want) in cases
+        .iter()
+        .zip(fixture["cases"].as_array().ok_or("no cases")?)
+    {
+        let n = want["batch"]["actions"].as_array().map(Vec::len);
+        for key in ["td_target", "td_delta", "advantage", "old_log_probs"] {
+            assert_eq!(case[key].as_array().map(Vec::len), n, "{key}");
+            assert_eq!(
+                case[key][0].as_array().map(Vec::len),
+                Some(1),
+                "{key} is (N, 1)"
+            );
+        }
+        assert_eq!(case["epochs"].as_array().map(Vec::len), Some(10));
+        for key in ["ratio", "surr1", "surr2", "actor_loss", "critic_loss"] {
+            assert!(!case["epochs"][0][key].is_null(), "{key}");
+        }
+        let names: Vec<_> = want["weights_after"]
+            .as_object()
+            .ok_or("no weights")?
+            .keys()
+            .collect();
+        for name in names {
+            let (a, b) = (&case["weights_after"][name], &want["weights_after"][name]);
+            assert_eq!(
+                a.as_array().map(Vec::len),
+                b.as_array().map(Vec::len),
+                "{name}"
+            );
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn replay_names_a_missing_key_and_a_wrong_shape() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let mut fixture: Value = serde_json::from_str(&std::fs::read_to_string(FIXTURE)?)?;
+    let bad = dir.path().join("bad.json");
+    fixture["cases"][1]["batch"]
+        .as_object_mut()
+        .ok_or("no batch")?
+        .remove("rewards");
+    std::fs::write(&bad, fixture.to_string())?;
+    let out = ppo_tutor(&["replay", path(&bad)?, "--json"])?;
+    let err = stderr(&out);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("missing key 'cases[1].batch.rewards'") && err.contains("81 numbers"),
+        "{err}"
+    );
+
+    let mut fixture: Value = serde_json::from_str(&std::fs::read_to_string(FIXTURE)?)?;
+    fixture["cases"][0]["weights_before"]["actor.fc2.bias"] = serde_json::json!([0.0, 0.0, 0.0]);
+    std::fs::write(&bad, fixture.to_string())?;
+    let out = ppo_tutor(&["replay", path(&bad)?])?;
+    let err = stderr(&out);
+    assert!(
+        err.contains("cases[0].weights_before.actor.fc2.bias") && err.contains("[2]"),
+        "{err}"
+    );
+    Ok(())
+}
+
+#[test]
+fn play_names_a_tensor_of_the_wrong_shape() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let file = dir.path().join("bad.safetensors");
+    let dev = &Device::Cpu;
+    let mut tensors = HashMap::new();
+    for (name, shape) in [
+        ("actor.fc1.weight", vec![128, 4]),
+        ("actor.fc1.bias", vec![128]),
+        ("actor.fc2.weight", vec![2, 128]),
+        ("actor.fc2.bias", vec![2]),
+        ("critic.fc1.weight", vec![128, 4]),
+        ("critic.fc1.bias", vec![128]),
+        ("critic.fc2.weight", vec![1, 64]), // wrong: the hidden width is 128
+        ("critic.fc2.bias", vec![1]),
+    ] {
+        tensors.insert(name, Tensor::zeros(shape, candle_core::DType::F32, dev)?);
+    }
+    candle_core::safetensors::save(&tensors, &file)?;
+    let out = ppo_tutor(&["play", "--load", path(&file)?, "--no-render"])?;
+    let err = stderr(&out);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("critic.fc2.weight") && err.contains("[1, 128]") && err.contains("[1, 64]"),
+        "{err}"
+    );
+
+    tensors.remove("actor.fc2.bias");
+    candle_core::safetensors::save(&tensors, &file)?;
+    let err = stderr(&ppo_tutor(&[
+        "play",
+        "--load",
+        path(&file)?,
+        "--no-render",
+    ])?);
+    assert!(
+        err.contains("missing key 'actor.fc2.bias'") && err.contains("[2]"),
+        "{err}"
+    );
+
+    std::fs::write(&file, "not a checkpoint")?;
+    let err = stderr(&ppo_tutor(&[
+        "play",
+        "--load",
+        path(&file)?,
+        "--no-render",
+    ])?);
+    assert!(
+        err.contains("not a readable safetensors checkpoint"),
+        "{err}"
+    );
+    Ok(())
+}
+
+fn path(p: &std::path::Path) -> Result<&str, &'static str> {
+    p.to_str().ok_or("non-UTF-8 temp path")
+}
