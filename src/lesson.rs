@@ -55,12 +55,26 @@ pub struct Step {
 
 /// The exercise attached to a lesson.
 #[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Exercise {
     /// The function the learner writes (also the name on the command line).
     pub name: String,
+    /// Further functions graded in the same lesson (and starter file), e.g. `td_delta`.
+    #[serde(default)]
+    pub also: Vec<String>,
     /// Hints, from gentle to nearly the answer.
     #[serde(default)]
     pub hints: Vec<String>,
+}
+
+impl Exercise {
+    /// Every function graded in the lesson: `name`, then `also`.
+    #[must_use]
+    pub fn names(&self) -> Vec<&str> {
+        std::iter::once(self.name.as_str())
+            .chain(self.also.iter().map(String::as_str))
+            .collect()
+    }
 }
 
 /// Views a step can show instead of a tensor.

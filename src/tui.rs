@@ -35,6 +35,8 @@ pub enum Event {
     Tick,
     /// A message from the training worker.
     Worker(WorkerEvent),
+    /// A grading started with `g` finished.
+    Graded(Vec<app::Graded>),
 }
 
 /// Frames per second of the cart-pole animation.
@@ -63,13 +65,13 @@ pub fn run() -> anyhow::Result<()> {
     let worker = worker::spawn(app.config.clone(), app.seed, cmd_rx, worker_tx);
     forward(worker_rx, tx.clone());
     spawn_input(tx.clone());
-    spawn_ticker(tx);
+    spawn_ticker(tx.clone());
     let theme = theme::Theme::from_env();
     let mut terminal = ratatui::init();
     let _ = crossterm::execute!(std::io::stdout(), EnableMouseCapture);
     // Start with one episode so every live value has something to show.
     let _ = cmd_tx.send(Command::OneEpisode);
-    let result = event_loop(&mut terminal, &mut app, theme, &rx, &cmd_tx);
+    let result = event_loop(&mut terminal, &mut app, theme, &rx, (&cmd_tx, &tx));
     let _ = crossterm::execute!(std::io::stdout(), DisableMouseCapture);
     ratatui::restore();
     let _ = cmd_tx.send(Command::Quit);
@@ -83,7 +85,7 @@ fn event_loop(
     app: &mut App,
     theme: theme::Theme,
     rx: &mpsc::Receiver<Event>,
-    cmd_tx: &Sender<Command>,
+    (cmd_tx, tx): (&Sender<Command>, &Sender<Event>),
 ) -> anyhow::Result<()> {
     loop {
         terminal.draw(|f| f.render_widget(&ui::View { app, theme }, f.area()))?;
@@ -96,6 +98,9 @@ fn event_loop(
         for command in app.outbox.drain(..) {
             let _ = cmd_tx.send(command);
         }
+        if let Some(names) = app.exercise.request.take() {
+            spawn_grader(names, tx.clone());
+        }
         if app.quit {
             return Ok(());
         }
@@ -107,6 +112,7 @@ pub fn handle(app: &mut App, event: Event) {
     match event {
         Event::Tick => app.tick(),
         Event::Worker(w) => app.on_worker(w),
+        Event::Graded(graded) => app.on_graded(graded),
         Event::Input(event::Event::Key(key)) => {
             let overlay = app.overlay != app::Overlay::None && app.overlay != app::Overlay::Help;
             let sandbox = matches!(app.overlay, app::Overlay::Sandbox(_));
@@ -121,6 +127,21 @@ pub fn handle(app: &mut App, event: Event) {
         },
         Event::Input(_) => {}
     }
+}
+
+/// Grades `names` on a background thread (compiling can take seconds) and sends the result.
+fn spawn_grader(names: Vec<String>, tx: Sender<Event>) {
+    std::thread::spawn(move || {
+        let options = crate::grade::GradeOptions::default();
+        let graded = names
+            .into_iter()
+            .map(|name| {
+                let report = crate::grade::grade(&name, None, &options).map_err(|e| e.to_string());
+                (name, report)
+            })
+            .collect();
+        let _ = tx.send(Event::Graded(graded));
+    });
 }
 
 fn forward(rx: mpsc::Receiver<WorkerEvent>, tx: Sender<Event>) {

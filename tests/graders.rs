@@ -346,3 +346,110 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     assert_eq!(code, 1, "reset restores the starter: {text}");
     Ok(())
 }
+
+#[test]
+fn lessons_name_exactly_the_graded_exercises() -> TestResult {
+    let course = ppo_tutor::lesson::Course::embedded()?;
+    let mut named = Vec::new();
+    for lesson in &course.lessons {
+        let Some(exercise) = &lesson.exercise else {
+            continue;
+        };
+        for name in exercise.names() {
+            let spec = grade::spec(name)?;
+            assert_eq!(
+                spec.lesson,
+                format!("{:02}-{}", lesson.order, lesson.id),
+                "{name}"
+            );
+            named.push(name.to_string());
+        }
+    }
+    named.sort();
+    let mut all: Vec<String> = grade::exercise_names()
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    all.sort();
+    assert_eq!(
+        named, all,
+        "every exercise appears in its lesson's front matter"
+    );
+    Ok(())
+}
+
+fn tutor_screen(app: &ppo_tutor::tui::app::App) -> Result<String, Box<dyn std::error::Error>> {
+    use ppo_tutor::tui::{theme::Theme, ui::View};
+    let mut terminal = ratatui::Terminal::new(ratatui::backend::TestBackend::new(140, 60))?;
+    terminal.draw(|f| {
+        f.render_widget(
+            &View {
+                app,
+                theme: Theme { color: false },
+            },
+            f.area(),
+        );
+    })?;
+    Ok(terminal.backend().to_string())
+}
+
+#[test]
+fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() -> TestResult {
+    use ppo_tutor::lesson::{Course, Progress};
+    use ppo_tutor::tui::app::{App, Overlay};
+    use ppo_tutor::tui::keys::Action;
+
+    let course = Course::embedded()?;
+    let lesson = course.index_of("td-target").ok_or("no td-target lesson")?;
+    let progress = Progress {
+        lesson: "td-target".into(),
+        ..Progress::default()
+    };
+    let mut app = App::new(course, progress, None);
+    assert_eq!(app.lesson, lesson);
+    assert!(tutor_screen(&app)?.contains("exercise td_target, td_delta: pending"));
+
+    app.update(Action::Hint);
+    assert_eq!(app.overlay, Overlay::Exercise(0));
+    assert_eq!(app.exercise.hints_shown, 1);
+    let text = tutor_screen(&app)?;
+    assert!(
+        text.contains("Hints (1/3)") && text.contains("exercises done 0/9"),
+        "{text}"
+    );
+
+    app.update(Action::Grade);
+    let names = app.exercise.request.take().ok_or("no grading requested")?;
+    assert_eq!(names, ["td_target", "td_delta"]);
+    assert!(app.exercise.grading);
+
+    // The starter fails: no solution shown, nothing recorded.
+    let starter = Path::new(ROOT).join("lessons/07-td-target/exercise.rs");
+    let graded = names
+        .iter()
+        .map(|n| Ok((n.clone(), Ok(grade_file(n, &starter)?))))
+        .collect::<Result<Vec<_>, Box<dyn std::error::Error>>>()?;
+    app.on_graded(graded);
+    let text = tutor_screen(&app)?;
+    assert!(text.contains("todo!() is still there"), "{text}");
+    assert!(!text.contains("The reference solution"), "{text}");
+    assert!(!app.exercise_done());
+
+    // The solution passes: recorded, shown, and the bar moves.
+    let solution = Path::new(ROOT).join("lessons/07-td-target/solution.rs");
+    let graded = names
+        .iter()
+        .map(|n| Ok((n.clone(), Ok(grade_file(n, &solution)?))))
+        .collect::<Result<Vec<_>, Box<dyn std::error::Error>>>()?;
+    app.on_graded(graded);
+    assert!(app.exercise_done());
+    assert!(app.progress.exercises_done.contains("td_delta"));
+    let text = tutor_screen(&app)?;
+    assert!(text.contains("The reference solution"), "{text}");
+    assert!(text.contains("exercises done 2/9"), "{text}");
+
+    app.update(Action::Back);
+    assert_eq!(app.overlay, Overlay::None);
+    assert!(tutor_screen(&app)?.contains("exercise td_target, td_delta: done"));
+    Ok(())
+}

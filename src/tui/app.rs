@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::grade::Report;
 use crate::lesson::{Course, Lesson, Progress, Snapshot, Step};
 use crate::ppo::PpoConfig;
 use crate::ppo::moving_average;
@@ -21,6 +22,24 @@ pub enum Overlay {
     Lessons(usize),
     /// The sandbox; the field is the highlighted setting.
     Sandbox(usize),
+    /// The exercise panel (status, hints, grading result); the field is the scroll offset.
+    Exercise(u16),
+}
+
+/// The grading of one exercise function: its report, or why grading could not run.
+pub type Graded = (String, Result<Report, String>);
+
+/// The exercise of the open lesson: grading, its last result, and the hints revealed.
+#[derive(Debug, Clone, Default)]
+pub struct ExerciseState {
+    /// A grading is running on a background thread.
+    pub grading: bool,
+    /// The last grading of this lesson's functions.
+    pub graded: Vec<Graded>,
+    /// How many of the lesson's hints are shown.
+    pub hints_shown: usize,
+    /// Functions to grade, taken by the event loop (which runs the grader off the UI thread).
+    pub request: Option<Vec<String>>,
 }
 
 /// Whether the worker is training.
@@ -91,6 +110,8 @@ pub struct App {
     pub quit: bool,
     /// Commands for the worker, collected by `update` and sent by the event loop.
     pub outbox: Vec<Command>,
+    /// The open lesson's exercise.
+    pub exercise: ExerciseState,
 }
 
 impl App {
@@ -124,6 +145,7 @@ impl App {
             progress_path,
             quit: false,
             outbox: Vec::new(),
+            exercise: ExerciseState::default(),
         }
     }
 
@@ -159,6 +181,7 @@ impl App {
             },
             Overlay::Lessons(i) => self.update_lessons(action, i),
             Overlay::Sandbox(i) => self.update_sandbox(action, i),
+            Overlay::Exercise(scroll) => self.update_exercise(action, scroll),
             Overlay::None => self.update_main(action),
         }
     }
@@ -188,6 +211,8 @@ impl App {
                 }
             }
             Action::ResetAgent => self.reset_agent(self.config.clone(), self.seed, false),
+            Action::Grade => self.request_grade(),
+            Action::Hint => self.reveal_hint(),
             Action::Back
             | Action::Enter
             | Action::Up
@@ -195,6 +220,97 @@ impl App {
             | Action::Increase
             | Action::Decrease => {}
         }
+    }
+
+    fn update_exercise(&mut self, action: Action, scroll: u16) {
+        match action {
+            Action::Quit => self.quit(),
+            Action::Grade => self.request_grade(),
+            Action::Hint => self.reveal_hint(),
+            Action::Up | Action::ScrollUp => {
+                self.overlay = Overlay::Exercise(scroll.saturating_sub(1))
+            }
+            Action::Down | Action::ScrollDown => {
+                self.overlay = Overlay::Exercise(scroll.saturating_add(1));
+            }
+            Action::Back | Action::Enter => self.overlay = Overlay::None,
+            _ => {}
+        }
+    }
+
+    /// The function names the open lesson grades (empty without an exercise).
+    #[must_use]
+    pub fn exercise_names(&self) -> Vec<String> {
+        self.current_lesson()
+            .and_then(|l| l.exercise.as_ref())
+            .map(|e| e.names().into_iter().map(String::from).collect())
+            .unwrap_or_default()
+    }
+
+    /// Whether every function of the open lesson's exercise has passed (then its reference
+    /// solution may be shown).
+    #[must_use]
+    pub fn exercise_done(&self) -> bool {
+        let names = self.exercise_names();
+        !names.is_empty()
+            && names
+                .iter()
+                .all(|n| self.progress.exercises_done.contains(n))
+    }
+
+    fn request_grade(&mut self) {
+        let names = self.exercise_names();
+        if names.is_empty() {
+            self.status = "this lesson has no exercise to grade".into();
+            return;
+        }
+        self.overlay = Overlay::Exercise(0);
+        if self.exercise.grading {
+            self.status = "already grading…".into();
+            return;
+        }
+        self.exercise.grading = true;
+        self.status = format!("grading {}…", names.join(", "));
+        self.exercise.request = Some(names);
+    }
+
+    fn reveal_hint(&mut self) {
+        let Some(exercise) = self.current_lesson().and_then(|l| l.exercise.as_ref()) else {
+            self.status = "this lesson has no exercise".into();
+            return;
+        };
+        let total = exercise.hints.len();
+        self.overlay = Overlay::Exercise(0);
+        if self.exercise.hints_shown < total {
+            self.exercise.hints_shown += 1;
+            self.status = format!("hint {}/{total}", self.exercise.hints_shown);
+        } else {
+            self.status = format!("all {total} hints are shown");
+        }
+    }
+
+    /// Applies a finished grading: shows it, and records passed exercises in the progress.
+    pub fn on_graded(&mut self, graded: Vec<Graded>) {
+        self.exercise.grading = false;
+        let passed: Vec<&str> = graded
+            .iter()
+            .filter(|(_, r)| r.as_ref().is_ok_and(Report::passed))
+            .map(|(n, _)| n.as_str())
+            .collect();
+        for name in &passed {
+            self.progress.exercises_done.insert((*name).to_string());
+        }
+        self.status = if passed.len() == graded.len() {
+            "passed: the reference solution is shown in the exercise panel".into()
+        } else {
+            format!(
+                "{}/{} passed: see the exercise panel",
+                passed.len(),
+                graded.len()
+            )
+        };
+        self.exercise.graded = graded;
+        self.save_progress();
     }
 
     fn update_lessons(&mut self, action: Action, i: usize) {
@@ -394,7 +510,15 @@ impl App {
     }
 
     fn go_to(&mut self, lesson: usize, step: usize) {
-        self.lesson = lesson.min(self.course.lessons.len().saturating_sub(1));
+        let lesson = lesson.min(self.course.lessons.len().saturating_sub(1));
+        if lesson != self.lesson {
+            let grading = self.exercise.grading;
+            self.exercise = ExerciseState {
+                grading,
+                ..ExerciseState::default()
+            };
+        }
+        self.lesson = lesson;
         self.step = step;
         self.text_scroll = 0;
         self.tensor_scroll = 0;

@@ -41,12 +41,16 @@ pub enum Action {
     Decrease,
     /// Close an overlay.
     Back,
+    /// Grade the lesson's exercise (g).
+    Grade,
+    /// Reveal the exercise's next hint (h).
+    Hint,
     /// Leave the app.
     Quit,
 }
 
 /// The help overlay's lines: key, what it does.
-pub const HELP: [(&str, &str); 16] = [
+pub const HELP: [(&str, &str); 18] = [
     ("→ / n", "next step"),
     ("← / p", "previous step"),
     ("j / k, wheel", "scroll the explanation"),
@@ -60,6 +64,8 @@ pub const HELP: [(&str, &str); 16] = [
         "  ↑↓ + − Enter",
         "  pick a value, change it, retrain (curves overlaid)",
     ),
+    ("g", "grade this lesson's exercise (its exercise.rs)"),
+    ("h", "reveal the exercise's next hint"),
     ("?", "this help"),
     ("Esc", "close an overlay"),
     ("q / Ctrl-C", "quit (progress is saved)"),
@@ -97,6 +103,8 @@ pub fn map(key: KeyEvent, overlay_open: bool, sandbox_open: bool) -> Option<Acti
         KeyCode::Char('t') | KeyCode::Char(' ') => Action::TrainToggle,
         KeyCode::Char('e') => Action::OneEpisode,
         KeyCode::Char('r') => Action::ResetAgent,
+        KeyCode::Char('g') => Action::Grade,
+        KeyCode::Char('h') => Action::Hint,
         _ => return None,
     };
     Some(action)

@@ -3,7 +3,7 @@
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Clear, Paragraph, Widget, Wrap};
+use ratatui::widgets::{Block, Borders, Clear, Gauge, Paragraph, Widget, Wrap};
 
 use super::app::{App, Overlay, SANDBOX_FIELDS, TrainState};
 use super::keys::HELP;
@@ -49,6 +49,7 @@ impl Widget for &View<'_> {
             Overlay::Help => draw_help(theme, area, buf),
             Overlay::Lessons(i) => draw_lessons(app, theme, i, area, buf),
             Overlay::Sandbox(i) => draw_sandbox(app, theme, i, area, buf),
+            Overlay::Exercise(scroll) => draw_exercise(app, theme, scroll, area, buf),
         }
     }
 }
@@ -257,10 +258,26 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         spans.push(Span::raw(format!(" {what} ")));
     }
     let done = app.progress.lessons_done.len();
+    let exercise = app.exercise_names();
+    let exercise = if exercise.is_empty() {
+        String::new()
+    } else {
+        let state = if app.exercise_done() {
+            "done"
+        } else {
+            "pending"
+        };
+        format!(
+            " · exercise {}: {state} (g grade, h hint)",
+            exercise.join(", ")
+        )
+    };
     let status = format!(
-        " {} · lessons done {done}/{}",
+        " {}{exercise} · lessons done {done}/{} · exercises done {}/{}",
         app.status,
-        app.course.lessons.len()
+        app.course.lessons.len(),
+        app.progress.exercises_done.len(),
+        crate::grade::exercise_names().len()
     );
     Paragraph::new(vec![Line::from(spans), Line::styled(status, theme.dim())]).render(area, buf);
 }
@@ -360,4 +377,88 @@ fn draw_sandbox(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut 
     Paragraph::new(lines)
         .block(panel("sandbox", theme))
         .render(rect, buf);
+}
+
+/// The exercise panel: status of each function, revealed hints, the last grading, the
+/// reference solution once passed, and a progress bar of exercises done.
+fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buffer) {
+    let rect = centered(
+        area,
+        area.width.saturating_sub(8),
+        area.height.saturating_sub(4),
+    );
+    Clear.render(rect, buf);
+    let names = app.exercise_names();
+    let file = crate::grade::starter(names.first().map_or("", String::as_str))
+        .map_or(String::new(), |(path, _)| path);
+    let mut lines = vec![
+        Line::styled(format!(" Write the function(s) in {file}"), theme.title()),
+        Line::styled(
+            " g grade · h next hint · ↑↓ scroll · Esc close",
+            theme.dim(),
+        ),
+        Line::raw(""),
+    ];
+    for name in &names {
+        let done = app.progress.exercises_done.contains(name);
+        let mark = if done { "✓ done" } else { "· pending" };
+        lines.push(Line::from(vec![
+            Span::styled(format!(" {mark:<10}"), theme.key()),
+            Span::raw(name.clone()),
+        ]));
+    }
+    let hints = app
+        .current_lesson()
+        .and_then(|l| l.exercise.as_ref())
+        .map_or(&[][..], |e| e.hints.as_slice());
+    if app.exercise.hints_shown > 0 {
+        lines.push(Line::raw(""));
+        lines.push(Line::styled(
+            format!(" Hints ({}/{})", app.exercise.hints_shown, hints.len()),
+            theme.title(),
+        ));
+        for (i, hint) in hints.iter().take(app.exercise.hints_shown).enumerate() {
+            lines.push(Line::raw(format!(" {}. {hint}", i + 1)));
+        }
+    }
+    if app.exercise.grading {
+        lines.push(Line::raw(""));
+        lines.push(Line::styled(
+            " grading… (the first time compiles, a few seconds)",
+            theme.dim(),
+        ));
+    }
+    for (name, result) in &app.exercise.graded {
+        lines.push(Line::raw(""));
+        match result {
+            Ok(report) => lines.extend(report.render().lines().map(|l| Line::raw(format!(" {l}")))),
+            Err(e) => lines.push(Line::raw(format!(" {name}: {e}"))),
+        }
+    }
+    if app.exercise_done() {
+        let solution = names.first().and_then(|n| crate::grade::solution(n));
+        if let Some(code) = solution {
+            lines.push(Line::raw(""));
+            lines.push(Line::styled(" The reference solution", theme.title()));
+            lines.extend(code.lines().map(|l| Line::raw(format!(" {l}"))));
+        }
+    }
+    let [text, gauge] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)])
+        .areas(rect.inner(ratatui::layout::Margin::new(1, 1)));
+    panel("exercise", theme).render(rect, buf);
+    Paragraph::new(lines)
+        .wrap(Wrap { trim: false })
+        .scroll((scroll, 0))
+        .render(text, buf);
+    let total = crate::grade::exercise_names().len();
+    let done = app.progress.exercises_done.len().min(total);
+    Gauge::default()
+        .gauge_style(theme.key())
+        .ratio(if total == 0 {
+            0.0
+        } else {
+            done as f64 / total as f64
+        })
+        .label(format!("exercises done {done}/{total}"))
+        .render(gauge, buf);
 }
