@@ -44,7 +44,7 @@ pub enum Command {
     Replay(replay::ReplayArgs),
     /// Grade your solution of an exercise (or all): checks, first failing input, hints.
     Grade(grade::GradeArgs),
-    /// Restore an exercise's starter file (lessons/<lesson>/exercise.rs).
+    /// Restore an exercise's starter file (lessons/NN-slug/exercise.rs).
     Reset(grade::ResetArgs),
 }
 

@@ -15,7 +15,7 @@ use crate::lesson::Progress;
 pub struct GradeArgs {
     /// The exercise (its function name, e.g. td_target); all exercises when omitted.
     pub exercise: Option<String>,
-    /// Grade this file instead of the starter's path (lessons/<lesson>/exercise.rs).
+    /// Grade this file instead of the starter's path (lessons/NN-slug/exercise.rs).
     #[arg(long, value_name = "PATH")]
     pub file: Option<PathBuf>,
     /// Seconds the learner's code may run on all cases of one exercise.
