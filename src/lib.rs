@@ -2,7 +2,7 @@
 //!
 //! Learn Proximal Policy Optimization by running it. The crate is an engine with faces:
 //!
-//! - [`env`]: a native CartPole-v1 identical to Gymnasium's (same states, bit for bit, same seeds).
+//! - [`env`](mod@env): a native CartPole-v1 identical to Gymnasium's (same states, bit for bit, same seeds).
 //! - [`ppo`]: the seed's PPO (*Hands-on RL*, `task_PPO.py`) on candle, same numbers as PyTorch.
 //! - [`plot`]: return curves in the terminal and as PNG/SVG figures (plotters).
 //! - [`grade`]: graded exercises: the learner's plain-Rust PPO pieces against the references.

@@ -1,10 +1,10 @@
 //! Return curves, as the seed plots them: raw returns per episode and their moving average.
 //!
 //! - [`terminal`]: the curve drawn with characters, for `ppo-tutor train`'s summary.
-//! - [`file`]: the seed's matplotlib figure drawn with plotters, to PNG or SVG.
+//! - [`file`](mod@file): the seed's matplotlib figure drawn with plotters, to PNG or SVG.
 //!
 //! Both take the returns and the smoothed curve from
-//! [`moving_average`](crate::ppo::moving_average) (window [`SMOOTHING_WINDOW`], the seed's 9).
+//! [`moving_average`](crate::ppo::moving_average()) (window [`SMOOTHING_WINDOW`], the seed's 9).
 
 pub mod file;
 pub mod terminal;

@@ -9,7 +9,7 @@
 //! - [`advantage`]: GAE, `compute_advantage` in f32 as numpy runs it.
 //! - [`agent`]: [`Agent`] with `take_action` and `update`, which returns an [`UpdateTrace`].
 //! - [`trace`]: the recorded intermediates every face displays.
-//! - [`train`]: `train_on_policy_agent` as a step-by-step [`Trainer`].
+//! - [`train`](mod@train): `train_on_policy_agent` as a step-by-step [`Trainer`].
 //! - [`moving_average`](mod@moving_average): `rl_utils.moving_average`, for the return curve.
 //! - [`checkpoint`]: saving and loading an agent as safetensors with PyTorch's names.
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
