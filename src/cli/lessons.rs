@@ -53,27 +53,11 @@ pub fn live_snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::R
         };
         snapshot.episodes = report.episode + 1;
         snapshot.returns.push(report.episode_return);
-        let agent = trainer.agent();
-        snapshot.probs = report
-            .trace
-            .states
-            .iter()
-            .map(|s| {
-                let p = agent.probs(s);
-                [
-                    p.first().copied().unwrap_or(f32::NAN),
-                    p.get(1).copied().unwrap_or(f32::NAN),
-                ]
-            })
-            .collect();
+        snapshot.probs = crate::lesson::live::probs_over(trainer.agent(), &report.trace.states);
         snapshot.trace = Some(report.trace);
     }
     snapshot.moving_average = moving_average(&snapshot.returns, 9).unwrap_or_default();
-    snapshot.weights = trainer
-        .agent()
-        .weights()
-        .map(|w| w.into_iter().map(|(n, t)| (n, t.shape, t.data)).collect())
-        .unwrap_or_default();
+    snapshot.weights = crate::lesson::live::weights_of(trainer.agent());
     Ok(snapshot)
 }
 

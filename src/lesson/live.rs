@@ -7,7 +7,31 @@
 //! dtype, values and the entries that matter marked (clipped ratios, done flags, the
 //! sign of the advantage).
 
-use crate::ppo::UpdateTrace;
+use crate::ppo::{Agent, UpdateTrace};
+
+/// `π(·|s)` under `agent` for each of `states` (NaN where a probability is missing).
+#[must_use]
+pub fn probs_over(agent: &Agent, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
+    states
+        .iter()
+        .map(|s| {
+            let p = agent.probs(s);
+            [
+                p.first().copied().unwrap_or(f32::NAN),
+                p.get(1).copied().unwrap_or(f32::NAN),
+            ]
+        })
+        .collect()
+}
+
+/// Every parameter of `agent` as `(name, shape, values)` (empty if candle cannot read them).
+#[must_use]
+pub fn weights_of(agent: &Agent) -> Vec<(String, Vec<usize>, Vec<f32>)> {
+    agent
+        .weights()
+        .map(|w| w.into_iter().map(|(n, t)| (n, t.shape, t.data)).collect())
+        .unwrap_or_default()
+}
 
 /// Every live value name a lesson may show (views such as `plot` are listed in [`super::VIEWS`]).
 pub const NAMES: [&str; 28] = [

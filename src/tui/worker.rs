@@ -147,26 +147,8 @@ fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Send
 /// Gathers what the lessons show beside the trace.
 fn episode_data(trainer: &Trainer, report: EpisodeReport) -> EpisodeData {
     let agent = trainer.agent();
-    let probs = report
-        .trace
-        .states
-        .iter()
-        .map(|s| {
-            let p = agent.probs(s);
-            [
-                p.first().copied().unwrap_or(f32::NAN),
-                p.get(1).copied().unwrap_or(f32::NAN),
-            ]
-        })
-        .collect();
-    let weights = agent
-        .weights()
-        .map(|w| {
-            w.into_iter()
-                .map(|(name, t)| (name, t.shape, t.data))
-                .collect()
-        })
-        .unwrap_or_default();
+    let probs = crate::lesson::live::probs_over(agent, &report.trace.states);
+    let weights = crate::lesson::live::weights_of(agent);
     let n = report.trace.len();
     let limit = trainer.config().env_id.max_episode_steps() as usize;
     let terminated = (0..n)
