@@ -54,6 +54,8 @@ pub fn live_snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::R
         snapshot.episodes = report.episode + 1;
         snapshot.returns.push(report.episode_return);
         snapshot.probs = crate::lesson::live::probs_over(trainer.agent(), &report.trace.states);
+        snapshot.terminated = report.terminated;
+        snapshot.truncated = report.truncated;
         snapshot.trace = Some(report.trace);
     }
     snapshot.moving_average = moving_average(&snapshot.returns, 9).unwrap_or_default();

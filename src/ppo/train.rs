@@ -55,6 +55,10 @@ pub struct EpisodeReport {
     pub steps: usize,
     /// Environment steps since training began.
     pub total_steps: u64,
+    /// Gymnasium's `terminated` for each step, as the environment reported it.
+    pub terminated: Vec<bool>,
+    /// Gymnasium's `truncated` for each step: the time limit, reached on the last step or never.
+    pub truncated: Vec<bool>,
     /// The update on this episode, every intermediate.
     pub trace: UpdateTrace,
 }
@@ -204,6 +208,7 @@ impl Trainer {
         self.env_steps += steps as u64;
         self.elapsed += started.elapsed();
         let (iteration, episode_in_iteration, iteration_len) = self.iteration_of(episode);
+        let limit = self.config.env_id.max_episode_steps() as usize;
         Ok(Some(EpisodeReport {
             episode,
             iteration,
@@ -212,6 +217,8 @@ impl Trainer {
             episode_return,
             steps,
             total_steps: self.env_steps,
+            terminated: transitions.terminated,
+            truncated: (1..=steps).map(|t| t >= limit).collect(),
             trace,
         }))
     }

@@ -465,8 +465,8 @@ impl App {
         s.trace = Some(data.report.trace);
         s.probs = data.probs;
         s.weights = data.weights;
-        s.terminated = data.terminated;
-        s.truncated = data.truncated;
+        s.terminated = data.report.terminated;
+        s.truncated = data.report.truncated;
         if self.train == TrainState::Paused {
             self.status = format!(
                 "episode {}: return {}",

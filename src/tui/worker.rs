@@ -7,7 +7,6 @@
 use std::sync::mpsc::{Receiver, Sender, TryRecvError};
 use std::thread::JoinHandle;
 
-use crate::env::cartpole::{THETA_THRESHOLD_RADIANS, X_THRESHOLD};
 use crate::ppo::{EpisodeReport, PpoConfig, Trainer};
 
 /// What the UI asks of the worker.
@@ -39,10 +38,6 @@ pub struct EpisodeData {
     pub probs: Vec<[f32; 2]>,
     /// Every parameter after the update: `(name, shape, values)`.
     pub weights: Vec<(String, Vec<usize>, Vec<f32>)>,
-    /// Gymnasium's `terminated` for each step.
-    pub terminated: Vec<bool>,
-    /// Gymnasium's `truncated` for each step.
-    pub truncated: Vec<bool>,
 }
 
 /// What the worker tells the UI.
@@ -149,22 +144,9 @@ fn episode_data(trainer: &Trainer, report: EpisodeReport) -> EpisodeData {
     let agent = trainer.agent();
     let probs = crate::lesson::live::probs_over(agent, &report.trace.states);
     let weights = crate::lesson::live::weights_of(agent);
-    let n = report.trace.len();
-    let limit = trainer.config().env_id.max_episode_steps() as usize;
-    let terminated = (0..n)
-        .map(|i| {
-            let s = report.trace.next_states[i];
-            i + 1 == n
-                && (f64::from(s[0]).abs() > X_THRESHOLD
-                    || f64::from(s[2]).abs() > THETA_THRESHOLD_RADIANS)
-        })
-        .collect();
-    let truncated = (0..n).map(|i| i + 1 == n && n == limit).collect();
     EpisodeData {
         report,
         probs,
         weights,
-        terminated,
-        truncated,
     }
 }
