@@ -22,7 +22,7 @@ use anyhow::Context;
 use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, MouseEventKind};
 
 use crate::lesson::{Course, Progress};
-use app::App;
+use app::{App, WARNING};
 use keys::Action;
 use worker::{Command, WorkerEvent};
 
@@ -57,7 +57,7 @@ pub fn run() -> anyhow::Result<()> {
     let (progress, warning) = Progress::load(&path);
     let mut app = App::new(course, progress, Some(path));
     if let Some(w) = warning {
-        app.status = w;
+        app.status = format!("{WARNING}{w}");
     }
     let (tx, rx) = mpsc::channel::<Event>();
     let (cmd_tx, cmd_rx) = mpsc::channel::<Command>();

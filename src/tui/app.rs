@@ -10,6 +10,9 @@ use crate::ppo::moving_average;
 use super::keys::Action;
 use super::worker::{Command, EpisodeData, WorkerEvent};
 
+/// Prefix of a status message that episode updates must not overwrite.
+pub const WARNING: &str = "warning: ";
+
 /// Which overlay covers the lesson, if any.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Overlay {
@@ -350,7 +353,7 @@ impl App {
                     } else {
                         ("moving average", s.moving_average.clone())
                     };
-                    self.previous = Some((format!("before: {what} (seed {})", self.seed), curve));
+                    self.previous = Some((format!("before ({what})"), curve));
                 }
                 self.reset_agent(self.sandbox.clone(), self.sandbox_seed, true);
             }
@@ -467,7 +470,8 @@ impl App {
         s.weights = data.weights;
         s.terminated = data.report.terminated;
         s.truncated = data.report.truncated;
-        if self.train == TrainState::Paused {
+        // A start-up warning stays until the learner does something.
+        if self.train == TrainState::Paused && !self.status.starts_with(WARNING) {
             self.status = format!(
                 "episode {}: return {}",
                 data.report.episode + 1,

@@ -1,7 +1,7 @@
 //! The return curve and its moving average as a ratatui `Chart`.
 
 use ratatui::buffer::Buffer;
-use ratatui::layout::Rect;
+use ratatui::layout::{Constraint, Rect};
 use ratatui::symbols::Marker;
 use ratatui::text::Span;
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Widget};
@@ -74,6 +74,8 @@ impl Widget for ReturnPlot<'_> {
         let y_top = self.max_return.max(10.0);
         Chart::new(datasets)
             .block(self.block)
+            // Keep the legend (it names the overlaid previous run) unless it would cover half the plot.
+            .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)))
             .x_axis(
                 Axis::default()
                     .title("Episodes")
