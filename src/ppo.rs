@@ -32,7 +32,7 @@ pub mod train;
 
 pub use adam::Adam;
 pub use advantage::{compute_advantage, normalize_advantage};
-pub use agent::{Agent, Transitions};
+pub use agent::{Agent, Losses, Transitions};
 pub use config::PpoConfig;
 pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
 pub use moving_average::moving_average;

@@ -126,6 +126,22 @@ impl Transitions {
     }
 }
 
+/// One epoch's two losses from its tensors, as the seed's loop body computes them:
+/// `(probs, actions, old_log_probs, advantage, values, td_target, eps) -> (actor_loss,
+/// critic_loss)`, with `probs = π(·|states)` `(N, 2)` and `values = V(states)` `(N, 1)` from
+/// the current networks (gradients flow through both), `actions` `(N, 1)` u32, the other
+/// columns `(N, 1)` f32 and both losses scalars. [`Agent::update_with`] takes one.
+pub type Losses<'a> = dyn Fn(
+        &Tensor,
+        &Tensor,
+        &Tensor,
+        &Tensor,
+        &Tensor,
+        &Tensor,
+        f64,
+    ) -> candle_core::Result<(Tensor, Tensor)>
+    + 'a;
+
 /// The seed's `PPO`: actor, critic, their optimizers, and a seeded sampler.
 #[derive(Debug, Clone)]
 pub struct Agent {
@@ -331,6 +347,30 @@ impl Agent {
     /// [`PpoError::EmptyBatch`] / [`PpoError::InvalidBatch`] for a malformed batch;
     /// [`PpoError::NonFinite`] when a target, advantage or loss is NaN or infinite.
     pub fn update(&mut self, batch: &Transitions) -> Result<UpdateTrace, PpoError> {
+        self.run_update(batch, None)
+    }
+
+    /// [`Agent::update`] with the two losses of every epoch computed by `losses` instead of
+    /// the built-in lines (the `ppo_losses` exercise plugs a learner's function in here).
+    /// Everything else is the same: the targets, the advantage, the opt-in entropy bonus
+    /// (added to the returned actor loss) and the Adam steps; the trace records the
+    /// returned losses.
+    ///
+    /// # Errors
+    /// As [`Agent::update`], plus [`PpoError::Candle`] carrying an error `losses` returned.
+    pub fn update_with(
+        &mut self,
+        batch: &Transitions,
+        losses: &Losses<'_>,
+    ) -> Result<UpdateTrace, PpoError> {
+        self.run_update(batch, Some(losses))
+    }
+
+    fn run_update(
+        &mut self,
+        batch: &Transitions,
+        losses: Option<&Losses<'_>>,
+    ) -> Result<UpdateTrace, PpoError> {
         batch.check()?;
         let cfg = &self.config;
         let n = batch.len();
@@ -406,6 +446,7 @@ impl Agent {
             old_log_probs: &old_log_probs,
             old_log_probs_vec: &trace.old_log_probs,
             td_target: &td_target.detach(),
+            losses,
         };
         // ANCHOR: epochs
         for _ in 0..self.config.epochs {
@@ -443,6 +484,27 @@ impl Agent {
             .sqr()?
             .mean_all()?;
         // ANCHOR_END: critic_loss
+        let (actor_loss, critic_loss) = match b.losses {
+            None => (actor_loss, critic_loss),
+            Some(losses) => {
+                let values = self.critic.forward(b.states)?;
+                let (actor_loss, critic_loss) = losses(
+                    &probs,
+                    b.actions,
+                    b.old_log_probs,
+                    b.advantage,
+                    &values,
+                    b.td_target,
+                    eps,
+                )?;
+                let actor_loss = if self.config.entropy_coef > 0.0 {
+                    (actor_loss - (&entropy * self.config.entropy_coef)?)?
+                } else {
+                    actor_loss
+                };
+                (actor_loss, critic_loss)
+            }
+        };
 
         let ratio_vec = to_vec(&ratio)?;
         let log_probs_vec = to_vec(&log_probs)?;
@@ -511,6 +573,8 @@ struct EpochInputs<'a> {
     old_log_probs: &'a Tensor,
     old_log_probs_vec: &'a [f32],
     td_target: &'a Tensor,
+    /// A learner's losses in place of the built-in ones ([`Agent::update_with`]).
+    losses: Option<&'a Losses<'a>>,
 }
 
 fn to_vec(t: &Tensor) -> candle_core::Result<Vec<f32>> {

@@ -30,7 +30,7 @@ use std::time::{Duration, Instant};
 
 use serde::Serialize;
 
-use super::agent::{Agent, Transitions};
+use super::agent::{Agent, Losses, Transitions};
 use super::trace::UpdateTrace;
 use super::{PpoConfig, PpoError};
 use crate::env::CartPole;
@@ -192,6 +192,22 @@ impl Trainer {
     /// [`PpoError::Diverged`] naming the episode when an action probability, target or
     /// loss turns NaN or infinite.
     pub fn next_episode(&mut self) -> Result<Option<EpisodeReport>, PpoError> {
+        self.episode(None)
+    }
+
+    /// [`Trainer::next_episode`] with the update's losses computed by `losses` (see
+    /// [`Agent::update_with`]).
+    ///
+    /// # Errors
+    /// As [`Trainer::next_episode`], plus an error `losses` returned.
+    pub fn next_episode_with(
+        &mut self,
+        losses: &Losses<'_>,
+    ) -> Result<Option<EpisodeReport>, PpoError> {
+        self.episode(Some(losses))
+    }
+
+    fn episode(&mut self, losses: Option<&Losses<'_>>) -> Result<Option<EpisodeReport>, PpoError> {
         if self.is_done() {
             return Ok(None);
         }
@@ -202,7 +218,11 @@ impl Trainer {
             other => other,
         };
         let (transitions, episode_return) = self.play_episode(episode).map_err(diverged)?;
-        let trace = self.agent.update(&transitions).map_err(diverged)?;
+        let trace = match losses {
+            None => self.agent.update(&transitions),
+            Some(losses) => self.agent.update_with(&transitions, losses),
+        }
+        .map_err(diverged)?;
         let steps = transitions.len();
         self.returns.push(episode_return);
         self.env_steps += steps as u64;
