@@ -13,6 +13,9 @@
 //! 4. the learner's wrong outputs are compared with the [`catalog`]'s known mistakes (GAE
 //!    run forwards, a missing `(1 - done)`, max instead of min, ...) to pick the hint.
 //!
+//! One exercise, [`ppo_losses`], is on candle tensors instead: built with cargo against
+//! candle, graded on losses and gradients, then plugged into the agent to train CartPole.
+//!
 //! Panics are caught per case and reported with their message; a run past the time limit
 //! is killed and reported as never returning. The grader itself returns errors, never
 //! panics.
@@ -31,6 +34,7 @@
 pub mod cases;
 pub mod catalog;
 pub mod harness;
+pub mod ppo_losses;
 pub mod report;
 pub mod solutions;
 pub mod value;
@@ -86,6 +90,31 @@ pub enum GradeError {
         /// The I/O error.
         reason: String,
     },
+    /// `cargo` could not be started (the candle exercise is built with cargo).
+    #[error(
+        "cannot run cargo '{cargo}': {reason}; the candle exercise is built with cargo: install Rust (https://rustup.rs) or set CARGO to cargo's path"
+    )]
+    NoCargo {
+        /// The program tried.
+        cargo: PathBuf,
+        /// The I/O error.
+        reason: String,
+    },
+    /// cargo failed for a reason other than the learner's code.
+    #[error(
+        "cargo could not build the candle grader in {dir}:\n{message}\n(the first build fetches and compiles candle: it needs the crates.io registry or cargo's download cache; delete {dir} to start over)"
+    )]
+    Cargo {
+        /// The project folder.
+        dir: PathBuf,
+        /// cargo's last lines of output.
+        message: String,
+    },
+    /// The embedded PyTorch fixture could not be replayed (a broken build).
+    #[error(
+        "the embedded PyTorch fixture cannot be replayed: {0} (a bug in this build of ppo-tutor)"
+    )]
+    Fixture(String),
     /// The compiled harness could not be started.
     #[error("cannot run the compiled grader {binary}: {reason}")]
     Run {
@@ -392,7 +421,7 @@ fn check_status(spec: &Spec, check: &CheckCases, answers: &[Answer], hint: &str)
     CheckStatus::Passed
 }
 
-fn panic_hint(message: &str) -> String {
+pub(crate) fn panic_hint(message: &str) -> String {
     let hint = if message.contains("not yet implemented") {
         "The starter's todo!() is still there: replace it with your implementation."
     } else if message.contains("out of bounds") || message.contains("range end index") {

@@ -14,7 +14,7 @@ use crate::ppo::replay::parse_replay;
 use crate::ppo::{Agent, PpoConfig};
 
 /// The PyTorch fixture: three recorded episodes with the weights before their update.
-const PPO_FIXTURE: &str = include_str!("../../tests/fixtures/ppo_update_pytorch.json");
+pub(crate) const PPO_FIXTURE: &str = include_str!("../../tests/fixtures/ppo_update_pytorch.json");
 /// numpy's `rl_utils.moving_average` on five series (the first: the seed's 500 returns).
 const MA_FIXTURE: &str = include_str!("../../tests/fixtures/moving_average.json");
 

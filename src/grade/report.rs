@@ -14,6 +14,8 @@ pub enum Problem {
     TimedOut(u64),
     /// The program died (stack overflow, `process::exit`, ...): what it printed.
     Crashed(String),
+    /// The function returned an error (the candle exercise): its message.
+    Error(String),
 }
 
 /// The first failing case of a check.
@@ -116,6 +118,7 @@ impl Report {
             Some(Problem::Panicked(_)) => format!("{p}/{n} checks, panicked"),
             Some(Problem::TimedOut(_)) => format!("{p}/{n} checks, never returned"),
             Some(Problem::Crashed(_)) => format!("{p}/{n} checks, crashed"),
+            Some(Problem::Error(_)) => format!("{p}/{n} checks, returned an error"),
             _ => format!("{p}/{n} checks"),
         }
     }
@@ -174,6 +177,9 @@ fn render_failure(out: &mut String, f: &Failure) {
         }
         Problem::Crashed(m) => {
             let _ = writeln!(out, "      crashed:  {m}");
+        }
+        Problem::Error(m) => {
+            let _ = writeln!(out, "      error:    {m}");
         }
     }
     if !f.detail.is_empty() {

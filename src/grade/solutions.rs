@@ -21,6 +21,9 @@ pub mod clipping;
 #[path = "../../lessons/11-losses/solution.rs"]
 pub mod losses;
 
+#[path = "../../lessons/11-losses/solution_candle.rs"]
+pub mod losses_candle;
+
 #[allow(clippy::needless_range_loop)]
 #[path = "../../lessons/12-training/solution.rs"]
 pub mod training;
