@@ -156,10 +156,61 @@ impl Default for GradeOptions {
     }
 }
 
-/// Every exercise name, in course order.
+/// Every exercise name, in course order (`ppo_losses`, on candle tensors, follows the
+/// plain exercises of its lesson).
 #[must_use]
 pub fn exercise_names() -> Vec<&'static str> {
-    catalog::SPECS.iter().map(|s| s.name).collect()
+    let mut names: Vec<(&str, &str)> = catalog::SPECS.iter().map(|s| (s.lesson, s.name)).collect();
+    let after = names
+        .iter()
+        .rposition(|(lesson, _)| *lesson <= ppo_losses::LESSON)
+        .map_or(0, |i| i + 1);
+    names.insert(after, (ppo_losses::LESSON, ppo_losses::NAME));
+    names.into_iter().map(|(_, name)| name).collect()
+}
+
+/// Where an exercise's files are: its lesson folder, starter and reference solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Files {
+    /// The lesson folder under `lessons/`, e.g. `07-td-target`.
+    pub lesson: &'static str,
+    /// The starter's file name in it (`exercise.rs`).
+    pub starter: &'static str,
+    /// The reference solution's file name in it (`solution.rs`).
+    pub solution: &'static str,
+}
+
+impl Files {
+    /// The starter's path relative to the course root.
+    #[must_use]
+    pub fn starter_path(&self) -> String {
+        format!("lessons/{}/{}", self.lesson, self.starter)
+    }
+
+    /// The reference solution's path relative to the course root.
+    #[must_use]
+    pub fn solution_path(&self) -> String {
+        format!("lessons/{}/{}", self.lesson, self.solution)
+    }
+}
+
+/// The files of exercise `name`, or [`GradeError::UnknownExercise`].
+///
+/// # Errors
+/// [`GradeError::UnknownExercise`] listing the valid names.
+pub fn files(name: &str) -> Result<Files, GradeError> {
+    if name == ppo_losses::NAME {
+        return Ok(Files {
+            lesson: ppo_losses::LESSON,
+            starter: ppo_losses::STARTER,
+            solution: ppo_losses::SOLUTION,
+        });
+    }
+    spec(name).map(|s| Files {
+        lesson: s.lesson,
+        starter: "exercise.rs",
+        solution: "solution.rs",
+    })
 }
 
 /// The exercise `name`, or [`GradeError::UnknownExercise`].
@@ -176,16 +227,17 @@ pub fn spec(name: &str) -> Result<&'static Spec, GradeError> {
 /// The embedded starter of `name`'s lesson: its path relative to the course root and text.
 #[must_use]
 pub fn starter(name: &str) -> Option<(String, &'static str)> {
-    let spec = catalog::find(name)?;
-    let text = crate::lesson::loader::embedded_file(&format!("{}/exercise.rs", spec.lesson))?;
-    Some((spec.starter_path(), text))
+    let files = files(name).ok()?;
+    let text =
+        crate::lesson::loader::embedded_file(&format!("{}/{}", files.lesson, files.starter))?;
+    Some((files.starter_path(), text))
 }
 
 /// The embedded reference solution of `name`'s lesson (shown after a pass).
 #[must_use]
 pub fn solution(name: &str) -> Option<&'static str> {
-    let spec = catalog::find(name)?;
-    crate::lesson::loader::embedded_file(&format!("{}/solution.rs", spec.lesson))
+    let files = files(name).ok()?;
+    crate::lesson::loader::embedded_file(&format!("{}/{}", files.lesson, files.solution))
 }
 
 /// Writes `name`'s starter back to `root/lessons/<lesson>/exercise.rs`; returns the path.
@@ -193,9 +245,9 @@ pub fn solution(name: &str) -> Option<&'static str> {
 /// # Errors
 /// [`GradeError::UnknownExercise`], or [`GradeError::Write`] if the file cannot be written.
 pub fn reset(name: &str, root: &Path) -> Result<PathBuf, GradeError> {
-    let spec = spec(name)?;
-    let (rel, text) = starter(spec.name).ok_or_else(|| GradeError::Write {
-        file: PathBuf::from(spec.starter_path()),
+    let files = files(name)?;
+    let (rel, text) = starter(name).ok_or_else(|| GradeError::Write {
+        file: PathBuf::from(files.starter_path()),
         reason: "no starter is embedded for this exercise".into(),
     })?;
     let path = root.join(rel);
@@ -216,14 +268,18 @@ pub fn reset(name: &str, root: &Path) -> Result<PathBuf, GradeError> {
 /// A [`GradeError`] when grading cannot happen (unknown exercise, unreadable file, no
 /// rustc); a file that does not compile, panics or loops is a failing [`Report`].
 pub fn grade(name: &str, file: Option<&Path>, opts: &GradeOptions) -> Result<Report, GradeError> {
-    let spec = spec(name)?;
-    let path = file.map_or_else(|| PathBuf::from(spec.starter_path()), Path::to_path_buf);
+    let files = files(name)?;
+    let path = file.map_or_else(|| PathBuf::from(files.starter_path()), Path::to_path_buf);
     let source = std::fs::read_to_string(&path).map_err(|e| GradeError::Read {
         file: path.clone(),
-        exercise: spec.name.to_string(),
+        exercise: name.to_string(),
         reason: e.to_string(),
     })?;
-    grade_source(spec, &source, &path.display().to_string(), opts)
+    let display = path.display().to_string();
+    if name == ppo_losses::NAME {
+        return ppo_losses::grade_source(&source, &display, opts);
+    }
+    grade_source(spec(name)?, &source, &display, opts)
 }
 
 /// Grades `source` (the text of a learner's file, shown as `display`) against `spec`.

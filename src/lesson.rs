@@ -59,7 +59,8 @@ pub struct Step {
 pub struct Exercise {
     /// The function the learner writes (also the name on the command line).
     pub name: String,
-    /// Further functions graded in the same lesson (and starter file), e.g. `td_delta`.
+    /// Further functions graded in the same lesson, e.g. `td_delta` (in the same starter
+    /// file) or `ppo_losses` (on candle tensors, in its own `exercise_candle.rs`).
     #[serde(default)]
     pub also: Vec<String>,
     /// Hints, from gentle to nearly the answer.

@@ -21,6 +21,23 @@ fn opts() -> GradeOptions {
     GradeOptions::default()
 }
 
+/// The grading cache of the candle exercise, shared by every test (and `ppo-tutor`
+/// process) that grades `ppo_losses`, so candle is compiled for it once per target folder
+/// (it lives in `target/tmp`). Measured on 2 cores: the first build of candle-core and
+/// candle-nn in release takes about 1 min 50 s; each learner file after it about 2 s to
+/// compile and link, and its grading about 3 s (training included). This test target
+/// takes about 2.5 min cold and 50 s warm (it took seconds before the candle exercise).
+fn candle_cache() -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join("grade-cache")
+}
+
+fn candle_opts(limit: Duration) -> GradeOptions {
+    GradeOptions {
+        time_limit: limit,
+        cache_dir: candle_cache(),
+    }
+}
+
 fn grade_file(name: &str, path: &Path) -> Result<Report, Box<dyn std::error::Error>> {
     Ok(grade::grade(name, Some(path), &opts())?)
 }
@@ -290,6 +307,7 @@ fn ppo_tutor(dir: &Path, args: &[&str]) -> Result<(i32, String), Box<dyn std::er
         .args(args)
         .current_dir(dir)
         .env("PPO_TUTOR_STATE", dir.join("state.json"))
+        .env("PPO_TUTOR_GRADE_CACHE", candle_cache())
         .env("NO_COLOR", "1")
         .output()?;
     let text = format!(
@@ -332,7 +350,7 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     assert_eq!(code, 0, "{text}");
     let (code, text) = ppo_tutor(d, &["grade"])?;
     assert_eq!(code, 1, "{text}");
-    assert!(text.contains("score: 2/9 exercises pass"), "{text}");
+    assert!(text.contains("score: 2/10 exercises pass"), "{text}");
     assert!(text.contains("not started (todo!() left)"), "{text}");
     let state = std::fs::read_to_string(d.join("state.json"))?;
     assert!(
@@ -356,9 +374,9 @@ fn lessons_name_exactly_the_graded_exercises() -> TestResult {
             continue;
         };
         for name in exercise.names() {
-            let spec = grade::spec(name)?;
+            let files = grade::files(name)?;
             assert_eq!(
-                spec.lesson,
+                files.lesson,
                 format!("{:02}-{}", lesson.order, lesson.id),
                 "{name}"
             );
@@ -414,7 +432,7 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     assert_eq!(app.exercise.hints_shown, 1);
     let text = tutor_screen(&app)?;
     assert!(
-        text.contains("Hints (1/3)") && text.contains("exercises done 0/9"),
+        text.contains("Hints (1/3)") && text.contains("exercises done 0/10"),
         "{text}"
     );
 
@@ -446,10 +464,187 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     assert!(app.progress.exercises_done.contains("td_delta"));
     let text = tutor_screen(&app)?;
     assert!(text.contains("The reference solution"), "{text}");
-    assert!(text.contains("exercises done 2/9"), "{text}");
+    assert!(text.contains("exercises done 2/10"), "{text}");
 
     app.update(Action::Back);
     assert_eq!(app.overlay, Overlay::None);
     assert!(tutor_screen(&app)?.contains("exercise td_target, td_delta: done"));
+    Ok(())
+}
+
+fn grade_candle(text: &str, limit: Duration) -> Result<Report, Box<dyn std::error::Error>> {
+    Ok(grade::ppo_losses::grade_source(
+        text,
+        "learner_candle.rs",
+        &candle_opts(limit),
+    )?)
+}
+
+/// The candle exercise, in one test so that its grading project is built once: the
+/// solution passes every check (training included), the starter is not started, every
+/// catalogued wrong answer fails naming its mistake, and compile errors, returned errors,
+/// non-scalar losses, panics and endless loops are reported.
+#[test]
+fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> TestResult {
+    use grade::ppo_losses::{self, mistakes::MISTAKES};
+    let ten = Duration::from_secs(10);
+    let lesson = Path::new(ROOT).join("lessons/11-losses");
+
+    let report = grade_candle(
+        &std::fs::read_to_string(lesson.join("solution_candle.rs"))?,
+        ten,
+    )?;
+    assert!(report.passed(), "{}", report.render());
+    assert_eq!(report.checks.len(), 5, "{}", report.render());
+    assert_eq!(report.checks[4].name, ppo_losses::training_check_name());
+
+    let report = grade_candle(
+        &std::fs::read_to_string(lesson.join("exercise_candle.rs"))?,
+        ten,
+    )?;
+    assert_eq!(
+        report.summary(),
+        "not started (todo!() left)",
+        "{}",
+        report.render()
+    );
+    assert!(report.render().contains("todo!() is still there"));
+    let (rel, embedded) = grade::starter("ppo_losses").ok_or("no embedded starter")?;
+    assert_eq!(
+        std::fs::read_to_string(Path::new(ROOT).join(rel))?,
+        embedded
+    );
+
+    let dir = Path::new(ROOT).join("tests/wrong_answers/ppo_losses");
+    let mut stems: Vec<String> = std::fs::read_dir(&dir)?
+        .map(|e| {
+            Ok(e?
+                .path()
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("")
+                .to_string())
+        })
+        .collect::<Result<_, std::io::Error>>()?;
+    stems.sort();
+    let mut ids: Vec<&str> = MISTAKES.iter().map(|m| m.id).collect();
+    ids.sort_unstable();
+    assert_eq!(stems, ids, "one wrong answer file per known mistake");
+    // Two at a time (CI has 2 cores): the builds queue on cargo's lock, the runs overlap.
+    let check = |mistake: &grade::ppo_losses::mistakes::Mistake| -> Result<(), String> {
+        let text = std::fs::read_to_string(dir.join(format!("{}.rs", mistake.id)))
+            .map_err(|e| e.to_string())?;
+        let report = grade_candle(&text, ten).map_err(|e| e.to_string())?;
+        let text = report.render();
+        let id = mistake.id;
+        if report.passed() {
+            return Err(format!("ppo_losses/{id} passed:\n{text}"));
+        }
+        if report.mistake.as_deref() != Some(id) {
+            return Err(format!(
+                "ppo_losses/{id}: wrong diagnosis {:?}\n{text}",
+                report.mistake
+            ));
+        }
+        let title = mistake.hint.split(':').next().unwrap_or(mistake.hint);
+        if !text.contains(title) {
+            return Err(format!("ppo_losses/{id}: hint missing\n{text}"));
+        }
+        // A loss pushing the wrong way does not learn: the training check says so.
+        let learned = !matches!(
+            report.checks.last().map(|c| &c.status),
+            Some(CheckStatus::Failed(f)) if f.detail.contains("did not learn")
+        );
+        if id == "no_minus_sign" && learned {
+            return Err(format!(
+                "ppo_losses/{id}: the training check passed\n{text}"
+            ));
+        }
+        Ok(())
+    };
+    let (first, second) = MISTAKES.split_at(MISTAKES.len() / 2);
+    let failures: Vec<String> = std::thread::scope(|s| {
+        let other = s.spawn(|| {
+            second
+                .iter()
+                .filter_map(|m| check(m).err())
+                .collect::<Vec<_>>()
+        });
+        let mut failures: Vec<String> = first.iter().filter_map(|m| check(m).err()).collect();
+        failures.extend(
+            other
+                .join()
+                .unwrap_or_else(|_| vec!["a grading thread panicked".into()]),
+        );
+        failures
+    });
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+
+    let typo = "use candle_core::{Result, Tensor};\npub fn ppo_losses(probs: &Tensor, actions: &Tensor, old_log_probs: &Tensor, advantage: &Tensor, values: &Tensor, td_target: &Tensor, eps: f64) -> Result<(Tensor, Tensor)> {\n    let x: u32 = \"no\";\n    todo!()\n}\n";
+    let report = grade_candle(typo, ten)?;
+    let (summary, compiler) = report.compile_error.clone().ok_or("compiled")?;
+    assert!(summary.contains("does not compile"), "{summary}");
+    assert!(
+        compiler.contains("error[E0308]") && compiler.contains("learner_candle.rs:3"),
+        "{compiler}"
+    );
+    let report = grade_candle("pub fn ppo_losses(eps: f32) -> f32 { eps }\n", ten)?;
+    let (summary, _) = report.compile_error.ok_or("compiled")?;
+    assert!(
+        summary.contains("signature") && summary.contains(ppo_losses::SIGNATURE),
+        "{summary}"
+    );
+
+    let body = |lines: &str| {
+        format!(
+            "use candle_core::{{Result, Tensor}};\npub fn ppo_losses(probs: &Tensor, actions: &Tensor, old_log_probs: &Tensor, advantage: &Tensor, values: &Tensor, td_target: &Tensor, eps: f64) -> Result<(Tensor, Tensor)> {{\n{lines}\n}}\n"
+        )
+    };
+    let report = grade_candle(
+        &body("    let a = (probs - old_log_probs)?.mean_all()?;\n    Ok((a.clone(), a))"),
+        ten,
+    )?;
+    let failure = report.first_failure().ok_or("no failure")?;
+    assert!(
+        matches!(&failure.problem, Problem::Error(m) if m.contains("shape mismatch")),
+        "{}",
+        report.render()
+    );
+    assert!(failure.hint.contains("(N, 2)"), "{}", failure.hint);
+    let report = grade_candle(
+        &body("    let a = (values - td_target)?.sqr()?.mean(0)?;\n    Ok((a.clone(), a))"),
+        ten,
+    )?;
+    let failure = report.first_failure().ok_or("no failure")?;
+    assert!(matches!(&failure.problem, Problem::Error(m) if m.contains("not a scalar")));
+    let report = grade_candle(
+        &body("    if probs.dims()[0] > 0 { loop { std::hint::spin_loop(); } }\n    todo!()"),
+        Duration::from_secs(1),
+    )?;
+    assert_eq!(
+        report.first_failure().map(|f| &f.problem),
+        Some(&Problem::TimedOut(1)),
+        "{}",
+        report.render()
+    );
+    assert!(matches!(report.checks[4].status, CheckStatus::NotRun(_)));
+
+    // The command line grades the same way (this file's program is already built).
+    let state = tempfile::tempdir()?;
+    let wrong = dir.join("no_minus_sign.rs");
+    let (code, text) = ppo_tutor(
+        state.path(),
+        &[
+            "grade",
+            "ppo_losses",
+            "--file",
+            wrong.to_str().ok_or("path")?,
+        ],
+    )?;
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("The actor loss without its minus sign"),
+        "{text}"
+    );
     Ok(())
 }

@@ -15,7 +15,8 @@ use crate::lesson::Progress;
 pub struct GradeArgs {
     /// The exercise (its function name, e.g. td_target); all exercises when omitted.
     pub exercise: Option<String>,
-    /// Grade this file instead of the starter's path (lessons/NN-slug/exercise.rs).
+    /// Grade this file instead of the starter's path (lessons/NN-slug/exercise.rs, or
+    /// exercise_candle.rs for ppo_losses).
     #[arg(long, value_name = "PATH")]
     pub file: Option<PathBuf>,
     /// Seconds the learner's code may run on all cases of one exercise.
@@ -53,6 +54,7 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
         }
         return grade_all(&opts);
     };
+    note_first_build(name, &opts);
     let report = match grade::grade(name, args.file.as_deref(), &opts) {
         Err(e @ GradeError::UnknownExercise { .. }) => return Ok(usage(&e.to_string())),
         Err(e @ GradeError::Read { .. }) => {
@@ -64,11 +66,10 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     print!("{}", report.render());
     if report.passed() {
         record_pass(&report);
-        if args.file.is_none() {
-            println!(
-                "  The reference solution: lessons/{}/solution.rs",
-                lesson_of(name)
-            );
+        if args.file.is_none()
+            && let Ok(files) = grade::files(name)
+        {
+            println!("  The reference solution: {}", files.solution_path());
         }
         Ok(ExitCode::SUCCESS)
     } else {
@@ -76,8 +77,17 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     }
 }
 
-fn lesson_of(name: &str) -> &'static str {
-    grade::catalog::find(name).map_or("", |s| s.lesson)
+/// Says so before a grading that first compiles candle (minutes, with no other output).
+fn note_first_build(name: &str, opts: &GradeOptions) {
+    if name == grade::ppo_losses::NAME
+        && grade::ppo_losses::project::first_build_pending(&opts.cache_dir)
+    {
+        eprintln!(
+            "Compiling candle for the candle exercise's grader in {} (the first time only: \
+             a few minutes)…",
+            grade::ppo_losses::project::project_dir(&opts.cache_dir).display()
+        );
+    }
 }
 
 fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
@@ -85,8 +95,8 @@ fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
     let mut passed = 0;
     let names = grade::exercise_names();
     for name in &names {
-        let spec = grade::spec(name)?;
-        let path = spec.starter_path();
+        let path = grade::files(name)?.starter_path();
+        note_first_build(name, opts);
         let result = match grade::grade(name, None, opts) {
             Ok(report) => {
                 if report.passed() {

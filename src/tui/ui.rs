@@ -389,10 +389,15 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
     );
     Clear.render(rect, buf);
     let names = app.exercise_names();
-    let file = crate::grade::starter(names.first().map_or("", String::as_str))
-        .map_or(String::new(), |(path, _)| path);
+    let file_of = |name: &str| crate::grade::starter(name).map_or(String::new(), |(path, _)| path);
+    let mut files: Vec<String> = names.iter().map(|n| file_of(n)).collect();
+    files.dedup();
+    let heading = match files.as_slice() {
+        [file] => format!(" Write the function(s) in {file}"),
+        _ => " Write each function in its file".to_string(),
+    };
     let mut lines = vec![
-        Line::styled(format!(" Write the function(s) in {file}"), theme.title()),
+        Line::styled(heading, theme.title()),
         Line::styled(
             " g grade · h next hint · ↑↓ scroll · Esc close",
             theme.dim(),
@@ -402,10 +407,16 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
     for name in &names {
         let done = app.progress.exercises_done.contains(name);
         let mark = if done { "✓ done" } else { "· pending" };
-        lines.push(Line::from(vec![
+        let mut line = vec![
             Span::styled(format!(" {mark:<10}"), theme.key()),
             Span::raw(name.clone()),
-        ]));
+        ];
+        if files.len() > 1 {
+            let width = names.iter().map(String::len).max().unwrap_or(0);
+            let pad = " ".repeat(width - name.len() + 2);
+            line.push(Span::styled(format!("{pad}{}", file_of(name)), theme.dim()));
+        }
+        lines.push(Line::from(line));
     }
     let hints = app
         .current_lesson()
@@ -423,8 +434,14 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
     }
     if app.exercise.grading {
         lines.push(Line::raw(""));
+        let candle = names.iter().any(|n| n == crate::grade::ppo_losses::NAME);
         lines.push(Line::styled(
-            " grading… (the first time compiles, a few seconds)",
+            if candle {
+                " grading… (the first time compiles, a few seconds; for the candle exercise, \
+                 a few minutes)"
+            } else {
+                " grading… (the first time compiles, a few seconds)"
+            },
             theme.dim(),
         ));
     }
@@ -436,8 +453,12 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
         }
     }
     if app.exercise_done() {
-        let solution = names.first().and_then(|n| crate::grade::solution(n));
-        if let Some(code) = solution {
+        let mut solutions: Vec<&str> = names
+            .iter()
+            .filter_map(|n| crate::grade::solution(n))
+            .collect();
+        solutions.dedup();
+        for code in solutions {
             lines.push(Line::raw(""));
             lines.push(Line::styled(" The reference solution", theme.title()));
             lines.extend(code.lines().map(|l| Line::raw(format!(" {l}"))));

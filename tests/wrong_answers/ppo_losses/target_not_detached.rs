@@ -1,0 +1,21 @@
+//! Wrong on purpose: td_target left in the graph (candle_nn's mse without detach).
+
+use candle_core::{Result, Tensor};
+
+pub fn ppo_losses(
+    probs: &Tensor,
+    actions: &Tensor,
+    old_log_probs: &Tensor,
+    advantage: &Tensor,
+    values: &Tensor,
+    td_target: &Tensor,
+    eps: f64,
+) -> Result<(Tensor, Tensor)> {
+    let log_probs = probs.gather(actions, 1)?.log()?;
+    let ratio = (log_probs - old_log_probs)?.exp()?;
+    let surr1 = (&ratio * advantage)?;
+    let surr2 = (ratio.clamp(1.0 - eps, 1.0 + eps)? * advantage)?;
+    let actor_loss = surr1.minimum(&surr2)?.neg()?.mean_all()?;
+    let critic_loss = candle_nn::loss::mse(values, td_target)?;
+    Ok((actor_loss, critic_loss))
+}
