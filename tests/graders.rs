@@ -646,5 +646,24 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
         text.contains("The actor loss without its minus sign"),
         "{text}"
     );
+
+    // Without cargo, a clear error naming the fix (a fresh cache: nothing is built).
+    let out = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .args([
+            "grade",
+            "ppo_losses",
+            "--file",
+            wrong.to_str().ok_or("path")?,
+        ])
+        .env("PPO_TUTOR_STATE", state.path().join("state.json"))
+        .env("PPO_TUTOR_GRADE_CACHE", state.path().join("cache"))
+        .env("CARGO", state.path().join("no-cargo-here"))
+        .output()?;
+    let text = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("cannot run cargo") && text.contains("set CARGO"),
+        "{text}"
+    );
     Ok(())
 }

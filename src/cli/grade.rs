@@ -106,6 +106,9 @@ fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
                 report.summary()
             }
             Err(GradeError::Read { .. }) => format!("missing: ppo-tutor reset {name}"),
+            Err(GradeError::NoCargo { .. } | GradeError::Cargo { .. }) => {
+                format!("not graded, cargo failed: ppo-tutor grade {name} says why")
+            }
             Err(e) => return Err(e.into()),
         };
         println!("{name:<22} {path:<38} {result}");
