@@ -8,6 +8,7 @@ use anyhow::Context;
 use clap::Args;
 
 use crate::lesson::{Course, Snapshot, anchor};
+use crate::ppo::model::ActorSnapshot;
 use crate::ppo::{PpoConfig, Trainer, moving_average};
 use crate::tui::app::set_hyper;
 
@@ -48,12 +49,14 @@ pub fn live_snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::R
     set_hyper(&mut snapshot, &config, seed);
     let mut trainer = Trainer::new(config, seed)?;
     for _ in 0..episodes {
+        // The policy the episode is played with, before the episode's update changes it.
+        let played_with = ActorSnapshot::of(trainer.agent().actor())?;
         let Some(report) = trainer.next_episode()? else {
             break;
         };
         snapshot.episodes = report.episode + 1;
         snapshot.returns.push(report.episode_return);
-        snapshot.probs = crate::lesson::live::probs_over(trainer.agent(), &report.trace.states);
+        snapshot.probs = crate::lesson::live::probs_over(&played_with, &report.trace.states);
         snapshot.terminated = report.terminated;
         snapshot.truncated = report.truncated;
         snapshot.trace = Some(report.trace);

@@ -7,15 +7,20 @@
 //! dtype, values and the entries that matter marked (clipped ratios, done flags, the
 //! sign of the advantage).
 
+use crate::ppo::model::ActorSnapshot;
 use crate::ppo::{Agent, UpdateTrace};
 
-/// `π(·|s)` under `agent` for each of `states` (NaN where a probability is missing).
+/// `π(·|s)` under `policy` for each of `states` (NaN where a probability is missing).
+///
+/// Pass the policy the episode was *played* with, copied before its update
+/// ([`ActorSnapshot::of`]): those are the probabilities the actions were sampled from and
+/// whose logs are `old_log_probs`.
 #[must_use]
-pub fn probs_over(agent: &Agent, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
+pub fn probs_over(policy: &ActorSnapshot, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
     states
         .iter()
         .map(|s| {
-            let p = agent.probs(s);
+            let p = policy.probs(s);
             [
                 p.first().copied().unwrap_or(f32::NAN),
                 p.get(1).copied().unwrap_or(f32::NAN),
@@ -117,7 +122,10 @@ impl TensorView {
         }
     }
 
-    fn column(name: &str, values: &[f32]) -> Self {
+    /// A float32 column `(N, 1)` named `name`, unmarked: how a notebook shows a vector it
+    /// computed itself.
+    #[must_use]
+    pub fn column(name: &str, values: &[f32]) -> Self {
         Self::new(
             name,
             vec![values.len(), 1],

@@ -7,6 +7,7 @@
 use std::sync::mpsc::{Receiver, Sender, TryRecvError};
 use std::thread::JoinHandle;
 
+use crate::ppo::model::ActorSnapshot;
 use crate::ppo::{EpisodeReport, PpoConfig, Trainer};
 
 /// What the UI asks of the worker.
@@ -119,9 +120,11 @@ fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Send
             running = false;
             continue;
         };
+        // The policy the episode is played with, before the episode's update changes it.
+        let played_with = ActorSnapshot::of(t.agent().actor()).unwrap_or_default();
         match t.next_episode() {
             Ok(Some(report)) => {
-                let data = episode_data(t, report);
+                let data = episode_data(t, &played_with, report);
                 if events.send(WorkerEvent::Episode(Box::new(data))).is_err() {
                     return;
                 }
@@ -140,9 +143,13 @@ fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Send
 }
 
 /// Gathers what the lessons show beside the trace.
-fn episode_data(trainer: &Trainer, report: EpisodeReport) -> EpisodeData {
+fn episode_data(
+    trainer: &Trainer,
+    played_with: &ActorSnapshot,
+    report: EpisodeReport,
+) -> EpisodeData {
     let agent = trainer.agent();
-    let probs = crate::lesson::live::probs_over(agent, &report.trace.states);
+    let probs = crate::lesson::live::probs_over(played_with, &report.trace.states);
     let weights = crate::lesson::live::weights_of(agent);
     EpisodeData {
         report,
