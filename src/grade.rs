@@ -34,6 +34,7 @@
 pub mod cases;
 pub mod catalog;
 pub mod harness;
+pub mod in_process;
 pub mod ppo_losses;
 pub mod report;
 pub mod solutions;

@@ -7,6 +7,7 @@
 //! - [`plot`]: return curves in the terminal and as PNG/SVG figures (plotters).
 //! - [`grade`]: graded exercises: the learner's plain-Rust PPO pieces against the references.
 //! - [`lesson`]: the course as data (`lessons/`, embedded), code anchors, live values, progress.
+//! - [`notebook`]: rich output for the Jupyter notebooks (evcxr): HTML tables, inline SVG.
 //! - [`tui`]: the terminal app (ratatui), training on a worker thread.
 //! - [`cli`]: the `ppo-tutor` command line (the binary only parses arguments and calls it).
 //!
@@ -17,6 +18,7 @@ pub mod cli;
 pub mod env;
 pub mod grade;
 pub mod lesson;
+pub mod notebook;
 pub mod plot;
 pub mod ppo;
 pub mod tui;

@@ -33,6 +33,13 @@ pub enum PlotError {
     },
 }
 
+fn register_font() {
+    REGISTER.call_once(|| {
+        // The bytes are a valid TrueType file compiled in; a failure would only lose text.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
 /// Writes the return curve and its moving average to `path` (`.png`, 1000x600, or `.svg`).
 ///
 /// # Errors
@@ -43,10 +50,7 @@ pub fn save_return_plot(
     returns: &[f64],
     smoothed: &[f64],
 ) -> Result<(), PlotError> {
-    REGISTER.call_once(|| {
-        // The bytes are a valid TrueType file compiled in; a failure would only lose text.
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
-    });
+    register_font();
     let shown = path.display().to_string();
     let ext = path
         .extension()
@@ -69,6 +73,30 @@ pub fn save_return_plot(
         }
         _ => Err(PlotError::UnknownFormat { path: shown }),
     }
+}
+
+/// The same figure as [`save_return_plot`], as an SVG document in memory (800x480), for
+/// notebooks and web pages.
+///
+/// # Errors
+/// [`PlotError::Draw`] if plotters fails.
+pub fn return_plot_svg(
+    title: &str,
+    returns: &[f64],
+    smoothed: &[f64],
+) -> Result<String, PlotError> {
+    register_font();
+    let mut svg = String::new();
+    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+        path: "(in memory)".into(),
+        reason: e.to_string(),
+    };
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
+        draw(&root, title, returns, smoothed).map_err(|e| draw_err(&e))?;
+        root.present().map_err(|e| draw_err(&e))?;
+    }
+    Ok(svg)
 }
 
 fn draw<DB: DrawingBackend>(

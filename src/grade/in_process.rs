@@ -1,0 +1,217 @@
+//! Grading a function that lives in the running program: a notebook cell.
+//!
+//! The notebooks cannot hand the grader a file (a cell's text is not visible to the code it
+//! defines), so the learner passes the function itself: `grade::in_process::td_target(td_target)`.
+//! It runs on exactly the cases of `ppo-tutor grade`, is compared with the same reference
+//! and tolerance, and a failure gets the same diagnosis and hint; only the compile step is
+//! the notebook's own. Each case runs on a worker thread: a panic is caught and reported
+//! with its message, and a function that has not answered within the time limit is
+//! reported as never returning (the thread is left behind; in a notebook, restart the
+//! kernel to stop it).
+//!
+//! ```
+//! use ppo_tutor::grade::in_process;
+//!
+//! fn critic_loss(values: &[f32], td_target: &[f32]) -> f32 {
+//!     let n = values.len() as f32;
+//!     values.iter().zip(td_target).map(|(v, y)| (v - y) * (v - y)).sum::<f32>() / n
+//! }
+//! let report = in_process::critic_loss(critic_loss);
+//! assert!(report.passed(), "{}", report.render());
+//! ```
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use super::catalog::{Args, CheckCases, Spec};
+use super::value::Output;
+use super::{Answer, CheckReport, Report, check_status, diagnose, spec};
+
+/// The name a report gives to the graded code.
+pub const DISPLAY: &str = "notebook cell";
+
+/// How long the learner's function may take on all cases together.
+pub const TIME_LIMIT: Duration = Duration::from_secs(10);
+
+/// A learner's function, adapted to take a case's arguments and return its result.
+pub type Learner = Arc<dyn Fn(Args<'_>) -> Output + Send + Sync>;
+
+/// Serialises gradings: each silences the panic hook (a panic belongs in the report, not
+/// on stderr) and must restore the one it found.
+static QUIET: Mutex<()> = Mutex::new(());
+
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| (*s).to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic without a message".to_string())
+}
+
+/// Runs `learner` on every case of `checks`, in order, on a worker thread.
+fn answers(learner: Learner, checks: &[CheckCases], limit: Duration) -> Vec<Answer> {
+    let cases: Vec<Vec<super::value::Arg>> = checks
+        .iter()
+        .flat_map(|c| c.cases.iter().cloned())
+        .collect();
+    let total = cases.len();
+    let (tx, rx) = mpsc::channel::<Answer>();
+    let _quiet = QUIET.lock();
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let worker = std::thread::Builder::new()
+        .name("ppo-tutor-grade".into())
+        .spawn(move || {
+            for case in &cases {
+                let answer = match catch_unwind(AssertUnwindSafe(|| learner(Args(case)))) {
+                    Ok(out) => Answer::Value(out),
+                    Err(payload) => Answer::Panicked(panic_message(payload.as_ref())),
+                };
+                if tx.send(answer).is_err() {
+                    return;
+                }
+            }
+        });
+    let mut out = Vec::with_capacity(total);
+    match worker {
+        Ok(_) => {
+            let deadline = Instant::now() + limit;
+            while out.len() < total {
+                let left = deadline.saturating_duration_since(Instant::now());
+                match rx.recv_timeout(left) {
+                    Ok(answer) => out.push(answer),
+                    Err(mpsc::RecvTimeoutError::Timeout) => {
+                        out.push(Answer::TimedOut(limit.as_secs().max(1)));
+                        break;
+                    }
+                    Err(mpsc::RecvTimeoutError::Disconnected) => {
+                        out.push(Answer::Crashed("the grading thread stopped".into()));
+                        break;
+                    }
+                }
+            }
+        }
+        Err(e) => out.push(Answer::Crashed(format!("cannot start a thread: {e}"))),
+    }
+    std::panic::set_hook(previous);
+    out.resize(total, Answer::NotRun);
+    out
+}
+
+/// Grades `learner` as exercise `spec`, within `limit`.
+#[must_use]
+pub fn grade_with(spec: &Spec, learner: Learner, limit: Duration) -> Report {
+    let checks = (spec.checks)();
+    let answers = answers(learner, &checks, limit);
+    let diagnosis = diagnose(spec, &checks, &answers);
+    let hint = diagnosis.map_or(spec.hint, |m| m.hint);
+    let mut report = Report {
+        exercise: spec.name.to_string(),
+        file: DISPLAY.to_string(),
+        compile_error: None,
+        checks: Vec::new(),
+        mistake: diagnosis.map(|m| m.id.to_string()),
+    };
+    let mut k = 0;
+    for check in &checks {
+        let status = check_status(spec, check, &answers[k..k + check.cases.len()], hint);
+        k += check.cases.len();
+        report.checks.push(CheckReport {
+            name: check.name.clone(),
+            cases: check.cases.len(),
+            status,
+        });
+    }
+    report
+}
+
+fn by_name(name: &str, learner: Learner) -> Report {
+    match spec(name) {
+        Ok(spec) => grade_with(spec, learner, TIME_LIMIT),
+        // The names below are the catalogue's own; this is unreachable in a built crate.
+        Err(e) => Report {
+            exercise: name.to_string(),
+            file: DISPLAY.to_string(),
+            compile_error: Some((e.to_string(), String::new())),
+            checks: Vec::new(),
+            mistake: None,
+        },
+    }
+}
+
+/// Grades a `sample_action` (lesson 6).
+pub fn sample_action(f: fn(&[f32], f32) -> usize) -> Report {
+    by_name(
+        "sample_action",
+        Arc::new(move |a: Args<'_>| Output::Usize(f(a.f32s(0), a.f32(1)))),
+    )
+}
+
+/// The signature of `td_target`.
+pub type TdTarget = fn(&[f32], &[f32], &[bool], f32) -> Vec<f32>;
+
+/// Grades a `td_target` (lesson 7).
+pub fn td_target(f: TdTarget) -> Report {
+    by_name(
+        "td_target",
+        Arc::new(move |a: Args<'_>| Output::F32s(f(a.f32s(0), a.f32s(1), a.bools(2), a.f32(3)))),
+    )
+}
+
+/// Grades a `td_delta` (lesson 7).
+pub fn td_delta(f: fn(&[f32], &[f32]) -> Vec<f32>) -> Report {
+    by_name(
+        "td_delta",
+        Arc::new(move |a: Args<'_>| Output::F32s(f(a.f32s(0), a.f32s(1)))),
+    )
+}
+
+/// Grades a `compute_advantage` (lesson 8).
+pub fn compute_advantage(f: fn(f32, f32, &[f32]) -> Vec<f32>) -> Report {
+    by_name(
+        "compute_advantage",
+        Arc::new(move |a: Args<'_>| Output::F32s(f(a.f32(0), a.f32(1), a.f32s(2)))),
+    )
+}
+
+/// Grades a `log_prob_of_actions` (lesson 9).
+pub fn log_prob_of_actions(f: fn(&[[f32; 2]], &[usize]) -> Vec<f32>) -> Report {
+    by_name(
+        "log_prob_of_actions",
+        Arc::new(move |a: Args<'_>| Output::F32s(f(a.pairs(0), a.usizes(1)))),
+    )
+}
+
+/// Grades a `ratio` (lesson 9).
+pub fn ratio(f: fn(&[f32], &[f32]) -> Vec<f32>) -> Report {
+    by_name(
+        "ratio",
+        Arc::new(move |a: Args<'_>| Output::F32s(f(a.f32s(0), a.f32s(1)))),
+    )
+}
+
+/// Grades an `actor_loss` (lesson 10).
+pub fn actor_loss(f: fn(&[f32], &[f32], f32) -> f32) -> Report {
+    by_name(
+        "actor_loss",
+        Arc::new(move |a: Args<'_>| Output::F32(f(a.f32s(0), a.f32s(1), a.f32(2)))),
+    )
+}
+
+/// Grades a `critic_loss` (lesson 11).
+pub fn critic_loss(f: fn(&[f32], &[f32]) -> f32) -> Report {
+    by_name(
+        "critic_loss",
+        Arc::new(move |a: Args<'_>| Output::F32(f(a.f32s(0), a.f32s(1)))),
+    )
+}
+
+/// Grades a `moving_average` (lesson 12).
+pub fn moving_average(f: fn(&[f64], usize) -> Vec<f64>) -> Report {
+    by_name(
+        "moving_average",
+        Arc::new(move |a: Args<'_>| Output::F64s(f(a.f64s(0), a.usize(1)))),
+    )
+}

@@ -1,0 +1,538 @@
+//! Rich output for the Jupyter notebooks (`notebooks/`, evcxr Rust kernel).
+//!
+//! evcxr shows the last expression of a cell by calling its `evcxr_display` method when it
+//! has one: the method prints `EVCXR_BEGIN_CONTENT <mime>` ... `EVCXR_END_CONTENT` blocks on
+//! stdout, at most one per mime type. This module gives the library's types that method
+//! (live tensors as HTML tables, grading reports, figures as inline SVG) and the figures
+//! themselves, so the notebooks use the same values and pictures as the terminal app.
+//!
+//! Everything here is ordinary library code: outside a notebook, [`Html::as_str`],
+//! [`Svg::as_str`] and the `*_html` functions return the markup.
+//!
+//! ```
+//! use ppo_tutor::notebook::cartpole_svg;
+//!
+//! let picture = cartpole_svg(&[0.1, 0.0, 0.05, 0.0]);
+//! assert!(picture.as_str().starts_with("<svg"));
+//! ```
+
+use std::fmt::Write as _;
+
+use crate::grade::{CheckStatus, Report};
+use crate::lesson::{Mark, Snapshot, TensorView};
+use crate::plot::file::{PlotError, return_plot_svg};
+use crate::ppo::{EpochTrace, PpoConfig};
+
+/// Rows of a tensor shown before the table is cut (the rest is summarised).
+pub const MAX_ROWS: usize = 12;
+
+/// One evcxr rich-output block.
+fn block(mime: &str, content: &str) -> String {
+    // A line equal to the end marker would end the block early: indent it.
+    let body = content.replace("\nEVCXR_END_CONTENT", "\n EVCXR_END_CONTENT");
+    format!("EVCXR_BEGIN_CONTENT {mime}\n{body}\nEVCXR_END_CONTENT")
+}
+
+/// Prints one evcxr rich-output block.
+fn emit(mime: &str, content: &str) {
+    println!("{}", block(mime, content));
+}
+
+/// An HTML fragment with a plain-text fallback; a notebook shows the HTML.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Html {
+    html: String,
+    text: String,
+}
+
+impl Html {
+    /// The markup.
+    #[must_use]
+    pub fn as_str(&self) -> &str {
+        &self.html
+    }
+
+    /// The plain-text version (what a terminal or a text-only viewer shows).
+    #[must_use]
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// evcxr's display hook: the HTML and its text fallback.
+    pub fn evcxr_display(&self) {
+        emit("text/plain", &self.text);
+        emit("text/html", &self.html);
+    }
+}
+
+/// An SVG picture; a notebook shows it inline.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Svg(String);
+
+impl Svg {
+    /// The SVG document.
+    #[must_use]
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+
+    /// evcxr's display hook.
+    pub fn evcxr_display(&self) {
+        emit("image/svg+xml", &self.0);
+    }
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// Background colour of a marked entry (the terminal app's colours, light).
+fn mark_style(mark: Mark) -> &'static str {
+    match mark {
+        Mark::Plain => "",
+        Mark::Clipped => " style=\"background:#ffd8a8\" title=\"clipped: outside 1 ± ε\"",
+        Mark::Done => " style=\"background:#dee2e6\" title=\"done: V(s') is dropped\"",
+        Mark::Positive => " style=\"background:#d3f9d8\" title=\"positive advantage\"",
+        Mark::Negative => " style=\"background:#ffe3e3\" title=\"negative advantage\"",
+    }
+}
+
+/// The rows shown: all when there are few, else the first and last few.
+fn shown_rows(rows: usize) -> Vec<Option<usize>> {
+    if rows <= MAX_ROWS {
+        return (0..rows).map(Some).collect();
+    }
+    let head = MAX_ROWS - 3;
+    let mut out: Vec<Option<usize>> = (0..head).map(Some).collect();
+    out.push(None);
+    out.extend((rows - 2..rows).map(Some));
+    out
+}
+
+fn number(v: f64, dtype: &str) -> String {
+    if dtype == "int64" || dtype == "bool" {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.6}")
+    }
+}
+
+/// The caption of a tensor, one line: name, shape, dtype, statistics and marks.
+fn caption(t: &TensorView) -> String {
+    let (head, stats, marks) = caption_parts(t);
+    format!("{head}{stats}{marks}")
+}
+
+/// The caption of a tensor in HTML: the name on the first line, the rest below, unwrapped.
+fn caption_html(t: &TensorView) -> String {
+    let (head, stats, marks) = caption_parts(t);
+    let small = |text: &str| {
+        let text = text.trim_start_matches(" · ");
+        if text.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "<br><small style=\"white-space:nowrap\">{}</small>",
+                escape(text)
+            )
+        }
+    };
+    format!("<b>{}</b>{}{}", escape(&head), small(&stats), small(&marks))
+}
+
+fn caption_parts(t: &TensorView) -> (String, String, String) {
+    let stats = t.stats().map_or(String::new(), |(lo, hi, mean)| {
+        format!(" · min {lo:.6} · max {hi:.6} · mean {mean:.6}")
+    });
+    let mut marks = String::new();
+    for (mark, what) in [
+        (Mark::Clipped, "clipped"),
+        (Mark::Done, "done"),
+        (Mark::Positive, "positive"),
+        (Mark::Negative, "negative"),
+    ] {
+        let n = t.count(mark);
+        if n > 0 {
+            let _ = write!(marks, " · {n} {what}");
+        }
+    }
+    let head = format!("{} {}", t.name, t.shape_text().trim_end());
+    (head, stats, marks)
+}
+
+/// One tensor as an HTML table (row index, values; marked entries coloured), and as text.
+#[must_use]
+pub fn tensor_html(t: &TensorView) -> Html {
+    let cap = caption(t);
+    let mut html = format!(
+        "<table class=\"ppo-tensor\" style=\"font-family:monospace;font-size:12px\">\n<caption style=\"text-align:left\">{}</caption>\n",
+        caption_html(t)
+    );
+    let mut text = format!("{cap}\n");
+    if !t.labels.is_empty() {
+        for label in &t.labels {
+            let (k, v) = label.split_once('=').unwrap_or((label, ""));
+            let _ = writeln!(
+                html,
+                "<tr><td>{}</td><td style=\"text-align:right\">{}</td></tr>",
+                escape(k.trim()),
+                escape(v.trim())
+            );
+            let _ = writeln!(text, "  {label}");
+        }
+        html.push_str("</table>");
+        return Html { html, text };
+    }
+    let cols = t.cols();
+    let rows = t.values.len().div_ceil(cols);
+    for row in shown_rows(rows) {
+        let Some(row) = row else {
+            let _ = writeln!(
+                html,
+                "<tr><td>…</td><td colspan=\"{cols}\">{} more rows</td></tr>",
+                rows - (MAX_ROWS - 1)
+            );
+            let _ = writeln!(text, "  ... {} more rows", rows - (MAX_ROWS - 1));
+            continue;
+        };
+        let _ = write!(html, "<tr><td style=\"color:#868e96\">{row}</td>");
+        let mut line = format!("  [{row}]");
+        for c in 0..cols {
+            let i = row * cols + c;
+            let (Some(&v), mark) = (t.values.get(i), t.marks.get(i).copied().unwrap_or_default())
+            else {
+                continue;
+            };
+            let _ = write!(
+                html,
+                "<td style=\"text-align:right\"{}>{}</td>",
+                mark_style(mark),
+                number(v, t.dtype)
+            );
+            let _ = write!(line, " {}", number(v, t.dtype));
+        }
+        html.push_str("</tr>\n");
+        let _ = writeln!(text, "{line}");
+    }
+    html.push_str("</table>");
+    Html { html, text }
+}
+
+impl TensorView {
+    /// evcxr's display hook: the tensor as an HTML table.
+    pub fn evcxr_display(&self) {
+        tensor_html(self).evcxr_display();
+    }
+}
+
+impl Snapshot {
+    /// The live values `names` side by side, as the terminal app shows them on a step;
+    /// a name with nothing computed yet says so.
+    #[must_use]
+    pub fn show(&self, names: &[&str]) -> Html {
+        let mut html = String::from(
+            "<div style=\"display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start\">\n",
+        );
+        let mut text = String::new();
+        for name in names {
+            let part = self.tensor(name).map_or_else(
+                || {
+                    let msg = format!("{name}: not available yet (train an episode first)");
+                    Html {
+                        html: format!("<p>{}</p>", escape(&msg)),
+                        text: format!("{msg}\n"),
+                    }
+                },
+                |t| tensor_html(&t),
+            );
+            let _ = writeln!(html, "<div>{}</div>", part.html);
+            text.push_str(&part.text);
+        }
+        html.push_str("</div>");
+        Html { html, text }
+    }
+
+    /// The return curve and its moving average, as the seed's figure.
+    ///
+    /// # Errors
+    /// [`PlotError::Draw`] if plotters fails.
+    pub fn return_plot(&self, title: &str) -> Result<Svg, PlotError> {
+        return_plot_svg(title, &self.returns, &self.moving_average).map(Svg)
+    }
+
+    /// The cart and pole where the latest episode ended (a blank track before any episode).
+    #[must_use]
+    pub fn cartpole(&self) -> Svg {
+        let last = self
+            .trace
+            .as_ref()
+            .and_then(|t| t.next_states.last())
+            .copied()
+            .unwrap_or_default();
+        cartpole_svg(&last.map(f64::from))
+    }
+
+    /// The clip chart of the latest update's last epoch (see [`clip_chart_svg`]).
+    #[must_use]
+    pub fn clip_chart(&self) -> Svg {
+        let trace = self.trace.as_ref();
+        clip_chart_svg(
+            f64::from(self.eps),
+            trace.and_then(|t| t.epochs.last()),
+            trace.map_or(&[][..], |t| &t.advantage),
+        )
+    }
+}
+
+/// Trains `episodes` episodes of the seed's PPO with `config` and `seed`, and returns what
+/// the terminal app would show after them: the latest batch and every intermediate of its
+/// update, the probabilities, the weights, the return curve and its moving average.
+///
+/// # Errors
+/// Invalid settings, or a diverged run.
+pub fn snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::Result<Snapshot> {
+    crate::cli::lessons::live_snapshot(config, seed, episodes)
+}
+
+/// A grading report as in `ppo-tutor grade`: the same text, with its marks coloured.
+#[must_use]
+pub fn report_html(report: &Report) -> Html {
+    let text = report.render();
+    let colour = |line: &str| {
+        let t = line.trim_start();
+        if t.starts_with('✓') {
+            "#2b8a3e"
+        } else if t.starts_with('✗') {
+            "#c92a2a"
+        } else if t.starts_with("hint:") {
+            "#1864ab"
+        } else {
+            ""
+        }
+    };
+    let mut html = String::from("<pre style=\"font-size:12px\">");
+    for line in text.lines() {
+        let c = colour(line);
+        if c.is_empty() {
+            let _ = writeln!(html, "{}", escape(line));
+        } else {
+            let _ = writeln!(html, "<span style=\"color:{c}\">{}</span>", escape(line));
+        }
+    }
+    let passed = report
+        .checks
+        .iter()
+        .all(|c| matches!(c.status, CheckStatus::Passed));
+    let verdict = if passed && report.compile_error.is_none() {
+        "<b style=\"color:#2b8a3e\">All checks pass.</b>"
+    } else {
+        "<b style=\"color:#c92a2a\">Not yet: fix the first ✗ and run the cell again.</b>"
+    };
+    let _ = write!(html, "</pre>{verdict}");
+    Html { html, text }
+}
+
+impl Report {
+    /// evcxr's display hook: the report, marks coloured.
+    pub fn evcxr_display(&self) {
+        report_html(self).evcxr_display();
+    }
+}
+
+/// Where the pole's tip is drawn in [`cartpole_svg`]'s 600x400 picture.
+fn pole_tip(state: &[f64; 4]) -> (f64, f64) {
+    let scale = 600.0 / (2.0 * crate::env::cartpole::X_THRESHOLD);
+    let pole_len = scale * 2.0 * crate::env::cartpole::LENGTH;
+    let cart_x = state[0] * scale + 300.0;
+    (
+        cart_x + pole_len * state[2].sin(),
+        300.0 - 30.0 / 4.0 - pole_len * state[2].cos(),
+    )
+}
+
+/// The cart and pole in state `[x, x_dot, theta, theta_dot]`, as Gymnasium renders it
+/// (600x400, track at the bottom third, x in `[-2.4, 2.4]`).
+#[must_use]
+pub fn cartpole_svg(state: &[f64; 4]) -> Svg {
+    let (width, height) = (600.0, 400.0);
+    let scale = width / (2.0 * crate::env::cartpole::X_THRESHOLD);
+    let track_y = 300.0;
+    let cart_x = state[0] * scale + width / 2.0;
+    let (cart_w, cart_h) = (50.0, 30.0);
+    let theta = state[2];
+    let (tip_x, tip_y) = pole_tip(state);
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n"
+    );
+    let _ = writeln!(
+        svg,
+        "<rect width=\"{width}\" height=\"{height}\" fill=\"white\"/>\n\
+         <line x1=\"0\" y1=\"{track_y}\" x2=\"{width}\" y2=\"{track_y}\" stroke=\"black\"/>\n\
+         <rect x=\"{:.2}\" y=\"{:.2}\" width=\"{cart_w}\" height=\"{cart_h}\" fill=\"black\"/>\n\
+         <line x1=\"{cart_x:.2}\" y1=\"{:.2}\" x2=\"{tip_x:.2}\" y2=\"{tip_y:.2}\" stroke=\"#ca9865\" stroke-width=\"10\" stroke-linecap=\"round\"/>\n\
+         <circle cx=\"{cart_x:.2}\" cy=\"{:.2}\" r=\"5\" fill=\"#8184cb\"/>",
+        cart_x - cart_w / 2.0,
+        track_y - cart_h * 0.75,
+        track_y - cart_h / 4.0,
+        track_y - cart_h / 4.0,
+    );
+    let _ = writeln!(
+        svg,
+        "<text x=\"10\" y=\"24\" font-family=\"monospace\" font-size=\"14\">x = {:.4}  θ = {:.4} rad ({:.2}°)</text>\n</svg>",
+        state[0],
+        theta,
+        theta.to_degrees()
+    );
+    Svg(svg)
+}
+
+/// The clip chart: `L^CLIP(r)` for a unit advantage of each sign, the band `[1 − ε, 1 + ε]`,
+/// and each row of `epoch` at `(ratio, min(surr1, surr2) / |A|)`, as in the terminal app.
+#[must_use]
+pub fn clip_chart_svg(eps: f64, epoch: Option<&EpochTrace>, advantage: &[f32]) -> Svg {
+    use crate::tui::widgets::clip::l_clip;
+    let (w, h, pad) = (560.0, 360.0, 40.0);
+    let px = |r: f64| pad + (r / 2.0) * (w - 2.0 * pad);
+    let py = |l: f64| h / 2.0 - (l / 2.0) * (h / 2.0 - pad);
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n"
+    );
+    let _ = writeln!(
+        svg,
+        "<rect x=\"{:.2}\" y=\"{pad}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"#fff4e6\"/>",
+        px(1.0 - eps),
+        px(1.0 + eps) - px(1.0 - eps),
+        h - 2.0 * pad
+    );
+    let _ = writeln!(
+        svg,
+        "<line x1=\"{pad}\" y1=\"{y0:.2}\" x2=\"{:.2}\" y2=\"{y0:.2}\" stroke=\"#adb5bd\"/>\n<line x1=\"{x1:.2}\" y1=\"{pad}\" x2=\"{x1:.2}\" y2=\"{:.2}\" stroke=\"#adb5bd\"/>",
+        w - pad,
+        h - pad,
+        y0 = py(0.0),
+        x1 = px(1.0),
+    );
+    for (a, colour, label) in [(1.0, "#2b8a3e", "A &gt; 0"), (-1.0, "#c92a2a", "A &lt; 0")] {
+        let points: Vec<String> = (0..=80)
+            .map(|i| {
+                let r = f64::from(i) / 40.0;
+                format!("{:.2},{:.2}", px(r), py(l_clip(r, a, eps)))
+            })
+            .collect();
+        let _ = writeln!(
+            svg,
+            "<polyline fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\" points=\"{}\"/>\n<text x=\"{:.2}\" y=\"{:.2}\" fill=\"{colour}\">{label}</text>",
+            points.join(" "),
+            px(1.75),
+            py(l_clip(1.75, a, eps)) - 6.0
+        );
+    }
+    let mut rows = 0usize;
+    if let Some(e) = epoch {
+        for (i, &r) in e.ratio.iter().enumerate() {
+            let a = f64::from(advantage.get(i).copied().unwrap_or(0.0));
+            if a == 0.0 {
+                continue;
+            }
+            let r = f64::from(r).clamp(0.0, 2.0);
+            let colour = if a > 0.0 { "#2b8a3e" } else { "#c92a2a" };
+            let _ = writeln!(
+                svg,
+                "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"2.5\" fill=\"{colour}\" fill-opacity=\"0.6\"/>",
+                px(r),
+                py(l_clip(r, a.signum(), eps))
+            );
+            rows += 1;
+        }
+    }
+    let _ = writeln!(
+        svg,
+        "<text x=\"{pad}\" y=\"24\">L^CLIP for a unit advantage; ε = {eps}; {rows} rows of the latest epoch</text>\n<text x=\"{:.2}\" y=\"{:.2}\">ratio r = π_θ / π_θ_old</text>\n<text x=\"{:.2}\" y=\"{:.2}\">1−ε</text><text x=\"{:.2}\" y=\"{:.2}\">1+ε</text>\n</svg>",
+        w / 2.0 - 60.0,
+        h - 10.0,
+        px(1.0 - eps) - 12.0,
+        h - pad + 14.0,
+        px(1.0 + eps) - 12.0,
+        h - pad + 14.0,
+    );
+    Svg(svg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_tensors_are_cut_and_say_how_many_rows_are_hidden() {
+        let rows = 30;
+        let rendered = shown_rows(rows);
+        assert_eq!(rendered.len(), MAX_ROWS);
+        assert_eq!(rendered.last(), Some(&Some(rows - 1)));
+        assert!(rendered.contains(&None));
+        assert_eq!(shown_rows(5), (0..5).map(Some).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_block_cannot_be_closed_early_by_its_content() {
+        let b = block("text/plain", "a\nEVCXR_END_CONTENT\nb");
+        assert_eq!(b.matches("\nEVCXR_END_CONTENT").count(), 1);
+        assert!(b.ends_with("\nEVCXR_END_CONTENT"));
+        assert_eq!(escape("<b>&</b>"), "&lt;b&gt;&amp;&lt;/b&gt;");
+    }
+
+    /// The text inside every `<text>` element of `svg` (a raw `<` there breaks the picture).
+    fn texts(svg: &str) -> Vec<&str> {
+        svg.split("<text")
+            .skip(1)
+            .filter_map(|t| {
+                t.split_once('>')
+                    .and_then(|(_, rest)| rest.split_once("</text>"))
+            })
+            .map(|(inner, _)| inner)
+            .collect()
+    }
+
+    #[test]
+    fn svg_text_is_escaped() {
+        let epoch = EpochTrace {
+            ratio: vec![0.5, 1.0, 1.5],
+            ..EpochTrace::default()
+        };
+        for svg in [
+            clip_chart_svg(0.2, Some(&epoch), &[1.0, -1.0, 2.0]),
+            cartpole_svg(&[0.1, 0.0, -0.1, 0.0]),
+        ] {
+            let inner = texts(svg.as_str());
+            assert!(!inner.is_empty());
+            for t in inner {
+                assert!(!t.contains('<'), "unescaped '<' in {t:?}");
+                assert!(
+                    t.split('&').skip(1).all(|e| e.starts_with("lt;")
+                        || e.starts_with("gt;")
+                        || e.starts_with("amp;")),
+                    "unescaped '&' in {t:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_pole_leans_the_way_theta_says() {
+        let (upright, _) = pole_tip(&[0.0, 0.0, 0.0, 0.0]);
+        assert!((upright - 300.0).abs() < 1e-9);
+        assert!(pole_tip(&[0.0, 0.0, 0.2, 0.0]).0 > 300.0);
+        assert!(pole_tip(&[0.0, 0.0, -0.2, 0.0]).0 < 300.0);
+        assert!(
+            pole_tip(&[1.0, 0.0, 0.0, 0.0]).0 > 300.0,
+            "the cart moves right with x"
+        );
+        let svg = cartpole_svg(&[0.0, 0.0, 0.2, 0.0]);
+        let (x, y) = pole_tip(&[0.0, 0.0, 0.2, 0.0]);
+        assert!(
+            svg.as_str()
+                .contains(&format!("x2=\"{x:.2}\" y2=\"{y:.2}\""))
+        );
+    }
+}

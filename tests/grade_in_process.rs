@@ -1,0 +1,218 @@
+//! Grading in place (what a notebook cell does) gives the same verdicts, hints and messages
+//! as `ppo-tutor grade` on a file: the reference solutions pass, and wrong answers fail
+//! with the same diagnosis and the same report text (but for the name of the graded code).
+
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Duration;
+
+use ppo_tutor::grade::{self, CheckStatus, GradeOptions, Problem, Report, in_process};
+
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/06-episode-loop/solution.rs"]
+mod sol06;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/07-td-target/solution.rs"]
+mod sol07;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/08-gae/solution.rs"]
+mod sol08;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/09-ratio/solution.rs"]
+mod sol09;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/10-clipping/solution.rs"]
+mod sol10;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/11-losses/solution.rs"]
+mod sol11;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/12-training/solution.rs"]
+mod sol12;
+
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/actor_loss/max_instead_of_min.rs"]
+mod w_actor_loss;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/compute_advantage/forwards.rs"]
+mod w_advantage;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/critic_loss/root_mean_square.rs"]
+mod w_critic_loss;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/log_prob_of_actions/no_log.rs"]
+mod w_log_prob;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/moving_average/no_edges.rs"]
+mod w_moving_average;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/ratio/no_exp.rs"]
+mod w_ratio;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/sample_action/swapped_actions.rs"]
+mod w_sample_action;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/td_delta/inverted.rs"]
+mod w_td_delta;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/td_target/missing_done_mask.rs"]
+mod w_td_target;
+
+type TestResult = Result<(), Box<dyn std::error::Error>>;
+
+#[test]
+fn every_reference_solution_passes_in_place() {
+    let reports = [
+        in_process::sample_action(sol06::sample_action),
+        in_process::td_target(sol07::td_target),
+        in_process::td_delta(sol07::td_delta),
+        in_process::compute_advantage(sol08::compute_advantage),
+        in_process::log_prob_of_actions(sol09::log_prob_of_actions),
+        in_process::ratio(sol09::ratio),
+        in_process::actor_loss(sol10::actor_loss),
+        in_process::critic_loss(sol11::critic_loss),
+        in_process::moving_average(sol12::moving_average),
+    ];
+    for r in &reports {
+        assert!(r.passed(), "{}", r.render());
+        assert_eq!(r.file, in_process::DISPLAY);
+    }
+}
+
+/// The report text without its first line (which names the graded file or cell) and
+/// without panic locations (a file's line; a notebook cell has none worth showing).
+fn body(report: &Report) -> String {
+    report
+        .render()
+        .lines()
+        .skip(1)
+        .map(|l| match l.find(" (at ") {
+            Some(i) if l.contains("panicked:") => &l[..i],
+            _ => l,
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn compare(name: &str, wrong: &str, in_place: &Report) -> TestResult {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/wrong_answers")
+        .join(name)
+        .join(format!("{wrong}.rs"));
+    let from_file = grade::grade(name, Some(&path), &GradeOptions::default())?;
+    assert!(!in_place.passed(), "{name}/{wrong} passed in place");
+    assert_eq!(
+        in_place.mistake.as_deref(),
+        Some(wrong),
+        "{name}/{wrong} in place:\n{}",
+        in_place.render()
+    );
+    assert_eq!(in_place.mistake, from_file.mistake, "{name}/{wrong}");
+    assert_eq!(body(in_place), body(&from_file), "{name}/{wrong}");
+    Ok(())
+}
+
+#[test]
+fn wrong_answers_get_the_same_diagnosis_and_messages_as_from_a_file() -> TestResult {
+    compare(
+        "sample_action",
+        "swapped_actions",
+        &in_process::sample_action(w_sample_action::sample_action),
+    )?;
+    compare(
+        "td_target",
+        "missing_done_mask",
+        &in_process::td_target(w_td_target::td_target),
+    )?;
+    compare(
+        "td_delta",
+        "inverted",
+        &in_process::td_delta(w_td_delta::td_delta),
+    )?;
+    compare(
+        "compute_advantage",
+        "forwards",
+        &in_process::compute_advantage(w_advantage::compute_advantage),
+    )?;
+    compare(
+        "log_prob_of_actions",
+        "no_log",
+        &in_process::log_prob_of_actions(w_log_prob::log_prob_of_actions),
+    )?;
+    compare("ratio", "no_exp", &in_process::ratio(w_ratio::ratio))?;
+    compare(
+        "actor_loss",
+        "max_instead_of_min",
+        &in_process::actor_loss(w_actor_loss::actor_loss),
+    )?;
+    compare(
+        "critic_loss",
+        "root_mean_square",
+        &in_process::critic_loss(w_critic_loss::critic_loss),
+    )?;
+    compare(
+        "moving_average",
+        "no_edges",
+        &in_process::moving_average(w_moving_average::moving_average),
+    )?;
+    Ok(())
+}
+
+#[test]
+fn a_panic_is_reported_with_its_message_and_the_grader_goes_on() {
+    fn starter(_: &[f32], _: &[f32]) -> f32 {
+        todo!()
+    }
+    let report = in_process::critic_loss(starter);
+    assert!(!report.passed());
+    let failed: Vec<_> = report
+        .checks
+        .iter()
+        .filter_map(|c| match &c.status {
+            CheckStatus::Failed(f) => Some(f),
+            _ => None,
+        })
+        .collect();
+    assert!(!failed.is_empty());
+    assert!(
+        matches!(&failed[0].problem, Problem::Panicked(m) if m.contains("not yet implemented")),
+        "{}",
+        report.render()
+    );
+    assert!(failed[0].hint.contains("todo!()"), "{}", failed[0].hint);
+    // The hook that was in force before grading is back.
+    let caught = std::panic::catch_unwind(|| panic!("after grading"));
+    assert!(caught.is_err());
+}
+
+#[test]
+fn a_function_that_never_returns_is_reported_after_the_time_limit() -> TestResult {
+    let spec = grade::spec("critic_loss")?;
+    let started = std::time::Instant::now();
+    let report = in_process::grade_with(
+        spec,
+        Arc::new(|_| {
+            loop {
+                std::thread::sleep(Duration::from_millis(50));
+            }
+        }),
+        Duration::from_millis(300),
+    );
+    assert!(started.elapsed() < Duration::from_secs(5));
+    let first = report.first_failure().ok_or("no failure")?;
+    assert!(
+        matches!(first.problem, Problem::TimedOut(_)),
+        "{}",
+        report.render()
+    );
+    assert!(
+        report
+            .checks
+            .iter()
+            .skip(1)
+            .all(|c| matches!(c.status, CheckStatus::NotRun(_))),
+        "{}",
+        report.render()
+    );
+    Ok(())
+}
