@@ -158,7 +158,7 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
 /// forbids; re-running the binary costs a millisecond. A value set by the user is kept.
 /// Returns `None` to go on in this process (variable set, or not the `ppo-tutor` binary,
 /// as when a test calls [`run`] in-process).
-fn rerun_with_one_candle_thread() -> Option<anyhow::Result<ExitCode>> {
+pub(super) fn rerun_with_one_candle_thread() -> Option<anyhow::Result<ExitCode>> {
     if std::env::var_os("RAYON_NUM_THREADS").is_some() {
         return None;
     }
