@@ -1,0 +1,56 @@
+//! Recipe for notebooks/05-cartpole.ipynb (see 01-what-is-ppo.rs for the format).
+
+// %%
+use ppo_tutor::env::{CartPole, EnvId};
+use ppo_tutor::lesson::Snapshot;
+use ppo_tutor::notebook::{cartpole_svg, snapshot};
+use ppo_tutor::ppo::PpoConfig;
+let config: PpoConfig = PpoConfig::default();
+let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
+
+// %% step: The state: four numbers
+// Gymnasium's env.reset(seed=0), reproduced bit for bit:
+let mut env = CartPole::new(EnvId::CartPoleV1);
+let obs: [f32; 4] = env.reset(Some(0));
+println!("[x, x_dot, theta, theta_dot] = {obs:?}");
+
+// %%
+cartpole_svg(&obs.map(f64::from))
+
+// %% step: Two actions and the physics step
+// Push right (action 1) five times and watch the cart speed up and the pole tip back.
+for _ in 0..5 {
+    let step = env.step(1)?;
+    println!("{:?} reward {}", step.obs, step.reward);
+}
+
+// %% step: Reset and seeding
+// The same seed gives the same start; no seed continues the generator, as in Gymnasium.
+let a = env.reset(Some(42));
+let b = env.reset(None);
+let c = env.reset(Some(42));
+println!("seed 42: {a:?}\nnext:    {b:?}\nseed 42: {c:?}");
+assert_eq!(a, c);
+
+// %% step: One reward per step, the last one too
+let mut env = CartPole::new(EnvId::CartPoleV1);
+env.reset(Some(0));
+let mut total = 0.0;
+loop {
+    let step = env.step(0)?; // always push left: the pole soon falls
+    total += step.reward;
+    if step.terminated || step.truncated {
+        println!("terminated = {}, return = {total}", step.terminated);
+        break;
+    }
+}
+
+// %% step: Termination and truncation
+use ppo_tutor::env::cartpole::{THETA_THRESHOLD_RADIANS, X_THRESHOLD};
+println!("terminated: |x| > {X_THRESHOLD} or |θ| > {THETA_THRESHOLD_RADIANS:.4} rad (12°)");
+println!("truncated: the time limit, {} steps on CartPole-v1", EnvId::CartPoleV1.max_episode_steps());
+
+// %% step: CartPole-v0 and CartPole-v1
+for id in EnvId::ALL {
+    println!("{}: truncated at {} steps", id.as_str(), id.max_episode_steps());
+}
