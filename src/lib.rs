@@ -22,3 +22,10 @@ pub mod notebook;
 pub mod plot;
 pub mod ppo;
 pub mod tui;
+
+/// The candle-core ppo-tutor is built on, so a notebook cell can write the candle exercise
+/// without a `:dep` of its own: `use ppo_tutor::candle_core::{Result, Tensor};`.
+pub use candle_core;
+/// The candle-nn ppo-tutor is built on (`ppo_tutor::candle_nn::ops::log_softmax`, ...), for
+/// the same reason.
+pub use candle_nn;

@@ -6,6 +6,7 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
+use ppo_tutor::grade::ppo_losses::protocol::LossesFn;
 use ppo_tutor::grade::{self, CheckStatus, GradeOptions, Problem, Report, in_process};
 
 #[allow(unused, clippy::all, clippy::pedantic)]
@@ -27,8 +28,24 @@ mod sol10;
 #[path = "../lessons/11-losses/solution.rs"]
 mod sol11;
 #[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/11-losses/solution_candle.rs"]
+mod sol11_candle;
+#[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/12-training/solution.rs"]
 mod sol12;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/11-losses/exercise_candle.rs"]
+mod starter11_candle;
+
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/ppo_losses/critic_sum.rs"]
+mod w_losses_critic_sum;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/ppo_losses/no_minus_sign.rs"]
+mod w_losses_no_minus_sign;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/ppo_losses/ratio_detached.rs"]
+mod w_losses_ratio_detached;
 
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "wrong_answers/actor_loss/max_instead_of_min.rs"]
@@ -211,6 +228,101 @@ fn a_function_that_never_returns_is_reported_after_the_time_limit() -> TestResul
             .iter()
             .skip(1)
             .all(|c| matches!(c.status, CheckStatus::NotRun(_))),
+        "{}",
+        report.render()
+    );
+    Ok(())
+}
+
+/// The grading cache of the candle exercise, shared with `tests/graders.rs` (candle is
+/// compiled for it once per target folder; a learner file then takes about 2 s to build).
+fn candle_opts() -> GradeOptions {
+    GradeOptions {
+        cache_dir: Path::new(env!("CARGO_TARGET_TMPDIR")).join("grade-cache"),
+        ..GradeOptions::default()
+    }
+}
+
+/// The candle exercise graded in place and from its file give the same report text.
+fn compare_candle(file: &Path, f: LossesFn, mistake: Option<&str>) -> TestResult {
+    let started = std::time::Instant::now();
+    let in_place = in_process::ppo_losses(f);
+    let took = started.elapsed();
+    let source = std::fs::read_to_string(file)?;
+    let from_file = grade::ppo_losses::grade_source(&source, "learner.rs", &candle_opts())?;
+    let name = file.display();
+    eprintln!("{name}: graded in place in {:.2} s", took.as_secs_f64());
+    assert!(!in_place.passed(), "{name} passed in place");
+    assert_eq!(in_place.file, in_process::DISPLAY);
+    assert_eq!(
+        in_place.mistake.as_deref(),
+        mistake,
+        "{}",
+        in_place.render()
+    );
+    assert_eq!(in_place.mistake, from_file.mistake, "{name}");
+    assert_eq!(body(&in_place), body(&from_file), "{name}");
+    Ok(())
+}
+
+/// The candle exercise: the reference passes in place (training included), the starter and
+/// wrong answers get the file grader's diagnosis and text. About 4 s a grading in place
+/// (3 s of it training CartPole), and 2 s more to build each file for the comparison.
+#[test]
+fn the_candle_exercise_grades_in_place_like_from_a_file() -> TestResult {
+    let started = std::time::Instant::now();
+    let report = in_process::ppo_losses(sol11_candle::ppo_losses);
+    eprintln!(
+        "solution_candle.rs: graded in place in {:.2} s",
+        started.elapsed().as_secs_f64()
+    );
+    assert!(report.passed(), "{}", report.render());
+    assert_eq!(report.checks.len(), 5, "{}", report.render());
+
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let starter = root.join("lessons/11-losses/exercise_candle.rs");
+    compare_candle(&starter, starter11_candle::ppo_losses, None)?;
+    let wrong = root.join("tests/wrong_answers/ppo_losses");
+    let answers: [(&str, LossesFn); 3] = [
+        ("no_minus_sign", w_losses_no_minus_sign::ppo_losses),
+        ("ratio_detached", w_losses_ratio_detached::ppo_losses),
+        ("critic_sum", w_losses_critic_sum::ppo_losses),
+    ];
+    for (id, f) in answers {
+        compare_candle(&wrong.join(format!("{id}.rs")), f, Some(id))?;
+    }
+    Ok(())
+}
+
+#[test]
+fn a_candle_function_that_never_returns_is_reported_after_the_time_limit() -> TestResult {
+    fn endless(
+        _: &candle_core::Tensor,
+        _: &candle_core::Tensor,
+        _: &candle_core::Tensor,
+        _: &candle_core::Tensor,
+        _: &candle_core::Tensor,
+        _: &candle_core::Tensor,
+        _: f64,
+    ) -> candle_core::Result<(candle_core::Tensor, candle_core::Tensor)> {
+        loop {
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+    let started = std::time::Instant::now();
+    let report = in_process::ppo_losses_with(endless, Duration::from_millis(300));
+    assert!(started.elapsed() < Duration::from_secs(5));
+    let first = report.first_failure().ok_or("no failure")?;
+    assert!(
+        matches!(first.problem, Problem::TimedOut(_)),
+        "{}",
+        report.render()
+    );
+    // The other case lists and the training are not run (the gradients check, over every
+    // case, reports the first case's timeout again, as the file grader does).
+    let not_run = |k: usize| matches!(report.checks[k].status, CheckStatus::NotRun(_));
+    assert!(
+        not_run(1) && not_run(2) && not_run(4),
         "{}",
         report.render()
     );

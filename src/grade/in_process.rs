@@ -9,6 +9,11 @@
 //! reported as never returning (the thread is left behind; in a notebook, restart the
 //! kernel to stop it).
 //!
+//! The candle exercise is graded the same way: `grade::in_process::ppo_losses(ppo_losses)`
+//! runs the checks of `ppo-tutor grade ppo_losses` (losses and gradients, then CartPole
+//! trained with the function) on the function itself instead of a program built from a
+//! file, with a time limit on each call.
+//!
 //! ```
 //! use ppo_tutor::grade::in_process;
 //!
@@ -22,10 +27,15 @@
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::mpsc;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 use super::catalog::{Args, CheckCases, Spec};
+use super::ppo_losses::{
+    self,
+    project::Answer as LossesAnswer,
+    protocol::{self, Inputs, LossesFn},
+};
 use super::value::Output;
 use super::{Answer, CheckReport, Report, check_status, diagnose, spec};
 
@@ -41,6 +51,37 @@ pub type Learner = Arc<dyn Fn(Args<'_>) -> Output + Send + Sync>;
 /// Serialises gradings: each silences the panic hook (a panic belongs in the report, not
 /// on stderr) and must restore the one it found.
 static QUIET: Mutex<()> = Mutex::new(());
+
+/// The panic hook, silenced while a grading runs (a panic belongs in the report, not on
+/// stderr); dropping this restores the hook it found.
+struct Quiet {
+    _lock: Result<MutexGuard<'static, ()>, PoisonError<MutexGuard<'static, ()>>>,
+    previous: Option<Box<PanicHook>>,
+}
+
+type PanicHook = dyn Fn(&std::panic::PanicHookInfo<'_>) + Sync + Send + 'static;
+
+impl Quiet {
+    fn start() -> Self {
+        let lock = QUIET.lock();
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(|_| {}));
+        Self {
+            _lock: lock,
+            previous: Some(previous),
+        }
+    }
+}
+
+impl Drop for Quiet {
+    fn drop(&mut self) {
+        if let Some(previous) = self.previous.take()
+            && !std::thread::panicking()
+        {
+            std::panic::set_hook(previous);
+        }
+    }
+}
 
 fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
     payload
@@ -58,9 +99,7 @@ fn answers(learner: Learner, checks: &[CheckCases], limit: Duration) -> Vec<Answ
         .collect();
     let total = cases.len();
     let (tx, rx) = mpsc::channel::<Answer>();
-    let _quiet = QUIET.lock();
-    let previous = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|_| {}));
+    let quiet = Quiet::start();
     let worker = std::thread::Builder::new()
         .name("ppo-tutor-grade".into())
         .spawn(move || {
@@ -95,7 +134,7 @@ fn answers(learner: Learner, checks: &[CheckCases], limit: Duration) -> Vec<Answ
         }
         Err(e) => out.push(Answer::Crashed(format!("cannot start a thread: {e}"))),
     }
-    std::panic::set_hook(previous);
+    drop(quiet);
     out.resize(total, Answer::NotRun);
     out
 }
@@ -214,4 +253,123 @@ pub fn moving_average(f: fn(&[f64], usize) -> Vec<f64>) -> Report {
         "moving_average",
         Arc::new(move |a: Args<'_>| Output::F64s(f(a.f64s(0), a.usize(1)))),
     )
+}
+
+/// A candle losses function running on a worker thread of this process: the in-place
+/// counterpart of the learner's program ([`Session`](super::ppo_losses::project::Session)).
+/// A panic is caught per request; a request not answered within its limit stops the
+/// worker (the thread is left behind).
+struct LossesWorker {
+    requests: Option<mpsc::Sender<Inputs>>,
+    replies: mpsc::Receiver<LossesAnswer>,
+    stopped: bool,
+}
+
+impl LossesWorker {
+    fn start(f: LossesFn) -> std::io::Result<Self> {
+        let (requests, inbox) = mpsc::channel::<Inputs>();
+        let (outbox, replies) = mpsc::channel();
+        std::thread::Builder::new()
+            .name("ppo-tutor-grade".into())
+            .spawn(move || {
+                for inputs in inbox {
+                    let run = AssertUnwindSafe(|| protocol::evaluate(f, &inputs));
+                    let answer = match catch_unwind(run) {
+                        Ok(Ok(reply)) => LossesAnswer::Reply(reply),
+                        Ok(Err(e)) => LossesAnswer::Error(e),
+                        Err(payload) => LossesAnswer::Panicked(panic_message(payload.as_ref())),
+                    };
+                    if outbox.send(answer).is_err() {
+                        return;
+                    }
+                }
+            })?;
+        Ok(Self {
+            requests: Some(requests),
+            replies,
+            stopped: false,
+        })
+    }
+
+    fn stop(&mut self, answer: LossesAnswer) -> LossesAnswer {
+        self.stopped = true;
+        self.requests = None;
+        answer
+    }
+}
+
+impl ppo_losses::Learner for LossesWorker {
+    fn ask(&mut self, inputs: &Inputs, limit: Duration) -> LossesAnswer {
+        if self.stopped {
+            return LossesAnswer::NotRun;
+        }
+        let stopped = || LossesAnswer::Crashed("the grading thread stopped".into());
+        let sent = self
+            .requests
+            .as_ref()
+            .is_some_and(|r| r.send(inputs.clone()).is_ok());
+        if !sent {
+            return self.stop(stopped());
+        }
+        match self.replies.recv_timeout(limit) {
+            Ok(answer) => answer,
+            Err(mpsc::RecvTimeoutError::Timeout) => {
+                self.stop(LossesAnswer::TimedOut(limit.as_secs().max(1)))
+            }
+            Err(mpsc::RecvTimeoutError::Disconnected) => self.stop(stopped()),
+        }
+    }
+
+    fn is_stopped(&self) -> bool {
+        self.stopped
+    }
+}
+
+/// A report for a grading that could not run at all (the grader's own failure).
+fn not_graded(name: &str, why: String) -> Report {
+    Report {
+        exercise: name.to_string(),
+        file: DISPLAY.to_string(),
+        compile_error: Some((why, String::new())),
+        checks: Vec::new(),
+        mistake: None,
+    }
+}
+
+/// Grades a `ppo_losses` on candle tensors (lesson 11), within `limit` per call: the
+/// checks of `ppo-tutor grade ppo_losses` (losses and gradients on every case, then
+/// CartPole trained with the function), same diagnosis, hints and messages.
+#[must_use]
+pub fn ppo_losses_with(f: LossesFn, limit: Duration) -> Report {
+    let _quiet = Quiet::start();
+    let graded = catch_unwind(AssertUnwindSafe(|| {
+        let mut worker =
+            LossesWorker::start(f).map_err(|e| format!("cannot start a thread: {e}"))?;
+        ppo_losses::grade_learner(&mut worker, DISPLAY, limit).map_err(|e| e.to_string())
+    }));
+    match graded {
+        Ok(Ok(report)) => report,
+        Ok(Err(why)) => not_graded(ppo_losses::NAME, why),
+        Err(payload) => not_graded(
+            ppo_losses::NAME,
+            format!("the grader failed: {}", panic_message(payload.as_ref())),
+        ),
+    }
+}
+
+/// Grades a `ppo_losses` on candle tensors (lesson 11): [`ppo_losses_with`] with
+/// [`TIME_LIMIT`] per call.
+///
+/// ```no_run
+/// use ppo_tutor::candle_core::{Result, Tensor};
+/// # fn ppo_losses(
+/// #     probs: &Tensor, actions: &Tensor, old_log_probs: &Tensor, advantage: &Tensor,
+/// #     values: &Tensor, td_target: &Tensor, eps: f64,
+/// # ) -> Result<(Tensor, Tensor)> { todo!() }
+/// let report = ppo_tutor::grade::in_process::ppo_losses(ppo_losses);
+/// println!("{}", report.render());
+/// ```
+#[must_use]
+pub fn ppo_losses(f: LossesFn) -> Report {
+    ppo_losses_with(f, TIME_LIMIT)
 }

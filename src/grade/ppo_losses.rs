@@ -18,6 +18,11 @@
 //!    of the last [`TRAIN_WINDOW`] returns must reach [`LEARNS_AT`];
 //! 4. wrong answers are compared with the [`mistakes`] catalogue, one diagnosis per loss.
 //!
+//! A notebook cell grades the function itself instead
+//! ([`grade::in_process::ppo_losses`](crate::grade::in_process::ppo_losses)): steps 2 to 4
+//! are the same, fed by the function running in this process rather than by a program
+//! ([`Learner`] is either).
+//!
 //! Inside the agent the learner's losses are rebuilt as `g·x − (g·x).detach() + loss`
 //! (`x` the tracked input, `g` the learner's gradient), whose value is the learner's loss
 //! and whose gradient is the learner's: with the reference solution the run is bit for bit
@@ -50,11 +55,12 @@ pub mod project;
 pub mod protocol;
 
 use std::cell::RefCell;
+use std::time::Duration;
 
 use candle_core::{DType, Tensor};
 
-use self::cases::Case;
-use self::judge::{Judge, checks, training};
+use self::cases::{Case, Cases};
+use self::judge::{Check, Judge, checks, training};
 use self::project::{Answer, Build, Session};
 use self::protocol::{Inputs, LossesFn, Reply};
 use super::report::{CheckReport, CheckStatus, Report};
@@ -236,6 +242,39 @@ pub fn training_check_name() -> String {
     )
 }
 
+/// Where the learner's answers come from: their compiled program ([`Session`]) or their
+/// function running in this process (a notebook cell, [`in_process`](crate::grade::in_process)).
+pub trait Learner {
+    /// The losses on `inputs`, within `limit`; [`Answer::NotRun`] once stopped.
+    fn ask(&mut self, inputs: &Inputs, limit: Duration) -> Answer;
+    /// Whether the learner has stopped (timed out, crashed): later questions are not asked.
+    fn is_stopped(&self) -> bool;
+}
+
+impl Learner for Session {
+    fn ask(&mut self, inputs: &Inputs, limit: Duration) -> Answer {
+        Session::ask(self, inputs, limit)
+    }
+
+    fn is_stopped(&self) -> bool {
+        Session::is_stopped(self)
+    }
+}
+
+fn empty_report(display: &str) -> Report {
+    Report {
+        exercise: NAME.to_string(),
+        file: display.to_string(),
+        compile_error: None,
+        checks: Vec::new(),
+        mistake: None,
+    }
+}
+
+fn fixture_error(e: &PpoError) -> GradeError {
+    GradeError::Fixture(e.to_string())
+}
+
 /// Grades the learner's `source` (shown as `display`).
 ///
 /// # Errors
@@ -246,15 +285,9 @@ pub fn grade_source(
     display: &str,
     opts: &GradeOptions,
 ) -> Result<Report, GradeError> {
-    let cases = cases::all().map_err(|e| GradeError::Fixture(e.to_string()))?;
+    let cases = cases::all().map_err(|e| fixture_error(&e))?;
     let checks = checks(&cases);
-    let mut report = Report {
-        exercise: NAME.to_string(),
-        file: display.to_string(),
-        compile_error: None,
-        checks: Vec::new(),
-        mistake: None,
-    };
+    let mut report = empty_report(display);
     let program = match project::build(source, display, &opts.cache_dir)? {
         Build::Ready(program) => program,
         Build::Failed { summary, compiler } => {
@@ -272,19 +305,54 @@ pub fn grade_source(
             return Ok(report);
         }
     };
+    let mut session = Session::start(&program, display)?;
+    Ok(judged(
+        report,
+        &cases,
+        &checks,
+        &mut session,
+        opts.time_limit,
+    ))
+}
+
+/// Grades the answers of `learner` (shown as `display`), each within `limit`: the checks,
+/// diagnosis and messages of [`grade_source`], for a learner already running.
+///
+/// # Errors
+/// [`GradeError::Fixture`] if the grader's own cases cannot be built.
+pub fn grade_learner(
+    learner: &mut dyn Learner,
+    display: &str,
+    limit: Duration,
+) -> Result<Report, GradeError> {
+    let cases = cases::all().map_err(|e| fixture_error(&e))?;
+    let checks = checks(&cases);
+    Ok(judged(
+        empty_report(display),
+        &cases,
+        &checks,
+        learner,
+        limit,
+    ))
+}
+
+/// `report` with a line per check and the training check, from `learner`'s answers.
+fn judged(
+    mut report: Report,
+    cases: &Cases,
+    checks: &[Check],
+    learner: &mut dyn Learner,
+    limit: Duration,
+) -> Report {
     let all: Vec<&Case> = cases
         .fixture
         .iter()
         .chain(&cases.random)
         .chain(&cases.edge)
         .collect();
-    let mut session = Session::start(&program, display)?;
-    let answers: Vec<Answer> = all
-        .iter()
-        .map(|c| session.ask(&c.inputs, opts.time_limit))
-        .collect();
+    let answers: Vec<Answer> = all.iter().map(|c| learner.ask(&c.inputs, limit)).collect();
     let judge = Judge::new(&all, &answers);
-    for check in &checks {
+    for check in checks {
         let (status, mistake) = judge.status(check);
         report.mistake = report.mistake.take().or(mistake);
         report.checks.push(CheckReport {
@@ -293,13 +361,13 @@ pub fn grade_source(
             status,
         });
     }
-    let status = training(&mut session, opts.time_limit, judge.any_diagnosis());
+    let status = training(learner, limit, judge.any_diagnosis());
     report.checks.push(CheckReport {
         name: training_check_name(),
         cases: 1,
         status,
     });
-    Ok(report)
+    report
 }
 
 #[cfg(test)]

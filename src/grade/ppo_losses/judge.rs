@@ -4,9 +4,10 @@
 
 use std::time::Duration;
 
+use super::Learner;
 use super::cases::{Case, Cases};
 use super::mistakes::{MISTAKES, Mistake, Part};
-use super::project::{Answer, Session};
+use super::project::Answer;
 use super::protocol::{self, Inputs, LossesFn, Reply};
 use super::{
     ACTOR_PARAMS, CRITIC_PARAMS, Gradients, LEARNS_AT, REFERENCE, REFERENCE_MEAN, TRAIN_EPISODES,
@@ -396,16 +397,16 @@ pub(super) fn show_inputs(inputs: &Inputs) -> Vec<(String, String)> {
 
 /// The training check: CartPole with the learner's losses in every epoch.
 pub(super) fn training(
-    session: &mut Session,
+    learner: &mut dyn Learner,
     limit: Duration,
     diagnosed: Option<&'static Mistake>,
 ) -> CheckStatus {
-    if session.is_stopped() {
+    if learner.is_stopped() {
         return CheckStatus::NotRun("an earlier case stopped the program".into());
     }
     let mut failure: Option<Answer> = None;
     let result = {
-        let mut answer = |inputs: &Inputs| match session.ask(inputs, limit) {
+        let mut answer = |inputs: &Inputs| match learner.ask(inputs, limit) {
             Answer::Reply(reply) => Ok(reply),
             Answer::NotRun => Err("the program had stopped".to_string()),
             other => {
