@@ -20,7 +20,7 @@ use std::fmt::Write as _;
 
 use crate::grade::{CheckStatus, Report};
 use crate::lesson::{Mark, Snapshot, TensorView};
-use crate::plot::file::{PlotError, return_plot_svg};
+use crate::plot::{PlotError, return_plot_svg};
 use crate::ppo::{EpochTrace, PpoConfig};
 
 /// Rows of a tensor shown before the table is cut (the rest is summarised).
@@ -388,76 +388,24 @@ pub fn cartpole_svg(state: &[f64; 4]) -> Svg {
     Svg(svg)
 }
 
-/// The clip chart: `L^CLIP(r)` for a unit advantage of each sign, the band `[1 − ε, 1 + ε]`,
-/// and each row of `epoch` at `(ratio, min(surr1, surr2) / |A|)`, as in the terminal app.
+/// The clip chart of `epoch` (the terminal app's, drawn with plotters): `L^CLIP(r)` for a
+/// unit advantage of each sign, the band `[1 − ε, 1 + ε]`, and each row of the epoch at
+/// `(ratio, min(surr1, surr2) / |A|)`. A drawing failure gives a picture that says so.
 #[must_use]
 pub fn clip_chart_svg(eps: f64, epoch: Option<&EpochTrace>, advantage: &[f32]) -> Svg {
-    use crate::tui::widgets::clip::l_clip;
-    let (w, h, pad) = (560.0, 360.0, 40.0);
-    let px = |r: f64| pad + (r / 2.0) * (w - 2.0 * pad);
-    let py = |l: f64| h / 2.0 - (l / 2.0) * (h / 2.0 - pad);
-    let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n"
-    );
-    let _ = writeln!(
-        svg,
-        "<rect x=\"{:.2}\" y=\"{pad}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"#fff4e6\"/>",
-        px(1.0 - eps),
-        px(1.0 + eps) - px(1.0 - eps),
-        h - 2.0 * pad
-    );
-    let _ = writeln!(
-        svg,
-        "<line x1=\"{pad}\" y1=\"{y0:.2}\" x2=\"{:.2}\" y2=\"{y0:.2}\" stroke=\"#adb5bd\"/>\n<line x1=\"{x1:.2}\" y1=\"{pad}\" x2=\"{x1:.2}\" y2=\"{:.2}\" stroke=\"#adb5bd\"/>",
-        w - pad,
-        h - pad,
-        y0 = py(0.0),
-        x1 = px(1.0),
-    );
-    for (a, colour, label) in [(1.0, "#2b8a3e", "A &gt; 0"), (-1.0, "#c92a2a", "A &lt; 0")] {
-        let points: Vec<String> = (0..=80)
-            .map(|i| {
-                let r = f64::from(i) / 40.0;
-                format!("{:.2},{:.2}", px(r), py(l_clip(r, a, eps)))
-            })
-            .collect();
-        let _ = writeln!(
-            svg,
-            "<polyline fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\" points=\"{}\"/>\n<text x=\"{:.2}\" y=\"{:.2}\" fill=\"{colour}\">{label}</text>",
-            points.join(" "),
-            px(1.75),
-            py(l_clip(1.75, a, eps)) - 6.0
-        );
-    }
-    let mut rows = 0usize;
-    if let Some(e) = epoch {
-        for (i, &r) in e.ratio.iter().enumerate() {
-            let a = f64::from(advantage.get(i).copied().unwrap_or(0.0));
-            if a == 0.0 {
-                continue;
-            }
-            let r = f64::from(r).clamp(0.0, 2.0);
-            let colour = if a > 0.0 { "#2b8a3e" } else { "#c92a2a" };
-            let _ = writeln!(
-                svg,
-                "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"2.5\" fill=\"{colour}\" fill-opacity=\"0.6\"/>",
-                px(r),
-                py(l_clip(r, a.signum(), eps))
-            );
-            rows += 1;
-        }
-    }
-    let _ = writeln!(
-        svg,
-        "<text x=\"{pad}\" y=\"24\">L^CLIP for a unit advantage; ε = {eps}; {rows} rows of the latest epoch</text>\n<text x=\"{:.2}\" y=\"{:.2}\">ratio r = π_θ / π_θ_old</text>\n<text x=\"{:.2}\" y=\"{:.2}\">1−ε</text><text x=\"{:.2}\" y=\"{:.2}\">1+ε</text>\n</svg>",
-        w / 2.0 - 60.0,
-        h - 10.0,
-        px(1.0 - eps) - 12.0,
-        h - pad + 14.0,
-        px(1.0 + eps) - 12.0,
-        h - pad + 14.0,
-    );
-    Svg(svg)
+    let rows: Vec<(f64, f64)> = epoch.map_or_else(Vec::new, |e| {
+        e.ratio
+            .iter()
+            .zip(advantage)
+            .map(|(&r, &a)| (f64::from(r), f64::from(a)))
+            .collect()
+    });
+    Svg(crate::plot::clip_chart_svg(eps, &rows).unwrap_or_else(|e| {
+        format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"40\"><text x=\"10\" y=\"24\">{}</text></svg>",
+            escape(&e.to_string())
+        )
+    }))
 }
 
 #[cfg(test)]
@@ -516,6 +464,19 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn the_clip_chart_draws_one_point_per_row_with_an_advantage() {
+        let epoch = EpochTrace {
+            ratio: vec![0.5, 1.0, 1.5, 1.1],
+            ..EpochTrace::default()
+        };
+        let svg = clip_chart_svg(f64::from(0.2_f32), Some(&epoch), &[1.0, -1.0, 2.0, 0.0]);
+        assert_eq!(svg.as_str().matches("<circle").count(), 3);
+        assert!(svg.as_str().contains("ε = 0.2;"), "{}", svg.as_str());
+        let empty = clip_chart_svg(0.2, None, &[]);
+        assert_eq!(empty.as_str().matches("<circle").count(), 0);
     }
 
     #[test]

@@ -3,14 +3,23 @@
 //! - [`terminal`]: the curve drawn with characters, for `ppo-tutor train`'s summary.
 //! - [`file`](mod@file): the seed's matplotlib figure drawn with plotters, to PNG or SVG.
 //!
+//! - [`file::clip_chart_svg`]: the clip chart (`L^CLIP` against the ratio) as SVG.
+//!
 //! Both take the returns and the smoothed curve from
 //! [`moving_average`](crate::ppo::moving_average()) (window [`SMOOTHING_WINDOW`], the seed's 9).
 
 pub mod file;
 pub mod terminal;
 
-pub use file::{PlotError, save_return_plot};
+pub use file::{PlotError, clip_chart_svg, return_plot_svg, save_return_plot};
 pub use terminal::ascii_return_plot;
+
+/// `L^CLIP(r)` for advantage `a`: `min(r·a, clip(r, 1−ε, 1+ε)·a)`, one row of the seed's
+/// `torch.min(surr1, surr2)`.
+#[must_use]
+pub fn l_clip(r: f64, a: f64, eps: f64) -> f64 {
+    (r * a).min(r.clamp(1.0 - eps, 1.0 + eps) * a)
+}
 
 /// The seed's `moving_average(return_list, 9)`.
 pub const SMOOTHING_WINDOW: usize = 9;

@@ -99,6 +99,86 @@ pub fn return_plot_svg(
     Ok(svg)
 }
 
+/// The clip chart as an SVG document (640x400): `L^CLIP(r)` for a unit advantage of each
+/// sign, the band `[1 − ε, 1 + ε]` shaded, and each `(ratio, advantage)` row of a batch at
+/// `(r, min(surr1, surr2) / |A|)` (rows with a zero advantage are left out).
+///
+/// # Errors
+/// [`PlotError::Draw`] if plotters fails.
+pub fn clip_chart_svg(eps: f64, rows: &[(f64, f64)]) -> Result<String, PlotError> {
+    register_font();
+    let mut svg = String::new();
+    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+        path: "(in memory)".into(),
+        reason: e.to_string(),
+    };
+    {
+        let root = SVGBackend::with_string(&mut svg, (640, 400)).into_drawing_area();
+        draw_clip(&root, eps, rows).map_err(|e| draw_err(&e))?;
+        root.present().map_err(|e| draw_err(&e))?;
+    }
+    Ok(svg)
+}
+
+fn draw_clip<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    eps: f64,
+    rows: &[(f64, f64)],
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    use super::l_clip;
+    root.fill(&WHITE)?;
+    let shown = rows.iter().filter(|(_, a)| *a != 0.0).count();
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            // ε usually comes from an f32 (0.2 reads 0.20000000298...): show 6 decimals at most.
+            format!(
+                "L^CLIP for a unit advantage, ε = {}; {shown} rows of the batch",
+                (eps * 1e6).round() / 1e6
+            ),
+            ("sans-serif", 18),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(55)
+        .build_cartesian_2d(0.0..2.0, -2.0..2.0)?;
+    chart.draw_series(std::iter::once(Rectangle::new(
+        [(1.0 - eps, -2.0), (1.0 + eps, 2.0)],
+        RGBColor(255, 236, 204).filled(),
+    )))?;
+    chart
+        .configure_mesh()
+        .x_desc("ratio r = π_θ(a|s) / π_θ_old(a|s)")
+        .y_desc("min(surr1, surr2) / |A|")
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 15))
+        .draw()?;
+    let green = RGBColor(43, 138, 62);
+    let red = RGBColor(201, 42, 42);
+    for (a, colour, label) in [(1.0, green, "A > 0"), (-1.0, red, "A < 0")] {
+        let curve = (0..=80).map(move |i| {
+            let r = f64::from(i) / 40.0;
+            (r, l_clip(r, a, eps))
+        });
+        chart
+            .draw_series(LineSeries::new(curve, colour.stroke_width(2)))?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+    }
+    chart.draw_series(rows.iter().filter(|(_, a)| *a != 0.0).map(|&(r, a)| {
+        let r = r.clamp(0.0, 2.0);
+        let colour = if a > 0.0 { green } else { red };
+        Circle::new((r, l_clip(r, a.signum(), eps)), 3, colour.mix(0.6).filled())
+    }))?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .label_font(("sans-serif", 14))
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    Ok(())
+}
+
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
     title: &str,

@@ -13,11 +13,7 @@ use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Widget};
 use crate::ppo::EpochTrace;
 use crate::tui::theme::Theme;
 
-/// `L^CLIP(r)` for advantage `a`.
-#[must_use]
-pub fn l_clip(r: f64, a: f64, eps: f64) -> f64 {
-    (r * a).min(r.clamp(1.0 - eps, 1.0 + eps) * a)
-}
+pub use crate::plot::l_clip;
 
 /// The chart widget.
 pub struct ClipChart<'a> {
