@@ -677,6 +677,10 @@ fn run() -> Result<()> {
     }
     println!("notebooks: {} notebooks match their lessons", built.len());
 
+    // The runner itself: each way a cell can fail must fail the test.
+    self_check()?;
+    println!("notebooks: the runner catches compile errors, panics, failed asserts and `?` errors");
+
     // 2-5. Execute.
     let mut checks = 0;
     for (lesson, folder, cells) in &built {
@@ -716,6 +720,33 @@ fn run() -> Result<()> {
         );
     }
     println!("notebooks: {checks} cells checked against the library");
+    Ok(())
+}
+
+/// A failing cell of each kind must be reported as failing (the kernel itself replies
+/// "ok" to all but the compile error).
+fn self_check() -> Result<()> {
+    let mut kernel = Kernel::start()?;
+    let fine = kernel.run("let answer = 6 * 7;\nprintln!(\"{answer}\");")?;
+    ensure!(
+        fine.stdout == "42\n",
+        "a plain cell printed {:?}",
+        fine.stdout
+    );
+    for (what, code) in [
+        ("a compile error", "let x: u32 = \"not a number\";"),
+        ("a panic", "panic!(\"on purpose\");"),
+        ("a failed assert", "assert_eq!(1 + 1, 3);"),
+        (
+            "a `?` error",
+            "let r: Result<u32, String> = Err(\"on purpose\".into());\nlet v = r?;",
+        ),
+    ] {
+        ensure!(
+            kernel.run(code).is_err(),
+            "the runner let {what} pass: {code}"
+        );
+    }
     Ok(())
 }
 
