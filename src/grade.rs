@@ -324,20 +324,33 @@ pub fn grade_source(
     }
     let run = harness::run(&binary, input, opts.time_limit)?;
     let answers = answers(spec, &checks, &run, display, opts.time_limit);
-    let diagnosis = diagnose(spec, &checks, &answers);
-    report.mistake = diagnosis.map(|m| m.id.to_string());
+    (report.mistake, report.checks) = judge(spec, &checks, &answers);
+    Ok(report)
+}
+
+/// The verdict on a learner's answers, one per case of `checks` in order: the known
+/// mistake they match (if any) and one report line per check, its first failure carrying
+/// the hint for that mistake.
+fn judge(
+    spec: &Spec,
+    checks: &[CheckCases],
+    answers: &[Answer],
+) -> (Option<String>, Vec<CheckReport>) {
+    let diagnosis = diagnose(spec, checks, answers);
     let hint = diagnosis.map_or(spec.hint, |m| m.hint);
+    let mut lines = Vec::with_capacity(checks.len());
     let mut k = 0;
-    for check in &checks {
-        let status = check_status(spec, check, &answers[k..k + check.cases.len()], hint);
-        k += check.cases.len();
-        report.checks.push(CheckReport {
+    for check in checks {
+        let end = (k + check.cases.len()).min(answers.len());
+        let status = check_status(spec, check, &answers[k.min(end)..end], hint);
+        k = end;
+        lines.push(CheckReport {
             name: check.name.clone(),
             cases: check.cases.len(),
             status,
         });
     }
-    Ok(report)
+    (diagnosis.map(|m| m.id.to_string()), lines)
 }
 
 /// What the learner's function did on one case.

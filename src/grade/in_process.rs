@@ -37,7 +37,7 @@ use super::ppo_losses::{
     protocol::{self, Inputs, LossesFn},
 };
 use super::value::Output;
-use super::{Answer, CheckReport, Report, check_status, diagnose, spec};
+use super::{Answer, Report, judge, spec};
 
 /// The name a report gives to the graded code.
 pub const DISPLAY: &str = "notebook cell";
@@ -144,26 +144,14 @@ fn answers(learner: Learner, checks: &[CheckCases], limit: Duration) -> Vec<Answ
 pub fn grade_with(spec: &Spec, learner: Learner, limit: Duration) -> Report {
     let checks = (spec.checks)();
     let answers = answers(learner, &checks, limit);
-    let diagnosis = diagnose(spec, &checks, &answers);
-    let hint = diagnosis.map_or(spec.hint, |m| m.hint);
-    let mut report = Report {
+    let (mistake, lines) = judge(spec, &checks, &answers);
+    Report {
         exercise: spec.name.to_string(),
         file: DISPLAY.to_string(),
         compile_error: None,
-        checks: Vec::new(),
-        mistake: diagnosis.map(|m| m.id.to_string()),
-    };
-    let mut k = 0;
-    for check in &checks {
-        let status = check_status(spec, check, &answers[k..k + check.cases.len()], hint);
-        k += check.cases.len();
-        report.checks.push(CheckReport {
-            name: check.name.clone(),
-            cases: check.cases.len(),
-            status,
-        });
+        checks: lines,
+        mistake,
     }
-    report
 }
 
 fn by_name(name: &str, learner: Learner) -> Report {
