@@ -293,7 +293,7 @@ impl Snapshot {
 /// # Errors
 /// Invalid settings, or a diverged run.
 pub fn snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::Result<Snapshot> {
-    crate::cli::lessons::live_snapshot(config, seed, episodes)
+    Ok(Snapshot::after_training(config, seed, episodes)?)
 }
 
 /// A grading report as in `ppo-tutor grade`: the same text, with its marks coloured.

@@ -1,8 +1,7 @@
 //! The terminal app without a terminal: every lesson step's screen as an insta snapshot
 //! (drawn on ratatui's `TestBackend` from a real 3-episode run, seed 0), and key → state.
 
-use ppo_tutor::cli::lessons::live_snapshot;
-use ppo_tutor::lesson::{Course, Progress};
+use ppo_tutor::lesson::{Course, Progress, Snapshot};
 use ppo_tutor::ppo::PpoConfig;
 use ppo_tutor::tui::app::{App, Overlay, TrainState};
 use ppo_tutor::tui::keys::Action;
@@ -16,7 +15,7 @@ type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 fn app() -> Result<App, Box<dyn std::error::Error>> {
     let mut app = App::new(Course::embedded()?, Progress::default(), None);
-    let snapshot = live_snapshot(PpoConfig::default(), 0, 3)?;
+    let snapshot = Snapshot::after_training(PpoConfig::default(), 0, 3)?;
     app.frames = snapshot
         .trace
         .as_ref()

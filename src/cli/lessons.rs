@@ -8,9 +8,7 @@ use anyhow::Context;
 use clap::Args;
 
 use crate::lesson::{Course, Snapshot, anchor};
-use crate::ppo::model::ActorSnapshot;
-use crate::ppo::{PpoConfig, Trainer, moving_average};
-use crate::tui::app::set_hyper;
+use crate::ppo::PpoConfig;
 
 /// Arguments of `ppo-tutor show`.
 #[derive(Debug, Args)]
@@ -38,32 +36,6 @@ pub fn list() -> anyhow::Result<ExitCode> {
         println!("{}\t{}", l.id, l.title);
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// Trains `episodes` episodes and returns what the tutor would show after them.
-///
-/// # Errors
-/// Invalid settings or a diverged run.
-pub fn live_snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::Result<Snapshot> {
-    let mut snapshot = Snapshot::default();
-    set_hyper(&mut snapshot, &config, seed);
-    let mut trainer = Trainer::new(config, seed)?;
-    for _ in 0..episodes {
-        // The policy the episode is played with, before the episode's update changes it.
-        let played_with = ActorSnapshot::of(trainer.agent().actor())?;
-        let Some(report) = trainer.next_episode()? else {
-            break;
-        };
-        snapshot.episodes = report.episode + 1;
-        snapshot.returns.push(report.episode_return);
-        snapshot.probs = crate::lesson::live::probs_over(&played_with, &report.trace.states);
-        snapshot.terminated = report.terminated;
-        snapshot.truncated = report.truncated;
-        snapshot.trace = Some(report.trace);
-    }
-    snapshot.moving_average = moving_average(&snapshot.returns, 9).unwrap_or_default();
-    snapshot.weights = crate::lesson::live::weights_of(trainer.agent());
-    Ok(snapshot)
 }
 
 /// Renders one step as plain text with its live values.
@@ -154,7 +126,7 @@ pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
         Some(n) => n - 1..n,
         None => 0..steps,
     };
-    let snapshot = live_snapshot(PpoConfig::default(), args.seed, args.episodes.max(1))?;
+    let snapshot = Snapshot::after_training(PpoConfig::default(), args.seed, args.episodes.max(1))?;
     for step in range {
         print!("{}", render_step(&course, index, step, &snapshot));
     }

@@ -8,7 +8,7 @@
 //! sign of the advantage).
 
 use crate::ppo::model::ActorSnapshot;
-use crate::ppo::{Agent, UpdateTrace};
+use crate::ppo::{Agent, PpoConfig, PpoError, Trainer, UpdateTrace, moving_average};
 
 /// `π(·|s)` under `policy` for each of `states` (NaN where a probability is missing).
 ///
@@ -225,6 +225,59 @@ pub struct Snapshot {
 }
 
 impl Snapshot {
+    /// Trains `episodes` episodes and returns what the tutor shows after them: the latest
+    /// batch and every intermediate of its update, the probabilities the episode was played
+    /// with, the weights, the return curve and its moving average.
+    ///
+    /// # Errors
+    /// Invalid settings or a diverged run.
+    pub fn after_training(config: PpoConfig, seed: u64, episodes: usize) -> Result<Self, PpoError> {
+        let mut snapshot = Self::default();
+        snapshot.set_hyper(&config, seed);
+        let mut trainer = Trainer::new(config, seed)?;
+        for _ in 0..episodes {
+            // The policy the episode is played with, before the episode's update changes it.
+            let played_with = ActorSnapshot::of(trainer.agent().actor())?;
+            let Some(report) = trainer.next_episode()? else {
+                break;
+            };
+            snapshot.episodes = report.episode + 1;
+            snapshot.returns.push(report.episode_return);
+            snapshot.probs = probs_over(&played_with, &report.trace.states);
+            snapshot.terminated = report.terminated;
+            snapshot.truncated = report.truncated;
+            snapshot.trace = Some(report.trace);
+        }
+        snapshot.moving_average = moving_average(&snapshot.returns, 9).unwrap_or_default();
+        snapshot.weights = weights_of(trainer.agent());
+        Ok(snapshot)
+    }
+
+    /// Fills the snapshot's hyper-parameter table from a config, in the seed's order.
+    pub fn set_hyper(&mut self, c: &PpoConfig, seed: u64) {
+        self.eps = c.eps as f32;
+        self.hyper = vec![
+            ("actor_lr".into(), format!("{}", c.actor_lr)),
+            ("critic_lr".into(), format!("{}", c.critic_lr)),
+            ("num_episodes".into(), c.num_episodes.to_string()),
+            ("hidden_dim".into(), c.hidden_dim.to_string()),
+            ("gamma".into(), c.gamma.to_string()),
+            ("lmbda".into(), c.lmbda.to_string()),
+            ("epochs".into(), c.epochs.to_string()),
+            ("eps".into(), c.eps.to_string()),
+            ("env_name".into(), c.env_id.as_str().into()),
+            ("seed".into(), seed.to_string()),
+            (
+                "bootstrap_on_truncation".into(),
+                c.bootstrap_on_truncation.to_string(),
+            ),
+            (
+                "normalize_advantage".into(),
+                c.normalize_advantage.to_string(),
+            ),
+        ];
+    }
+
     /// The view of live value `name`, `None` if nothing has been computed for it yet.
     #[must_use]
     pub fn tensor(&self, name: &str) -> Option<TensorView> {

@@ -126,7 +126,7 @@ impl App {
         let steps = course.lessons.get(lesson).map_or(1, |l| l.steps.len());
         let step = progress.step.min(steps.saturating_sub(1));
         let mut snapshot = Snapshot::default();
-        set_hyper(&mut snapshot, &config, 0);
+        snapshot.set_hyper(&config, 0);
         Self {
             course,
             lesson,
@@ -428,7 +428,7 @@ impl App {
         self.config = config;
         self.seed = seed;
         self.snapshot = Snapshot::default();
-        set_hyper(&mut self.snapshot, &self.config, seed);
+        self.snapshot.set_hyper(&self.config, seed);
         self.frames.clear();
         self.frame = 0;
         self.train = TrainState::Paused;
@@ -551,29 +551,4 @@ impl App {
 
 fn round3(v: f64) -> f64 {
     (v * 1000.0).round() / 1000.0
-}
-
-/// Fills the snapshot's hyper-parameter table from a config, in the seed's order.
-pub fn set_hyper(snapshot: &mut Snapshot, c: &PpoConfig, seed: u64) {
-    snapshot.eps = c.eps as f32;
-    snapshot.hyper = vec![
-        ("actor_lr".into(), format!("{}", c.actor_lr)),
-        ("critic_lr".into(), format!("{}", c.critic_lr)),
-        ("num_episodes".into(), c.num_episodes.to_string()),
-        ("hidden_dim".into(), c.hidden_dim.to_string()),
-        ("gamma".into(), c.gamma.to_string()),
-        ("lmbda".into(), c.lmbda.to_string()),
-        ("epochs".into(), c.epochs.to_string()),
-        ("eps".into(), c.eps.to_string()),
-        ("env_name".into(), c.env_id.as_str().into()),
-        ("seed".into(), seed.to_string()),
-        (
-            "bootstrap_on_truncation".into(),
-            c.bootstrap_on_truncation.to_string(),
-        ),
-        (
-            "normalize_advantage".into(),
-            c.normalize_advantage.to_string(),
-        ),
-    ];
 }
