@@ -85,18 +85,7 @@ pub fn return_plot_svg(
     returns: &[f64],
     smoothed: &[f64],
 ) -> Result<String, PlotError> {
-    register_font();
-    let mut svg = String::new();
-    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
-        path: "(in memory)".into(),
-        reason: e.to_string(),
-    };
-    {
-        let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
-        draw(&root, title, returns, smoothed).map_err(|e| draw_err(&e))?;
-        root.present().map_err(|e| draw_err(&e))?;
-    }
-    Ok(svg)
+    svg_string((800, 480), |root| draw(root, title, returns, smoothed))
 }
 
 /// The clip chart as an SVG document (640x400): `L^CLIP(r)` for a unit advantage of each
@@ -106,15 +95,25 @@ pub fn return_plot_svg(
 /// # Errors
 /// [`PlotError::Draw`] if plotters fails.
 pub fn clip_chart_svg(eps: f64, rows: &[(f64, f64)]) -> Result<String, PlotError> {
+    svg_string((640, 400), |root| draw_clip(root, eps, rows))
+}
+
+/// Draws a figure of `size` with `paint` into an SVG document in memory.
+fn svg_string<F>(size: (u32, u32), paint: F) -> Result<String, PlotError>
+where
+    F: FnOnce(
+        &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<std::io::Error>>,
+{
     register_font();
-    let mut svg = String::new();
     let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
         path: "(in memory)".into(),
         reason: e.to_string(),
     };
+    let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (640, 400)).into_drawing_area();
-        draw_clip(&root, eps, rows).map_err(|e| draw_err(&e))?;
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        paint(&root).map_err(|e| draw_err(&e))?;
         root.present().map_err(|e| draw_err(&e))?;
     }
     Ok(svg)
