@@ -31,6 +31,7 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 use super::catalog::{Args, CheckCases, Spec};
+use super::ppo_losses::protocol::panic_message;
 use super::ppo_losses::{
     self,
     project::Answer as LossesAnswer,
@@ -81,14 +82,6 @@ impl Drop for Quiet {
             std::panic::set_hook(previous);
         }
     }
-}
-
-fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| (*s).to_string())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "a panic without a message".to_string())
 }
 
 /// Runs `learner` on every case of `checks`, in order, on a worker thread.

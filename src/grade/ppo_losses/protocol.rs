@@ -234,18 +234,22 @@ pub fn evaluate(losses: LossesFn, inputs: &Inputs) -> Result<Reply, String> {
     })
 }
 
+/// A panic's message (`panic!("...")` with or without arguments), or a placeholder.
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| (*s).to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic without a message".to_string())
+}
+
 /// The learner's program: answers requests from stdin until it closes, catching panics
 /// per request.
 pub fn serve(losses: LossesFn) {
     let last_panic = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
     let slot = std::sync::Arc::clone(&last_panic);
     std::panic::set_hook(Box::new(move |info| {
-        let payload = info.payload();
-        let text = payload
-            .downcast_ref::<&str>()
-            .map(|s| (*s).to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "a panic without a message".to_string());
+        let text = panic_message(info.payload());
         let place = info
             .location()
             .map(|l| format!(" (at {}:{}:{})", l.file(), l.line(), l.column()))
