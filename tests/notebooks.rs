@@ -780,6 +780,18 @@ fn check_sources(folder: &str, cells: &[Cell]) -> Result<()> {
     Ok(())
 }
 
+/// A cell's outputs as `(mime type or "stream", text)` pairs, in order.
+fn output_texts(cell: &Value) -> Vec<(String, String)> {
+    let mut texts = Vec::new();
+    for o in cell["outputs"].as_array().map_or(&[][..], Vec::as_slice) {
+        if let Some(data) = o["data"].as_object() {
+            texts.extend(data.iter().map(|(k, d)| (k.clone(), joined(d))));
+        }
+        texts.push(("stream".into(), joined(&o["text"])));
+    }
+    texts
+}
+
 /// The saved outputs must be what the cells print now.
 fn check_outputs(folder: &str, path: &Path, fresh: &str) -> Result<()> {
     let saved = std::fs::read_to_string(path)?;
@@ -790,30 +802,12 @@ fn check_outputs(folder: &str, path: &Path, fresh: &str) -> Result<()> {
         bail!("notebooks/{folder}.ipynb has no cells");
     };
     for (i, (s, f)) in a.iter().zip(b).enumerate() {
-        let (so, fo) = (&s["outputs"], &f["outputs"]);
-        let same = match (so.as_array(), fo.as_array()) {
-            (Some(x), Some(y)) => {
-                x.len() == y.len()
-                    && x.iter().zip(y).all(|(p, q)| {
-                        let texts = |o: &Value| -> Vec<(String, String)> {
-                            let mut v: Vec<(String, String)> = o["data"]
-                                .as_object()
-                                .map(|m| m.iter().map(|(k, d)| (k.clone(), joined(d))).collect())
-                                .unwrap_or_default();
-                            v.push(("stream".into(), joined(&o["text"])));
-                            v
-                        };
-                        let (tp, tq) = (texts(p), texts(q));
-                        tp.len() == tq.len()
-                            && tp
-                                .iter()
-                                .zip(&tq)
-                                .all(|((k1, v1), (k2, v2))| k1 == k2 && same_output(v1, v2))
-                    })
-            }
-            (None, None) => true,
-            _ => false,
-        };
+        let (so, fo) = (output_texts(s), output_texts(f));
+        let same = so.len() == fo.len()
+            && so
+                .iter()
+                .zip(&fo)
+                .all(|((k1, v1), (k2, v2))| k1 == k2 && same_output(v1, v2));
         ensure!(
             same,
             "notebooks/{folder}.ipynb, cell {i}: the saved output is not what the cell prints now: {fix}"
