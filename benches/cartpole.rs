@@ -8,7 +8,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use ppo_tutor::env::seeding::NumpyRng;
-use ppo_tutor::env::{CartPole, CartPoleConfig, CartPoleVec, EnvId};
+use ppo_tutor::env::{CartPole, CartPoleConfig, CartPoleVec, EnvId, sincos};
 
 const STEPS: usize = 10_000;
 
@@ -54,5 +54,40 @@ fn vector(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, single, vector);
+/// The inline copy of glibc's sin/cos against libm's, per angle and over a slice.
+fn sincos(c: &mut Criterion) {
+    eprintln!("sin/cos backend: {}", sincos::backend());
+    let n = 1024;
+    let mut rng = NumpyRng::from_seed(2);
+    let angles: Vec<f64> = (0..n).map(|_| rng.uniform(-0.21, 0.21)).collect();
+    let mut group = c.benchmark_group("sincos");
+    group.throughput(Throughput::Elements(n as u64));
+    group.bench_function("libm_per_angle", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for &x in &angles {
+                let (s, c) = sincos::libm_sin_cos(black_box(x));
+                acc += s + c;
+            }
+            acc
+        });
+    });
+    group.bench_function("inline_per_angle", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for &x in &angles {
+                let (s, c) = sincos::sin_cos(black_box(x));
+                acc += s + c;
+            }
+            acc
+        });
+    });
+    let (mut sin, mut cos) = (vec![0.0; n], vec![0.0; n]);
+    group.bench_function("inline_slice", |b| {
+        b.iter(|| sincos::sin_cos_slice(black_box(&angles), &mut sin, &mut cos));
+    });
+    group.finish();
+}
+
+criterion_group!(benches, single, vector, sincos);
 criterion_main!(benches);

@@ -3,9 +3,11 @@
 //! - [`CartPole`]: one environment with Gymnasium's `reset(seed)` / `step(action)`.
 //! - [`CartPoleVec`]: many environments stepped together, for throughput.
 //! - [`seeding`]: numpy's `SeedSequence` → `PCG64` → `uniform`, so seeds give Gymnasium's states.
+//! - [`sincos`]: libm's `sin` and `cos` bit for bit, computed inline (glibc's algorithm) where valid.
 
 pub mod cartpole;
 pub mod seeding;
+pub mod sincos;
 pub mod trace;
 pub mod vector;
 

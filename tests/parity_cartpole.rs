@@ -120,8 +120,16 @@ fn every_reset_seed_matches_gymnasium() -> TestResult {
 }
 
 fn cli_json(args: &[&str]) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    cli_json_env(args, &[])
+}
+
+fn cli_json_env(
+    args: &[&str],
+    env: &[(&str, &str)],
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     let out = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
         .args(args)
+        .envs(env.iter().copied())
         .output()?;
     assert!(
         out.status.success(),
@@ -134,17 +142,26 @@ fn cli_json(args: &[&str]) -> Result<serde_json::Value, Box<dyn std::error::Erro
 #[test]
 fn cli_json_reproduces_every_trace() -> TestResult {
     let fx = fixture()?;
-    for want in &fx.traces {
+    // Both ways of computing sin and cos: inline where this machine allows it, and libm.
+    let libm = [("PPO_TUTOR_LIBM_SINCOS", "1")];
+    for (want, env) in fx
+        .traces
+        .iter()
+        .flat_map(|t| [(t, &[][..]), (t, &libm[..])])
+    {
         let actions: Vec<String> = want.actions.iter().map(ToString::to_string).collect();
         let seed = want.seed.to_string();
-        let value = cli_json(&[
-            "cartpole",
-            "--seed",
-            &seed,
-            "--actions",
-            &actions.join(","),
-            "--json",
-        ])?;
+        let value = cli_json_env(
+            &[
+                "cartpole",
+                "--seed",
+                &seed,
+                "--actions",
+                &actions.join(","),
+                "--json",
+            ],
+            env,
+        )?;
         for key in [
             "reset_state",
             "reset_obs",

@@ -12,6 +12,8 @@
 //! then explicit Euler (`x += τ·ẋ; ẋ += τ·ẍ; θ += τ·θ̇; θ̇ += τ·θ̈`) or, as an
 //! option, semi-implicit Euler. Every expression keeps Gymnasium's left-to-right
 //! order and no multiply-add is fused, so the f64 states equal Gymnasium's exactly.
+//! `sin θ` and `cos θ` are libm's, bit for bit (computed inline where that is proven
+//! equal: see [`super::sincos`]).
 //! The episode terminates when `|x| > 2.4` or `|θ| > 12°` (decided on the f64
 //! state) and is truncated by the time limit (500 steps for v1, 200 for v0).
 //!
@@ -31,6 +33,7 @@ use std::str::FromStr;
 
 use super::EnvError;
 use super::seeding::NumpyRng;
+use super::sincos::sin_cos;
 
 /// Gravity, m/s².
 pub const GRAVITY: f64 = 9.8;
@@ -171,9 +174,8 @@ pub const STEP_AFTER_TERMINATED: &str = "You are calling 'step()' even though th
 #[must_use]
 #[inline]
 pub fn physics(state: [f64; 4], action: usize, integrator: Integrator) -> [f64; 4] {
-    let theta = state[2];
-    let costheta = theta.cos();
-    let sintheta = theta.sin();
+    // Python's math.sin and math.cos, bit for bit (glibc's computation, inlined).
+    let (sintheta, costheta) = sin_cos(state[2]);
     let (xacc, thetaacc) = accelerations(action, state[3], sintheta, costheta);
     integrate(state, xacc, thetaacc, integrator)
 }

@@ -18,6 +18,7 @@
 use super::EnvError;
 use super::cartpole::{CartPoleConfig, accelerations, integrate, is_terminated};
 use super::seeding::NumpyRng;
+use super::sincos::sin_cos_slice;
 
 /// What one vector step returns, one entry per environment.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -152,11 +153,9 @@ impl CartPoleVec {
             1.0
         };
         // Three passes so the CPU can overlap independent environments: the sines and
-        // cosines (library calls), the arithmetic (no calls), then flags and resets.
-        for (i, &theta) in self.theta.iter().enumerate() {
-            // One sincos call: the same values as separate sin and cos calls.
-            (self.sin[i], self.cos[i]) = theta.sin_cos();
-        }
+        // cosines (vectorised where glibc's computation runs inline), the arithmetic,
+        // then flags and resets.
+        sin_cos_slice(&self.theta, &mut self.sin, &mut self.cos);
         for (i, &action) in actions.iter().enumerate() {
             let (xacc, thetaacc) =
                 accelerations(action, self.theta_dot[i], self.sin[i], self.cos[i]);
