@@ -391,6 +391,7 @@ fn decide() -> Backend {
 /// The instruction set `pulp` found at first use. With FMA present it compiles the
 /// kernel's `mul_add`s to FMA instructions (elsewhere `mul_add` calls libm's exactly
 /// rounded `fma`: the same bits, slower).
+#[inline(always)]
 fn arch() -> pulp::Arch {
     static ARCH: std::sync::OnceLock<pulp::Arch> = std::sync::OnceLock::new();
     *ARCH.get_or_init(pulp::Arch::new)
@@ -441,7 +442,7 @@ fn fill(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
 }
 
 /// `(sin x, cos x)`, equal bit for bit to libm's `sin(x)` and `cos(x)`.
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn sin_cos(x: f64) -> (f64, f64) {
     if in_range(x) && inline_enabled() {
@@ -466,5 +467,67 @@ pub fn sin_cos_slice(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     }
     for ((&x, s), c) in x.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
         (*s, *c) = libm_sin_cos(x);
+    }
+}
+
+/// A way to get libm's `(sin x, cos x)`: code generic over it is compiled once per way.
+pub trait SinCos: Copy {
+    /// `(sin x, cos x)`, bit for bit libm's.
+    fn sin_cos(self, x: f64) -> (f64, f64);
+}
+
+/// libm, called for each angle.
+#[derive(Debug, Clone, Copy)]
+pub struct CallLibm;
+
+impl SinCos for CallLibm {
+    #[inline(always)]
+    fn sin_cos(self, x: f64) -> (f64, f64) {
+        libm_sin_cos(x)
+    }
+}
+
+/// glibc's computation inlined; [`dispatch`] hands it out only where it is valid.
+#[derive(Debug, Clone, Copy)]
+pub struct InlineGlibc(());
+
+impl SinCos for InlineGlibc {
+    #[inline(always)]
+    fn sin_cos(self, x: f64) -> (f64, f64) {
+        if in_range(x) {
+            kernel(x)
+        } else {
+            libm_sin_cos(x)
+        }
+    }
+}
+
+/// Work generic over the [`SinCos`] (as `pulp`'s `WithSimd` is over the instruction set).
+pub trait WithSinCos {
+    /// What the work returns.
+    type Output;
+    /// Does the work; should be `#[inline(always)]`, so that it is compiled with FMA.
+    fn run<K: SinCos>(self, sin_cos: K) -> Self::Output;
+}
+
+struct Wrap<W>(W);
+
+impl<W: WithSinCos> pulp::WithSimd for Wrap<W> {
+    type Output = W::Output;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) -> Self::Output {
+        self.0.run(InlineGlibc(()))
+    }
+}
+
+/// Runs `work` with the inline sin/cos, compiled for this CPU, where [`backend`] allows
+/// it, and with libm elsewhere.
+#[inline(always)]
+pub fn dispatch<W: WithSinCos>(work: W) -> W::Output {
+    if inline_enabled() {
+        arch().dispatch(Wrap(work))
+    } else {
+        work.run(CallLibm)
     }
 }
