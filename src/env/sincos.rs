@@ -20,9 +20,12 @@
 //! glibc, an x86-64 CPU with FMA and AVX2, and a self-check at first use that compares it
 //! with libm's `sin` and `cos` on 4,096 angles (see [`backend`]). Anywhere else, for
 //! angles outside the range, or with `PPO_TUTOR_LIBM_SINCOS` set, [`sin_cos`] calls libm.
-//! `tests/sincos.rs` compares the two on ten million more angles. `pulp` compiles the
-//! kernel for the CPU found at run time, so each `mul_add` is one FMA instruction, and
-//! vectorises [`sin_cos_slice`] (used by the vector env).
+//! `tests/sincos.rs` compares the two on ten million more angles.
+//!
+//! `pulp` compiles the kernel for the CPU found at run time, so each `mul_add` is one FMA
+//! instruction. [`dispatch`] runs whole pieces of work in that compiled code, generic over
+//! the [`SinCos`] in use: `CartPole::step` is one, and the vector env's physics another
+//! (its loops vectorise there).
 //!
 //! The 440-entry table below holds glibc's `__sincostab` values (`sin(i/128)` and
 //! `cos(i/128)` as high and low parts, i = 0..109), bit for bit: a fresh computation in
@@ -377,7 +380,8 @@ fn decide() -> Backend {
             return Backend::Libm(LibmReason::NoFmaAvx2);
         }
         for x in self_check_angles().into_iter().filter(|&x| in_range(x)) {
-            let inline = arch().dispatch(One(x));
+            // Straight to the inline path: `dispatch` asks for the decision made here.
+            let inline = arch().dispatch(Wrap(Angle(x)));
             let (s, c) = libm_sin_cos(x);
             if inline.0.to_bits() != s.to_bits() || inline.1.to_bits() != c.to_bits() {
                 return Backend::Libm(LibmReason::SelfCheckFailed { angle: x });
@@ -397,36 +401,8 @@ fn arch() -> pulp::Arch {
     *ARCH.get_or_init(pulp::Arch::new)
 }
 
-/// The kernel for one angle, run by `pulp` with the CPU's instruction set enabled.
-struct One(f64);
-
-impl pulp::WithSimd for One {
-    type Output = (f64, f64);
-
-    #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, _: S) -> Self::Output {
-        kernel(self.0)
-    }
-}
-
-/// The kernel over slices, then libm for the angles out of its range.
-struct Many<'a> {
-    x: &'a [f64],
-    sin: &'a mut [f64],
-    cos: &'a mut [f64],
-}
-
-impl pulp::WithSimd for Many<'_> {
-    type Output = ();
-
-    #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, _: S) {
-        fill(self.x, self.sin, self.cos);
-    }
-}
-
-/// The loop of [`Many`]: the slices are arguments, so the compiler knows they do not
-/// overlap (it vectorises the loop only then).
+/// The kernel over slices, then libm for the angles out of its range. The slices are
+/// arguments, so the compiler knows they do not overlap (it vectorises the loop only then).
 #[inline(always)]
 fn fill(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     let n = x.len().min(sin.len()).min(cos.len());
@@ -441,14 +417,26 @@ fn fill(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     }
 }
 
+/// One angle's sine and cosine, as work for [`dispatch`].
+struct Angle(f64);
+
+impl WithSinCos for Angle {
+    type Output = (f64, f64);
+    #[inline(always)]
+    fn run<K: SinCos>(self, trig: K) -> Self::Output {
+        trig.sin_cos(self.0)
+    }
+}
+
 /// `(sin x, cos x)`, equal bit for bit to libm's `sin(x)` and `cos(x)`.
 #[inline(always)]
 #[must_use]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    if in_range(x) && inline_enabled() {
-        return arch().dispatch(One(x));
+    if in_range(x) {
+        dispatch(Angle(x))
+    } else {
+        libm_sin_cos(x)
     }
-    libm_sin_cos(x)
 }
 
 /// [`sin_cos`] of every angle in `x`, written to `sin` and `cos` (vectorised on the
@@ -457,23 +445,34 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// # Panics
 /// If the three slices differ in length.
 pub fn sin_cos_slice(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    /// Many angles.
+    struct Angles<'a>(&'a [f64], &'a mut [f64], &'a mut [f64]);
+    impl WithSinCos for Angles<'_> {
+        type Output = ();
+        #[inline(always)]
+        fn run<K: SinCos>(self, trig: K) {
+            trig.sin_cos_slice(self.0, self.1, self.2);
+        }
+    }
     assert!(
         x.len() == sin.len() && x.len() == cos.len(),
         "sin_cos_slice: lengths differ"
     );
-    if inline_enabled() {
-        arch().dispatch(Many { x, sin, cos });
-        return;
-    }
-    for ((&x, s), c) in x.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
-        (*s, *c) = libm_sin_cos(x);
-    }
+    dispatch(Angles(x, sin, cos));
 }
 
 /// A way to get libm's `(sin x, cos x)`: code generic over it is compiled once per way.
 pub trait SinCos: Copy {
     /// `(sin x, cos x)`, bit for bit libm's.
     fn sin_cos(self, x: f64) -> (f64, f64);
+
+    /// [`SinCos::sin_cos`] of every angle in `x`, written to `sin` and `cos`.
+    #[inline(always)]
+    fn sin_cos_slice(self, x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+        for ((&x, s), c) in x.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
+            (*s, *c) = self.sin_cos(x);
+        }
+    }
 }
 
 /// libm, called for each angle.
@@ -500,6 +499,11 @@ impl SinCos for InlineGlibc {
             libm_sin_cos(x)
         }
     }
+
+    #[inline(always)]
+    fn sin_cos_slice(self, x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+        fill(x, sin, cos);
+    }
 }
 
 /// Work generic over the [`SinCos`] (as `pulp`'s `WithSimd` is over the instruction set).
@@ -510,6 +514,8 @@ pub trait WithSinCos {
     fn run<K: SinCos>(self, sin_cos: K) -> Self::Output;
 }
 
+/// Runs the work with [`InlineGlibc`] inside `pulp`'s dispatch, so it is compiled with
+/// the CPU's instruction set (FMA included).
 struct Wrap<W>(W);
 
 impl<W: WithSinCos> pulp::WithSimd for Wrap<W> {

@@ -16,9 +16,9 @@
 //! ```
 
 use super::EnvError;
-use super::cartpole::{CartPoleConfig, accelerations, integrate, is_terminated};
+use super::cartpole::{CartPoleConfig, Integrator, accelerations, integrate, is_terminated};
 use super::seeding::NumpyRng;
-use super::sincos::sin_cos_slice;
+use super::sincos::{self, SinCos, WithSinCos};
 
 /// What one vector step returns, one entry per environment.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -153,16 +153,13 @@ impl CartPoleVec {
             1.0
         };
         // Three passes so the CPU can overlap independent environments: the sines and
-        // cosines (vectorised where glibc's computation runs inline), the arithmetic,
-        // then flags and resets.
-        sin_cos_slice(&self.theta, &mut self.sin, &mut self.cos);
-        for (i, &action) in actions.iter().enumerate() {
-            let (xacc, thetaacc) =
-                accelerations(action, self.theta_dot[i], self.sin[i], self.cos[i]);
-            let s = [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]];
-            [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]] =
-                integrate(s, xacc, thetaacc, integrator);
-        }
+        // cosines, the arithmetic (both vectorised where the inline sin/cos runs), then
+        // flags and resets.
+        sincos::dispatch(Advance {
+            envs: self,
+            actions,
+            integrator,
+        });
         for i in 0..actions.len() {
             let s = [self.x[i], self.x_dot[i], self.theta[i], self.theta_dot[i]];
             let terminated = is_terminated(&s);
@@ -183,5 +180,48 @@ impl CartPoleVec {
             }
         }
         Ok(&self.out)
+    }
+}
+
+/// The physics of one vector step, compiled once per way of computing sin and cos.
+struct Advance<'a> {
+    envs: &'a mut CartPoleVec,
+    actions: &'a [usize],
+    integrator: Integrator,
+}
+
+impl WithSinCos for Advance<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<K: SinCos>(self, trig: K) {
+        let e = self.envs;
+        trig.sin_cos_slice(&e.theta, &mut e.sin, &mut e.cos);
+        advance(
+            self.actions,
+            self.integrator,
+            [&mut e.x, &mut e.x_dot, &mut e.theta, &mut e.theta_dot],
+            &e.sin,
+            &e.cos,
+        );
+    }
+}
+
+/// The arithmetic of a vector step, with the slices as arguments so that the compiler
+/// knows they do not overlap (it vectorises the loop only then).
+#[inline(always)]
+fn advance(
+    actions: &[usize],
+    integrator: Integrator,
+    [x, x_dot, theta, theta_dot]: [&mut [f64]; 4],
+    sin: &[f64],
+    cos: &[f64],
+) {
+    let n = actions.len().min(x.len()).min(x_dot.len()).min(theta.len());
+    let n = n.min(theta_dot.len()).min(sin.len()).min(cos.len());
+    for i in 0..n {
+        let (xacc, thetaacc) = accelerations(actions[i], theta_dot[i], sin[i], cos[i]);
+        let s = [x[i], x_dot[i], theta[i], theta_dot[i]];
+        [x[i], x_dot[i], theta[i], theta_dot[i]] = integrate(s, xacc, thetaacc, integrator);
     }
 }
