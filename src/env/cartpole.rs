@@ -323,7 +323,6 @@ impl CartPole {
         Ok(self.reset(seed))
     }
 
-    // ANCHOR: env_step
     /// Gymnasium's `step(action)` through the `TimeLimit` wrapper.
     ///
     /// # Errors
@@ -343,6 +342,9 @@ impl CartPole {
         sincos::dispatch(StepWith(self, action))
     }
 
+    // ANCHOR: env_step
+    /// The body of [`CartPole::step`], compiled once per way of computing sin and cos
+    /// (`trig`: libm, or glibc's computation inlined where that gives the same bits).
     #[inline(always)]
     fn step_with<K: SinCos>(&mut self, action: usize, trig: K) -> Result<Step, EnvError> {
         if action > 1 {
