@@ -174,7 +174,7 @@ pub const STEP_AFTER_TERMINATED: &str = "You are calling 'step()' even though th
 #[must_use]
 #[inline]
 pub fn physics(state: [f64; 4], action: usize, integrator: Integrator) -> [f64; 4] {
-    // Python's math.sin and math.cos, bit for bit (glibc's computation, inlined).
+    // Python's math.sin and math.cos, bit for bit (see env::sincos).
     let (sintheta, costheta) = sin_cos(state[2]);
     let (xacc, thetaacc) = accelerations(action, state[3], sintheta, costheta);
     integrate(state, xacc, thetaacc, integrator)
