@@ -32,8 +32,6 @@
 //! high precision differs in the last bit of 17 low parts, and bit-for-bit results need
 //! glibc's own.
 
-use std::sync::atomic::{AtomicU8, Ordering};
-
 /// `1.5 * 2^45`: adding it to `|x|` rounds `|x|` to a multiple of 1/128 and leaves the
 /// multiple's index in the low bits.
 const BIG: f64 = f64::from_bits(0x42c8_0000_0000_0000);
@@ -253,7 +251,8 @@ pub fn libm_sin_cos(x: f64) -> (f64, f64) {
 pub enum LibmReason {
     /// Not x86-64 Linux with glibc: the inline computation copies glibc's.
     NotGlibcX86_64,
-    /// The CPU lacks FMA or AVX2, so glibc runs its non-FMA build.
+    /// The CPU lacks x86-64-v3 (AVX2 and FMA among it): without FMA and AVX2 glibc runs
+    /// its non-FMA build, which the inline path does not copy.
     NoFmaAvx2,
     /// `PPO_TUTOR_LIBM_SINCOS` is set.
     Requested,
@@ -268,7 +267,7 @@ impl std::fmt::Display for LibmReason {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             LibmReason::NotGlibcX86_64 => f.write_str("not x86-64 Linux with glibc"),
-            LibmReason::NoFmaAvx2 => f.write_str("the CPU lacks FMA or AVX2"),
+            LibmReason::NoFmaAvx2 => f.write_str("the CPU lacks x86-64-v3 (AVX2, FMA)"),
             LibmReason::Requested => f.write_str("PPO_TUTOR_LIBM_SINCOS is set"),
             LibmReason::SelfCheckFailed { angle } => {
                 write!(f, "the self-check differs from libm at x = {angle:e}")
@@ -295,33 +294,25 @@ impl std::fmt::Display for Backend {
     }
 }
 
-const UNDECIDED: u8 = 0;
-const INLINE: u8 = 1;
-const LIBM: u8 = 2;
-static STATE: AtomicU8 = AtomicU8::new(UNDECIDED);
-static REASON: std::sync::OnceLock<Backend> = std::sync::OnceLock::new();
+static DECISION: std::sync::OnceLock<Backend> = std::sync::OnceLock::new();
 
 /// The implementation in use, decided once per process (the self-check runs then).
 pub fn backend() -> Backend {
-    *REASON.get_or_init(|| {
-        let backend = decide();
-        let state = if backend == Backend::Inline {
-            INLINE
-        } else {
-            LIBM
-        };
-        STATE.store(state, Ordering::Relaxed);
-        backend
-    })
+    *DECISION.get_or_init(decide)
 }
 
+/// The instruction set token the inline path runs under: `pulp`'s x86-64-v3 (AVX2 and
+/// FMA, so each `mul_add` is one instruction), present only where [`backend`] chose
+/// the inline path.
+#[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn inline_enabled() -> bool {
-    match STATE.load(Ordering::Relaxed) {
-        INLINE => true,
-        LIBM => false,
-        _ => backend() == Backend::Inline,
-    }
+fn inline_token() -> Option<pulp::x86::V3> {
+    static TOKEN: std::sync::OnceLock<Option<pulp::x86::V3>> = std::sync::OnceLock::new();
+    *TOKEN.get_or_init(|| {
+        (backend() == Backend::Inline)
+            .then(pulp::x86::V3::try_new)
+            .flatten()
+    })
 }
 
 /// Angles the self-check compares: table rows and their midpoints, both sides of the
@@ -376,12 +367,13 @@ fn decide() -> Backend {
     }
     #[cfg(all(target_arch = "x86_64", target_os = "linux", target_env = "gnu"))]
     {
-        if !(std::is_x86_feature_detected!("fma") && std::is_x86_feature_detected!("avx2")) {
+        // x86-64-v3 includes FMA and AVX2, glibc's condition for its FMA build.
+        let Some(v3) = pulp::x86::V3::try_new() else {
             return Backend::Libm(LibmReason::NoFmaAvx2);
-        }
+        };
         for x in self_check_angles().into_iter().filter(|&x| in_range(x)) {
             // Straight to the inline path: `dispatch` asks for the decision made here.
-            let inline = arch().dispatch(Wrap(Angle(x)));
+            let inline = pulp::Simd::vectorize(v3, Wrap(Angle(x)));
             let (s, c) = libm_sin_cos(x);
             if inline.0.to_bits() != s.to_bits() || inline.1.to_bits() != c.to_bits() {
                 return Backend::Libm(LibmReason::SelfCheckFailed { angle: x });
@@ -390,15 +382,6 @@ fn decide() -> Backend {
         return Backend::Inline;
     }
     Backend::Libm(LibmReason::NotGlibcX86_64)
-}
-
-/// The instruction set `pulp` found at first use. With FMA present it compiles the
-/// kernel's `mul_add`s to FMA instructions (elsewhere `mul_add` calls libm's exactly
-/// rounded `fma`: the same bits, slower).
-#[inline(always)]
-fn arch() -> pulp::Arch {
-    static ARCH: std::sync::OnceLock<pulp::Arch> = std::sync::OnceLock::new();
-    *ARCH.get_or_init(pulp::Arch::new)
 }
 
 /// The kernel over slices, then libm for the angles out of its range. The slices are
@@ -531,9 +514,9 @@ impl<W: WithSinCos> pulp::WithSimd for Wrap<W> {
 /// it, and with libm elsewhere.
 #[inline(always)]
 pub fn dispatch<W: WithSinCos>(work: W) -> W::Output {
-    if inline_enabled() {
-        arch().dispatch(Wrap(work))
-    } else {
-        work.run(CallLibm)
+    #[cfg(target_arch = "x86_64")]
+    if let Some(v3) = inline_token() {
+        return pulp::Simd::vectorize(v3, Wrap(work));
     }
+    work.run(CallLibm)
 }
