@@ -3,23 +3,18 @@
 //! `ppo_tutor::env::sincos::sin_cos` must return exactly libm's `sin(x)` and `cos(x)`,
 //! which are what Gymnasium's CartPole gets from Python's `math.sin`/`math.cos`.
 
+use ppo_tutor::env::seeding::NumpyRng;
 use ppo_tutor::env::sincos::{
     Backend, LibmReason, backend, libm_sin_cos, self_check_angles, sin_cos, sin_cos_slice,
 };
 
 /// Seeded angles: most in CartPole's range, the rest across the inline range and beyond.
 fn angles(n: usize, seed: u64) -> Vec<f64> {
-    let mut z = seed;
+    let mut rng = NumpyRng::from_seed(seed);
     (0..n)
         .map(|i| {
-            z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut r = z;
-            r = (r ^ (r >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            r = (r ^ (r >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            r ^= r >> 31;
-            let unit = (r >> 11) as f64 / (1u64 << 53) as f64;
             let span = [0.25, 0.126, 0.9, 1e-6][i % 4];
-            (2.0 * unit - 1.0) * span
+            rng.uniform(-span, span)
         })
         .collect()
 }

@@ -32,6 +32,8 @@
 //! high precision differs in the last bit of 17 low parts, and bit-for-bit results need
 //! glibc's own.
 
+use super::seeding::NumpyRng;
+
 /// `1.5 * 2^45`: adding it to `|x|` rounds `|x|` to a multiple of 1/128 and leaves the
 /// multiple's index in the low bits.
 const BIG: f64 = f64::from_bits(0x42c8_0000_0000_0000);
@@ -345,17 +347,11 @@ pub fn self_check_angles() -> Vec<f64> {
             }
         }
     }
-    // splitmix64: angles in (-0.3, 0.3), CartPole's, and in the whole range.
-    let mut z: u64 = 0x5eed;
+    // Seeded angles: in (-0.3, 0.3), CartPole's, and across the whole range.
+    let mut rng = NumpyRng::from_seed(0x5eed);
     while angles.len() < 4096 {
-        z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut r = z;
-        r = (r ^ (r >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        r = (r ^ (r >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        r ^= r >> 31;
-        let unit = (r >> 11) as f64 / (1u64 << 53) as f64;
         let span = if angles.len() % 2 == 0 { 0.3 } else { 0.855 };
-        angles.push((2.0 * unit - 1.0) * span);
+        angles.push(rng.uniform(-span, span));
     }
     angles
 }
