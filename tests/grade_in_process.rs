@@ -202,6 +202,18 @@ fn a_panic_is_reported_with_its_message_and_the_grader_goes_on() {
     assert!(caught.is_err());
 }
 
+/// Grading stopped within seconds, and its first failure is the time limit.
+fn assert_timed_out(report: &Report, started: std::time::Instant) -> TestResult {
+    assert!(started.elapsed() < Duration::from_secs(5));
+    let first = report.first_failure().ok_or("no failure")?;
+    assert!(
+        matches!(first.problem, Problem::TimedOut(_)),
+        "{}",
+        report.render()
+    );
+    Ok(())
+}
+
 #[test]
 fn a_function_that_never_returns_is_reported_after_the_time_limit() -> TestResult {
     let spec = grade::spec("critic_loss")?;
@@ -215,13 +227,7 @@ fn a_function_that_never_returns_is_reported_after_the_time_limit() -> TestResul
         }),
         Duration::from_millis(300),
     );
-    assert!(started.elapsed() < Duration::from_secs(5));
-    let first = report.first_failure().ok_or("no failure")?;
-    assert!(
-        matches!(first.problem, Problem::TimedOut(_)),
-        "{}",
-        report.render()
-    );
+    assert_timed_out(&report, started)?;
     assert!(
         report
             .checks
@@ -311,13 +317,7 @@ fn a_candle_function_that_never_returns_is_reported_after_the_time_limit() -> Te
     }
     let started = std::time::Instant::now();
     let report = in_process::ppo_losses_with(endless, Duration::from_millis(300));
-    assert!(started.elapsed() < Duration::from_secs(5));
-    let first = report.first_failure().ok_or("no failure")?;
-    assert!(
-        matches!(first.problem, Problem::TimedOut(_)),
-        "{}",
-        report.render()
-    );
+    assert_timed_out(&report, started)?;
     // The other case lists and the training are not run (the gradients check, over every
     // case, reports the first case's timeout again, as the file grader does).
     let not_run = |k: usize| matches!(report.checks[k].status, CheckStatus::NotRun(_));

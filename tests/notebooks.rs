@@ -615,22 +615,19 @@ fn check_against_library(name: &str, episodes: usize, out: &Outputs) -> Result<(
 // ---------------------------------------------------------------------------------------
 
 fn recipe_files() -> Result<Vec<String>> {
-    let mut names = Vec::new();
-    for entry in std::fs::read_dir(root().join("notebooks/src")).context("notebooks/src")? {
-        let name = entry?.file_name().to_string_lossy().to_string();
-        if let Some(stem) = name.strip_suffix(".rs") {
-            names.push(stem.to_string());
-        }
-    }
-    names.sort();
-    Ok(names)
+    stems("notebooks/src", ".rs")
 }
 
 fn committed_notebooks() -> Result<Vec<String>> {
+    stems("notebooks", ".ipynb")
+}
+
+/// The sorted names, without `ext`, of the files in `dir` that end in `ext`.
+fn stems(dir: &str, ext: &str) -> Result<Vec<String>> {
     let mut names = Vec::new();
-    for entry in std::fs::read_dir(root().join("notebooks")).context("notebooks/")? {
+    for entry in std::fs::read_dir(root().join(dir)).context(dir.to_string())? {
         let name = entry?.file_name().to_string_lossy().to_string();
-        if let Some(stem) = name.strip_suffix(".ipynb") {
+        if let Some(stem) = name.strip_suffix(ext) {
             names.push(stem.to_string());
         }
     }
