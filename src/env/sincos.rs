@@ -411,11 +411,8 @@ impl WithSinCos for Angle {
 #[inline(always)]
 #[must_use]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    if in_range(x) {
-        dispatch(Angle(x))
-    } else {
-        libm_sin_cos(x)
-    }
+    // Angles out of range go to libm inside `InlineGlibc::sin_cos`.
+    dispatch(Angle(x))
 }
 
 /// [`sin_cos`] of every angle in `x`, written to `sin` and `cos` (vectorised on the
