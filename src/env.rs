@@ -6,6 +6,7 @@
 //! - [`sincos`]: libm's `sin` and `cos` bit for bit, computed inline (glibc's algorithm) where valid.
 
 pub mod cartpole;
+pub mod quotient;
 pub mod seeding;
 pub mod sincos;
 pub mod trace;

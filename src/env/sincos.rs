@@ -24,14 +24,16 @@
 //!
 //! `pulp` compiles the kernel for the CPU found at run time, so each `mul_add` is one FMA
 //! instruction. [`dispatch`] runs whole pieces of work in that compiled code, generic over
-//! the [`SinCos`] in use: `CartPole::step` is one, and the vector env's physics another
-//! (its loops vectorise there).
+//! the [`Math`] in use: `CartPole::step` is one, and the vector env's physics another
+//! (its loops vectorise there). [`Math`] also divides: `Inline` with the proven fast
+//! division of [`super::quotient`], which needs FMA to be fast.
 //!
 //! The 440-entry table below holds glibc's `__sincostab` values (`sin(i/128)` and
 //! `cos(i/128)` as high and low parts, i = 0..109), bit for bit: a fresh computation in
 //! high precision differs in the last bit of 17 low parts, and bit-for-bit results need
 //! glibc's own.
 
+use super::quotient::Divisor;
 use super::seeding::NumpyRng;
 
 /// `1.5 * 2^45`: adding it to `|x|` rounds `|x|` to a multiple of 1/128 and leaves the
@@ -399,11 +401,11 @@ fn fill(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
 /// One angle's sine and cosine, as work for [`dispatch`].
 struct Angle(f64);
 
-impl WithSinCos for Angle {
+impl WithMath for Angle {
     type Output = (f64, f64);
     #[inline(always)]
-    fn run<K: SinCos>(self, trig: K) -> Self::Output {
-        trig.sin_cos(self.0)
+    fn run<M: Math>(self, math: M) -> Self::Output {
+        math.sin_cos(self.0)
     }
 }
 
@@ -411,7 +413,7 @@ impl WithSinCos for Angle {
 #[inline(always)]
 #[must_use]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    // Angles out of range go to libm inside `InlineGlibc::sin_cos`.
+    // Angles out of range go to libm inside `Inline::sin_cos`.
     dispatch(Angle(x))
 }
 
@@ -423,11 +425,11 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 pub fn sin_cos_slice(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     /// Many angles.
     struct Angles<'a>(&'a [f64], &'a mut [f64], &'a mut [f64]);
-    impl WithSinCos for Angles<'_> {
+    impl WithMath for Angles<'_> {
         type Output = ();
         #[inline(always)]
-        fn run<K: SinCos>(self, trig: K) {
-            trig.sin_cos_slice(self.0, self.1, self.2);
+        fn run<M: Math>(self, math: M) {
+            math.sin_cos_slice(self.0, self.1, self.2);
         }
     }
     assert!(
@@ -437,12 +439,19 @@ pub fn sin_cos_slice(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     dispatch(Angles(x, sin, cos));
 }
 
-/// A way to get libm's `(sin x, cos x)`: code generic over it is compiled once per way.
-pub trait SinCos: Copy {
+/// A way to compute CartPole's sin, cos and division with Python's bits: code generic
+/// over it is compiled once per way.
+pub trait Math: Copy {
     /// `(sin x, cos x)`, bit for bit libm's.
     fn sin_cos(self, x: f64) -> (f64, f64);
 
-    /// [`SinCos::sin_cos`] of every angle in `x`, written to `sin` and `cos`.
+    /// `a / by`, rounded to nearest as every IEEE division is.
+    #[inline(always)]
+    fn divide(self, a: f64, by: Divisor) -> f64 {
+        a / by.value()
+    }
+
+    /// [`Math::sin_cos`] of every angle in `x`, written to `sin` and `cos`.
     #[inline(always)]
     fn sin_cos_slice(self, x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
         for ((&x, s), c) in x.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
@@ -451,22 +460,23 @@ pub trait SinCos: Copy {
     }
 }
 
-/// libm, called for each angle.
+/// libm, called for each angle, and the hardware division: correct on every platform.
 #[derive(Debug, Clone, Copy)]
-pub struct CallLibm;
+pub struct Portable;
 
-impl SinCos for CallLibm {
+impl Math for Portable {
     #[inline(always)]
     fn sin_cos(self, x: f64) -> (f64, f64) {
         libm_sin_cos(x)
     }
 }
 
-/// glibc's computation inlined; [`dispatch`] hands it out only where it is valid.
+/// glibc's sin/cos inlined and the proven fast division, compiled with FMA; [`dispatch`]
+/// hands it out only where it is valid.
 #[derive(Debug, Clone, Copy)]
-pub struct InlineGlibc(());
+pub struct Inline(());
 
-impl SinCos for InlineGlibc {
+impl Math for Inline {
     #[inline(always)]
     fn sin_cos(self, x: f64) -> (f64, f64) {
         if in_range(x) {
@@ -480,36 +490,42 @@ impl SinCos for InlineGlibc {
     fn sin_cos_slice(self, x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
         fill(x, sin, cos);
     }
+
+    /// The multiply-and-FMA guess, proven per call (see [`super::quotient`]).
+    #[inline(always)]
+    fn divide(self, a: f64, by: Divisor) -> f64 {
+        by.divide(a)
+    }
 }
 
-/// Work generic over the [`SinCos`] (as `pulp`'s `WithSimd` is over the instruction set).
-pub trait WithSinCos {
+/// Work generic over the [`Math`] (as `pulp`'s `WithSimd` is over the instruction set).
+pub trait WithMath {
     /// What the work returns.
     type Output;
     /// Does the work; should be `#[inline(always)]`, so that it is compiled with FMA.
-    fn run<K: SinCos>(self, sin_cos: K) -> Self::Output;
+    fn run<M: Math>(self, math: M) -> Self::Output;
 }
 
-/// Runs the work with [`InlineGlibc`] inside `pulp`'s dispatch, so it is compiled with
+/// Runs the work with [`Inline`] inside `pulp`'s dispatch, so it is compiled with
 /// the CPU's instruction set (FMA included).
 struct Wrap<W>(W);
 
-impl<W: WithSinCos> pulp::WithSimd for Wrap<W> {
+impl<W: WithMath> pulp::WithSimd for Wrap<W> {
     type Output = W::Output;
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) -> Self::Output {
-        self.0.run(InlineGlibc(()))
+        self.0.run(Inline(()))
     }
 }
 
 /// Runs `work` with the inline sin/cos, compiled for this CPU, where [`backend`] allows
 /// it, and with libm elsewhere.
 #[inline(always)]
-pub fn dispatch<W: WithSinCos>(work: W) -> W::Output {
+pub fn dispatch<W: WithMath>(work: W) -> W::Output {
     #[cfg(target_arch = "x86_64")]
     if let Some(v3) = inline_token() {
         return pulp::Simd::vectorize(v3, Wrap(work));
     }
-    work.run(CallLibm)
+    work.run(Portable)
 }

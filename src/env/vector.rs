@@ -18,7 +18,7 @@
 use super::EnvError;
 use super::cartpole::{CartPoleConfig, Integrator, accelerations, integrate, is_terminated};
 use super::seeding::NumpyRng;
-use super::sincos::{self, SinCos, WithSinCos};
+use super::sincos::{self, Math, WithMath};
 
 /// What one vector step returns, one entry per environment.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -183,20 +183,20 @@ impl CartPoleVec {
     }
 }
 
-/// The physics of one vector step, compiled once per way of computing sin and cos.
+/// The physics of one vector step, compiled once per [`Math`].
 struct Advance<'a> {
     envs: &'a mut CartPoleVec,
     actions: &'a [usize],
     integrator: Integrator,
 }
 
-impl WithSinCos for Advance<'_> {
+impl WithMath for Advance<'_> {
     type Output = ();
 
     #[inline(always)]
-    fn run<K: SinCos>(self, trig: K) {
+    fn run<M: Math>(self, math: M) {
         let e = self.envs;
-        trig.sin_cos_slice(&e.theta, &mut e.sin, &mut e.cos);
+        math.sin_cos_slice(&e.theta, &mut e.sin, &mut e.cos);
         advance(
             self.actions,
             self.integrator,
@@ -220,6 +220,8 @@ fn advance(
     let n = actions.len().min(x.len()).min(x_dot.len()).min(theta.len());
     let n = n.min(theta_dot.len()).min(sin.len()).min(cos.len());
     for i in 0..n {
+        // Hardware division: it divides four lanes at once here, where the proven guess
+        // of `Inline::divide` would branch per lane and stop the vectorising.
         let (xacc, thetaacc) = accelerations(actions[i], theta_dot[i], sin[i], cos[i]);
         let s = [x[i], x_dot[i], theta[i], theta_dot[i]];
         [x[i], x_dot[i], theta[i], theta_dot[i]] = integrate(s, xacc, thetaacc, integrator);
