@@ -99,3 +99,35 @@ fn table_output_is_readable() -> TestResult {
     assert!(text.contains("return 3 over 3 steps"), "{text}");
     Ok(())
 }
+
+/// `ppo-tutor cartpole ... | head`: when the reader closes the pipe, the command stops
+/// quietly, as other command-line tools do, instead of reporting an error.
+#[test]
+fn a_closed_pipe_is_not_an_error() -> TestResult {
+    use std::io::Read;
+    use std::process::Stdio;
+    // Far more output than a pipe holds (about 430 kB), so the writer meets the closed end.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .args([
+            "cartpole",
+            "--seed",
+            "0",
+            "--actions",
+            "",
+            "--resets",
+            "5000",
+        ])
+        .args(["--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()?;
+    let mut stdout = child.stdout.take().ok_or("no stdout")?;
+    let mut first = [0_u8; 16];
+    stdout.read_exact(&mut first)?;
+    drop(stdout);
+    let out = child.wait_with_output()?;
+    let stderr = String::from_utf8(out.stderr)?;
+    assert!(out.status.success(), "exit {:?}: {stderr}", out.status);
+    assert!(stderr.is_empty(), "{stderr}");
+    Ok(())
+}

@@ -108,7 +108,15 @@ fn special_values_go_to_the_hardware_division() {
 
 #[test]
 fn special_divisors_go_to_the_hardware_division() {
-    for b in [0.0, -0.0, 1e-310, f64::INFINITY, f64::NAN, f64::MAX, f64::MIN_POSITIVE] {
+    for b in [
+        0.0,
+        -0.0,
+        1e-310,
+        f64::INFINITY,
+        f64::NAN,
+        f64::MAX,
+        f64::MIN_POSITIVE,
+    ] {
         let by = Divisor::new(b);
         for a in [1.0, -3.5, 1e300, 1e-300, 0.0] {
             let (got, want) = (by.divide(a), a / b);

@@ -95,7 +95,7 @@ pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
                 map.insert("next_resets".into(), serde_json::Value::Array(vec![]));
             }
         }
-        println!("{value}");
+        writeln!(std::io::stdout(), "{value}")?;
     } else if args.render {
         render(&t, args.env_id)?;
     } else {

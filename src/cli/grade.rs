@@ -1,6 +1,7 @@
 //! `ppo-tutor grade [EXERCISE] [--file PATH]` and `ppo-tutor reset EXERCISE`: the graded
 //! exercises from the command line, like rustlings.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -67,13 +68,17 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
         }
         other => other?,
     };
-    print!("{}", report.render());
+    write!(std::io::stdout(), "{}", report.render())?;
     if report.passed() {
         record_pass(&report);
         if args.file.is_none()
             && let Ok(files) = grade::files(name)
         {
-            println!("  The reference solution: {}", files.solution_path());
+            writeln!(
+                std::io::stdout(),
+                "  The reference solution: {}",
+                files.solution_path()
+            )?;
         }
         Ok(ExitCode::SUCCESS)
     } else {
@@ -95,7 +100,8 @@ fn note_first_build(name: &str, opts: &GradeOptions) {
 }
 
 fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
-    println!("{:<22} {:<38} result", "exercise", "file");
+    let mut out = std::io::stdout();
+    writeln!(out, "{:<22} {:<38} result", "exercise", "file")?;
     let mut passed = 0;
     let names = grade::exercise_names();
     for name in &names {
@@ -115,10 +121,10 @@ fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
             }
             Err(e) => return Err(e.into()),
         };
-        println!("{name:<22} {path:<38} {result}");
+        writeln!(out, "{name:<22} {path:<38} {result}")?;
     }
-    println!("score: {passed}/{} exercises pass", names.len());
-    println!("details: ppo-tutor grade <exercise>");
+    writeln!(out, "score: {passed}/{} exercises pass", names.len())?;
+    writeln!(out, "details: ppo-tutor grade <exercise>")?;
     Ok(if passed == names.len() {
         ExitCode::SUCCESS
     } else {
@@ -149,7 +155,7 @@ pub fn reset(args: &ResetArgs) -> anyhow::Result<ExitCode> {
         Err(e @ GradeError::UnknownExercise { .. }) => Ok(usage(&e.to_string())),
         Err(e) => Err(e.into()),
         Ok(path) => {
-            println!("restored the starter {}", path.display());
+            writeln!(std::io::stdout(), "restored the starter {}", path.display())?;
             Ok(ExitCode::SUCCESS)
         }
     }

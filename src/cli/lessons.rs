@@ -2,6 +2,7 @@
 //! screen readers and logs.
 
 use std::fmt::Write as _;
+use std::io::Write;
 use std::process::ExitCode;
 
 use anyhow::Context;
@@ -33,7 +34,7 @@ pub struct ShowArgs {
 pub fn list() -> anyhow::Result<ExitCode> {
     let course = Course::embedded().context("loading the embedded lessons")?;
     for l in &course.lessons {
-        println!("{}\t{}", l.id, l.title);
+        writeln!(std::io::stdout(), "{}\t{}", l.id, l.title)?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -128,7 +129,11 @@ pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
     };
     let snapshot = Snapshot::after_training(PpoConfig::default(), args.seed, args.episodes.max(1))?;
     for step in range {
-        print!("{}", render_step(&course, index, step, &snapshot));
+        write!(
+            std::io::stdout(),
+            "{}",
+            render_step(&course, index, step, &snapshot)
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -139,12 +139,16 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
     }
     if let Some(path) = &args.save {
         agent.save(path).context("saving the agent")?;
-        println!("saved the agent to {}", path.display());
+        writeln!(std::io::stdout(), "saved the agent to {}", path.display())?;
     }
     if let Some(path) = &args.plot {
         let title = format!("PPO on {}", config.env_id);
         save_return_plot(path, &title, &summary.returns, &smoothed)?;
-        println!("drew the return curve to {}", path.display());
+        writeln!(
+            std::io::stdout(),
+            "drew the return curve to {}",
+            path.display()
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }
