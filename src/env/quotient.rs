@@ -9,11 +9,16 @@
 //! [`Divisor::divide`] does it in two steps:
 //! 1. **A guess.** With the reciprocal in two parts, `hi + lo ≈ 1/b` (both doubles),
 //!    `q = a·hi + a·lo` (one multiply, one FMA) is the correctly rounded `a/b` except for
-//!    quotients within about 2^-50 ulp of a rounding boundary.
+//!    quotients extremely close to a rounding boundary.
 //! 2. **A proof, per call.** [`Divisor::proves`] proves `q == a / b` from the exact
-//!    remainder `a − q·b` (one FMA). When the proof fails (about once in 10^15 random
-//!    quotients, and for zeros, infinities, NaNs and extreme magnitudes) the hardware
-//!    division is used.
+//!    remainder `a − q·b` (one FMA). When the proof fails, the hardware division is used:
+//!    for zeros, infinities, NaNs, exact powers of two and extreme magnitudes, and for
+//!    quotients within about 2^-50 of their spacing from a rounding boundary (none of the
+//!    ten million in `tests/quotient.rs`).
+//!
+//! `CartPole::step` uses it for `/ TOTAL_MASS`. The step's other division on the critical
+//! path divides by a number known only about 40 cycles ahead, too late to prepare its
+//! reciprocal, so it stays in hardware.
 //!
 //! The CPU does not wait for the proof: the next multiply starts from the guess, and the
 //! proof only decides a branch that is predicted taken. So the division costs the guess's
