@@ -118,6 +118,10 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Grade(args)) => grade::run(&args),
         Some(Command::Reset(args)) => grade::reset(&args),
         None => {
+            // The app trains and grades with candle: one candle thread is faster.
+            if let Some(done) = train::rerun_with_one_candle_thread() {
+                return done;
+            }
             crate::tui::run()?;
             Ok(ExitCode::SUCCESS)
         }
