@@ -108,6 +108,14 @@ fn report_clap_error(err: &clap::Error) -> ExitCode {
 /// # Errors
 /// Whatever the subcommand reports (bad files, invalid settings, I/O).
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    // Training, showing live values and grading run candle: one candle thread is faster.
+    let uses_candle = !matches!(
+        cli.command,
+        Some(Command::Cartpole(_) | Command::Lessons | Command::Reset(_))
+    );
+    if uses_candle && let Some(done) = train::rerun_with_one_candle_thread() {
+        return done;
+    }
     match cli.command {
         Some(Command::Cartpole(args)) => cartpole::run(&args),
         Some(Command::Lessons) => lessons::list(),
@@ -118,10 +126,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Grade(args)) => grade::run(&args),
         Some(Command::Reset(args)) => grade::reset(&args),
         None => {
-            // The app trains and grades with candle: one candle thread is faster.
-            if let Some(done) = train::rerun_with_one_candle_thread() {
-                return done;
-            }
             crate::tui::run()?;
             Ok(ExitCode::SUCCESS)
         }

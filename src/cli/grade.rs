@@ -43,10 +43,6 @@ fn usage(message: &str) -> ExitCode {
 /// # Errors
 /// Grading cannot happen at all (no rustc, unwritable cache).
 pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
-    // The candle exercise trains CartPole in this process: one candle thread is faster.
-    if let Some(done) = super::train::rerun_with_one_candle_thread() {
-        return done;
-    }
     let opts = GradeOptions {
         time_limit: Duration::from_secs(args.time_limit.max(1)),
         ..GradeOptions::default()

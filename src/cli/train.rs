@@ -106,9 +106,6 @@ impl TrainArgs {
 /// # Errors
 /// Training diverged, or an output file could not be written.
 pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
-    if let Some(code) = rerun_with_one_candle_thread() {
-        return code;
-    }
     let config = args.config();
     if let Err(err) = config.validate() {
         let err = match err {
@@ -161,7 +158,7 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
 /// variable in-process needs `unsafe` (`std::env::set_var`, edition 2024), which this crate
 /// forbids; re-running the binary costs a millisecond. A value set by the user is kept.
 /// Returns `None` to go on in this process (variable set, or not the `ppo-tutor` binary,
-/// as when a test calls [`run`] in-process).
+/// as when a test calls [`super::run`] in-process).
 pub(super) fn rerun_with_one_candle_thread() -> Option<anyhow::Result<ExitCode>> {
     if std::env::var_os("RAYON_NUM_THREADS").is_some() {
         return None;
