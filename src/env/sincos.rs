@@ -298,25 +298,36 @@ impl std::fmt::Display for Backend {
     }
 }
 
-static DECISION: std::sync::OnceLock<Backend> = std::sync::OnceLock::new();
+/// What [`decide`] found, once per process.
+#[derive(Clone, Copy)]
+struct Decision {
+    backend: Backend,
+    /// The instruction set token the inline path runs under: `pulp`'s x86-64-v3 (AVX2 and
+    /// FMA, so each `mul_add` is one instruction), present exactly when `backend` is
+    /// [`Backend::Inline`].
+    #[cfg(target_arch = "x86_64")]
+    token: Option<pulp::x86::V3>,
+}
 
-/// The implementation in use, decided once per process (the self-check runs then).
-pub fn backend() -> Backend {
+impl Decision {
+    fn libm(why: LibmReason) -> Self {
+        Self {
+            backend: Backend::Libm(why),
+            #[cfg(target_arch = "x86_64")]
+            token: None,
+        }
+    }
+}
+
+#[inline(always)]
+fn decision() -> Decision {
+    static DECISION: std::sync::OnceLock<Decision> = std::sync::OnceLock::new();
     *DECISION.get_or_init(decide)
 }
 
-/// The instruction set token the inline path runs under: `pulp`'s x86-64-v3 (AVX2 and
-/// FMA, so each `mul_add` is one instruction), present only where [`backend`] chose
-/// the inline path.
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn inline_token() -> Option<pulp::x86::V3> {
-    static TOKEN: std::sync::OnceLock<Option<pulp::x86::V3>> = std::sync::OnceLock::new();
-    *TOKEN.get_or_init(|| {
-        (backend() == Backend::Inline)
-            .then(pulp::x86::V3::try_new)
-            .flatten()
-    })
+/// The implementation in use, decided once per process (the self-check runs then).
+pub fn backend() -> Backend {
+    decision().backend
 }
 
 /// Angles the self-check compares: table rows and their midpoints, both sides of the
@@ -359,27 +370,30 @@ pub fn self_check_angles() -> Vec<f64> {
 }
 
 #[allow(unreachable_code)]
-fn decide() -> Backend {
+fn decide() -> Decision {
     if std::env::var_os("PPO_TUTOR_LIBM_SINCOS").is_some() {
-        return Backend::Libm(LibmReason::Requested);
+        return Decision::libm(LibmReason::Requested);
     }
     #[cfg(all(target_arch = "x86_64", target_os = "linux", target_env = "gnu"))]
     {
         // x86-64-v3 includes FMA and AVX2, glibc's condition for its FMA build.
         let Some(v3) = pulp::x86::V3::try_new() else {
-            return Backend::Libm(LibmReason::NoFmaAvx2);
+            return Decision::libm(LibmReason::NoFmaAvx2);
         };
         for x in self_check_angles().into_iter().filter(|&x| in_range(x)) {
             // Straight to the inline path: `dispatch` asks for the decision made here.
             let inline = pulp::Simd::vectorize(v3, Wrap(Angle(x)));
             let (s, c) = libm_sin_cos(x);
             if inline.0.to_bits() != s.to_bits() || inline.1.to_bits() != c.to_bits() {
-                return Backend::Libm(LibmReason::SelfCheckFailed { angle: x });
+                return Decision::libm(LibmReason::SelfCheckFailed { angle: x });
             }
         }
-        return Backend::Inline;
+        return Decision {
+            backend: Backend::Inline,
+            token: Some(v3),
+        };
     }
-    Backend::Libm(LibmReason::NotGlibcX86_64)
+    Decision::libm(LibmReason::NotGlibcX86_64)
 }
 
 /// The kernel over slices, then libm for the angles out of its range. The slices are
@@ -524,7 +538,7 @@ impl<W: WithMath> pulp::WithSimd for Wrap<W> {
 #[inline(always)]
 pub fn dispatch<W: WithMath>(work: W) -> W::Output {
     #[cfg(target_arch = "x86_64")]
-    if let Some(v3) = inline_token() {
+    if let Some(v3) = decision().token {
         return pulp::Simd::vectorize(v3, Wrap(work));
     }
     work.run(Portable)
