@@ -46,6 +46,17 @@ impl Divisor {
     #[must_use]
     pub const fn new(b: f64) -> Self {
         let hi = 1.0 / b;
+        let b_exponent = ((b.to_bits() >> 52) & 0x7ff) as i64;
+        if b_exponent == 0 || b_exponent == 0x7ff {
+            // Zero, subnormal, infinite or NaN: never proven (no exponent reaches 0x800).
+            return Self {
+                value: b,
+                hi,
+                lo: 0.0,
+                min_exponent: 0x800,
+                exponent_span: 0,
+            };
+        }
         // 1 − b·hi exactly: `p + e == b·hi` (Dekker's product), and `1 − p` is exact
         // because p is within a rounding of 1 (Sterbenz).
         let (p, e) = two_product(b, hi);
@@ -53,21 +64,12 @@ impl Divisor {
         // For a quotient of biased exponent E, `h = |b|·2^(E − 1076)` (see `proves`).
         // With `|b|` in [2^eb, 2^(eb+1)), `h` is a normal double, far from both ends
         // of the range, for E in [77 − eb, 2075 − eb]; E must also be in [54, 2046].
-        let b_exponent = ((b.to_bits() >> 52) & 0x7ff) as i64;
-        let (min_exponent, max_exponent) = if b_exponent == 0 || b_exponent == 0x7ff {
-            (0x800, 0x800) // zero, subnormal, infinite or NaN: never proven
-        } else {
-            let eb = b_exponent - 1023;
-            (max(77 - eb, 54), min(2075 - eb, 0x7fe))
-        };
+        let eb = b_exponent - 1023;
+        let (min_exponent, max_exponent) = (max(77 - eb, 54), min(2075 - eb, 0x7fe));
         Self {
             value: b,
             hi,
-            lo: if b_exponent == 0 || b_exponent == 0x7ff {
-                0.0
-            } else {
-                rest / b
-            },
+            lo: rest / b,
             min_exponent: min_exponent as u64,
             exponent_span: max_exponent.saturating_sub(min_exponent) as u64,
         }
@@ -84,7 +86,7 @@ impl Divisor {
     #[inline(always)]
     pub fn proven_quotient(self, a: f64) -> Option<f64> {
         let q = a.mul_add(self.hi, a * self.lo);
-        if self.proves(a, q) { Some(q) } else { None }
+        self.proves(a, q).then_some(q)
     }
 
     /// `a / b`, bit for bit: the proven guess, or the hardware division.
