@@ -310,7 +310,7 @@ fn hint_candle_threads() {
 }
 
 /// What [`snapshot`] prints once when candle would use every core.
-pub const CANDLE_THREADS_HINT: &str = "note: RAYON_NUM_THREADS is unset, so candle uses every \
+const CANDLE_THREADS_HINT: &str = "note: RAYON_NUM_THREADS is unset, so candle uses every \
     core, which makes these small networks train about 2x slower. Start Jupyter with \
     `RAYON_NUM_THREADS=1 jupyter lab notebooks/` (the kernel inherits it).";
 

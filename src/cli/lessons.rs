@@ -128,12 +128,9 @@ pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
         None => 0..steps,
     };
     let snapshot = Snapshot::after_training(PpoConfig::default(), args.seed, args.episodes.max(1))?;
+    let mut out = std::io::stdout();
     for step in range {
-        write!(
-            std::io::stdout(),
-            "{}",
-            render_step(&course, index, step, &snapshot)
-        )?;
+        write!(out, "{}", render_step(&course, index, step, &snapshot))?;
     }
     Ok(ExitCode::SUCCESS)
 }

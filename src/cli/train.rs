@@ -134,50 +134,17 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         std::fs::write(path, format!("{value}\n"))
             .with_context(|| format!("writing {}", path.display()))?;
     }
+    let mut out = std::io::stdout();
     if let Some(path) = &args.save {
         agent.save(path).context("saving the agent")?;
-        writeln!(std::io::stdout(), "saved the agent to {}", path.display())?;
+        writeln!(out, "saved the agent to {}", path.display())?;
     }
     if let Some(path) = &args.plot {
         let title = format!("PPO on {}", config.env_id);
         save_return_plot(path, &title, &summary.returns, &smoothed)?;
-        writeln!(
-            std::io::stdout(),
-            "drew the return curve to {}",
-            path.display()
-        )?;
+        writeln!(out, "drew the return curve to {}", path.display())?;
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// Re-runs this `ppo-tutor` process with `RAYON_NUM_THREADS=1` when it is unset.
-///
-/// Without the variable, candle asks the OS for the number of physical cores (by reading
-/// `/proc/cpuinfo`) on every matrix product: ~30 µs each, ~50% of the time of the seed's
-/// default run with 4x128 networks (measured 7.2 s vs 3.4 s for 500 episodes). Setting the
-/// variable in-process needs `unsafe` (`std::env::set_var`, edition 2024), which this crate
-/// forbids; re-running the binary costs a millisecond. A value set by the user is kept.
-/// Returns `None` to go on in this process (variable set, or not the `ppo-tutor` binary,
-/// as when a test calls [`super::run`] in-process).
-pub(super) fn rerun_with_one_candle_thread() -> Option<anyhow::Result<ExitCode>> {
-    if std::env::var_os("RAYON_NUM_THREADS").is_some() {
-        return None;
-    }
-    let exe = std::env::current_exe().ok()?;
-    if exe.file_stem().and_then(|s| s.to_str()) != Some("ppo-tutor") {
-        return None;
-    }
-    let status = std::process::Command::new(&exe)
-        .args(std::env::args_os().skip(1))
-        .env("RAYON_NUM_THREADS", "1")
-        .status();
-    Some(match status {
-        Ok(status) => Ok(status
-            .code()
-            .and_then(|c| u8::try_from(c).ok())
-            .map_or(ExitCode::FAILURE, ExitCode::from)),
-        Err(e) => Err(anyhow::Error::new(e).context(format!("re-running {}", exe.display()))),
-    })
 }
 
 /// The `--flag` spelling of a config field.
