@@ -2,8 +2,11 @@
 //!
 //! A lesson is a folder `lessons/NN-slug/` holding `lesson.md`: TOML front matter
 //! between `+++` lines (id, title, summary, one `[[steps]]` table per step naming the
-//! seed's Python line, the Rust code anchor and the live values it shows, and an
-//! optional `[exercise]`), then a markdown body split into steps by `## ` headings.
+//! seed's Python line, the Rust code anchor and the live values it shows), then a markdown
+//! body split into steps by `## ` headings. A lesson with an exercise also holds its
+//! starter, its reference solution and `exercise.toml`: one `[[exercise]]` per graded
+//! function with the hints the learner reads and the grader's hint for each typical
+//! mistake.
 //! The folders are embedded in the binary, so an installed `ppo-tutor` works anywhere.
 //!
 //! - [`loader`]: parsing and validation ([`Course::embedded`]).
@@ -14,8 +17,6 @@ pub mod anchor;
 pub mod live;
 pub mod loader;
 pub mod progress;
-
-use serde::Deserialize;
 
 pub use live::{Mark, Snapshot, TensorView};
 pub use loader::{Course, LessonError};
@@ -53,18 +54,15 @@ pub struct Step {
     pub body: String,
 }
 
-/// The exercise attached to a lesson.
-#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The exercise attached to a lesson, as the tutor presents it (from `exercise.toml`).
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Exercise {
     /// The function the learner writes (also the name on the command line).
     pub name: String,
     /// Further functions graded in the same lesson, e.g. `td_delta` (in the same starter
     /// file) or `ppo_losses` (on candle tensors, in its own `exercise_candle.rs`).
-    #[serde(default)]
     pub also: Vec<String>,
     /// Hints, from gentle to nearly the answer.
-    #[serde(default)]
     pub hints: Vec<String>,
 }
 

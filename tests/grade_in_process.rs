@@ -6,8 +6,8 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
-use ppo_tutor::grade::ppo_losses::protocol::LossesFn;
-use ppo_tutor::grade::{self, CheckStatus, GradeOptions, Problem, Report, in_process};
+use ppo_tutor::grade::exercises::ppo_losses::{self, protocol::LossesFn};
+use ppo_tutor::grade::{self, CheckStatus, GradeOptions, Problem, Report, exercises, in_process};
 
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/06-episode-loop/solution.rs"]
@@ -216,10 +216,8 @@ fn assert_timed_out(report: &Report, started: std::time::Instant) -> TestResult 
 
 #[test]
 fn a_function_that_never_returns_is_reported_after_the_time_limit() -> TestResult {
-    let spec = grade::spec("critic_loss")?;
     let started = std::time::Instant::now();
-    let report = in_process::grade_with(
-        spec,
+    let report = exercises::critic_loss::EXERCISE.grade_in_place_within(
         Arc::new(|_| {
             loop {
                 std::thread::sleep(Duration::from_millis(50));
@@ -255,7 +253,8 @@ fn compare_candle(file: &Path, f: LossesFn, mistake: Option<&str>) -> TestResult
     let in_place = in_process::ppo_losses(f);
     let took = started.elapsed();
     let source = std::fs::read_to_string(file)?;
-    let from_file = grade::ppo_losses::grade_source(&source, "learner.rs", &candle_opts())?;
+    let from_file =
+        grade::find("ppo_losses")?.grade_source(&source, "learner.rs", &candle_opts())?;
     let name = file.display();
     eprintln!("{name}: graded in place in {:.2} s", took.as_secs_f64());
     assert!(!in_place.passed(), "{name} passed in place");
@@ -316,7 +315,7 @@ fn a_candle_function_that_never_returns_is_reported_after_the_time_limit() -> Te
         }
     }
     let started = std::time::Instant::now();
-    let report = in_process::ppo_losses_with(endless, Duration::from_millis(300));
+    let report = ppo_losses::in_place_within(endless, Duration::from_millis(300));
     assert_timed_out(&report, started)?;
     // The other case lists and the training are not run (the gradients check, over every
     // case, reports the first case's timeout again, as the file grader does).

@@ -11,7 +11,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
 
-use ppo_tutor::grade::{self, CheckStatus, GradeOptions, Problem, Report, catalog};
+use ppo_tutor::grade::prose::Prose;
+use ppo_tutor::grade::{self, Backend, CheckStatus, Exercise, GradeOptions, Problem, Report};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -47,45 +48,47 @@ fn grade_text(
     text: &str,
     limit: Duration,
 ) -> Result<Report, Box<dyn std::error::Error>> {
-    let spec = grade::spec(name)?;
     let options = GradeOptions {
         time_limit: limit,
         ..opts()
     };
-    Ok(grade::grade_source(
-        spec,
-        text,
-        "learner_test.rs",
-        &options,
-    )?)
+    Ok(grade::find(name)?.grade_source(text, "learner_test.rs", &options)?)
+}
+
+/// The plain-Rust exercises of the registry (the candle one has a test of its own).
+fn plain() -> impl Iterator<Item = &'static dyn Exercise> {
+    grade::exercises()
+        .iter()
+        .copied()
+        .filter(|e| e.meta().backend == Backend::Rustc)
 }
 
 #[test]
 fn every_reference_solution_passes() -> TestResult {
-    for spec in catalog::SPECS {
-        let path = Path::new(ROOT).join(format!("lessons/{}/solution.rs", spec.lesson));
-        let report = grade_file(spec.name, &path)?;
+    for exercise in plain() {
+        let path = Path::new(ROOT).join(exercise.solution_path());
+        let report = grade_file(exercise.name(), &path)?;
         assert!(report.passed(), "{}", report.render());
-        assert!(grade::solution(spec.name).is_some());
+        assert!(grade::solution(exercise.name()).is_some());
     }
     Ok(())
 }
 
 #[test]
 fn every_shipped_starter_fails() -> TestResult {
-    for spec in catalog::SPECS {
-        let path = Path::new(ROOT).join(spec.starter_path());
-        let report = grade_file(spec.name, &path)?;
+    for exercise in plain() {
+        let path = Path::new(ROOT).join(exercise.starter_path());
+        let report = grade_file(exercise.name(), &path)?;
         assert!(!report.passed(), "{}", report.render());
         assert_eq!(
             report.summary(),
             "not started (todo!() left)",
             "{}",
-            spec.name
+            exercise.name()
         );
         let text = report.render();
         assert!(text.contains("todo!() is still there"), "{text}");
-        let (rel, embedded) = grade::starter(spec.name).ok_or("no embedded starter")?;
+        let (rel, embedded) = grade::starter(exercise.name()).ok_or("no embedded starter")?;
         assert_eq!(
             std::fs::read_to_string(Path::new(ROOT).join(rel))?,
             embedded
@@ -96,13 +99,13 @@ fn every_shipped_starter_fails() -> TestResult {
 
 /// Grades every wrong answer of `name` and checks each fails, naming its own mistake.
 fn catalogue(name: &str) -> TestResult {
-    let spec = grade::spec(name)?;
+    let ids = grade::find(name)?.mistake_ids();
+    let prose = Prose::of(name)?;
     let dir = Path::new(ROOT).join("tests/wrong_answers").join(name);
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)?
         .map(|e| e.map(|e| e.path()))
         .collect::<Result<_, _>>()?;
     files.sort();
-    let ids: Vec<&str> = spec.mistakes.iter().map(|m| m.id).collect();
     let stems: Vec<String> = files
         .iter()
         .filter_map(|f| Some(f.file_stem()?.to_str()?.to_string()))
@@ -113,103 +116,92 @@ fn catalogue(name: &str) -> TestResult {
         stems, sorted_ids,
         "{name}: one wrong answer file per known mistake"
     );
-    for mistake in spec.mistakes {
-        let report = grade_file(name, &dir.join(format!("{}.rs", mistake.id)))?;
+    for id in ids {
+        let report = grade_file(name, &dir.join(format!("{id}.rs")))?;
         let text = report.render();
-        assert!(!report.passed(), "{name}/{} passed:\n{text}", mistake.id);
+        assert!(!report.passed(), "{name}/{id} passed:\n{text}");
         assert_eq!(
             report.mistake.as_deref(),
-            Some(mistake.id),
-            "{name}/{}: wrong diagnosis\n{text}",
-            mistake.id
+            Some(id),
+            "{name}/{id}: wrong diagnosis\n{text}"
         );
-        let title = mistake.hint.split(':').next().unwrap_or(mistake.hint);
-        assert!(
-            text.contains(title),
-            "{name}/{}: hint missing\n{text}",
-            mistake.id
-        );
+        let hint = prose.mistake(id);
+        assert!(text.contains(hint), "{name}/{id}: hint missing\n{text}");
     }
     Ok(())
 }
 
+/// Every plain exercise of the registry, its wrong answers graded on two threads (CI has
+/// two cores: each rustc build overlaps the other thread's runs).
 #[test]
-fn wrong_sample_action() -> TestResult {
-    catalogue("sample_action")
-}
-#[test]
-fn wrong_td_target() -> TestResult {
-    catalogue("td_target")
-}
-#[test]
-fn wrong_td_delta() -> TestResult {
-    catalogue("td_delta")
-}
-#[test]
-fn wrong_compute_advantage() -> TestResult {
-    catalogue("compute_advantage")
-}
-#[test]
-fn wrong_log_prob_of_actions() -> TestResult {
-    catalogue("log_prob_of_actions")
-}
-#[test]
-fn wrong_ratio() -> TestResult {
-    catalogue("ratio")
-}
-#[test]
-fn wrong_actor_loss() -> TestResult {
-    catalogue("actor_loss")
-}
-#[test]
-fn wrong_critic_loss() -> TestResult {
-    catalogue("critic_loss")
-}
-#[test]
-fn wrong_moving_average() -> TestResult {
-    catalogue("moving_average")
-}
-
-#[test]
-fn every_mistake_differs_from_the_reference_somewhere() {
-    for spec in catalog::SPECS {
-        let checks = (spec.checks)();
-        for m in spec.mistakes {
-            let differs = checks.iter().flat_map(|c| &c.cases).any(|case| {
-                !(m.answer)(grade::Args(case))
-                    .matches(&(spec.reference)(grade::Args(case)), spec.tolerance)
-            });
-            assert!(differs, "{}/{} is never caught", spec.name, m.id);
-        }
-    }
-}
-
-#[test]
-fn references_agree_with_the_library_and_numpy() {
-    use ppo_tutor::grade::value::Output;
-    let ma = grade::spec("moving_average")
-        .map(|s| (s.checks)())
-        .unwrap_or_default();
-    let numpy = &ma[1];
-    assert_eq!(numpy.cases.len(), 5, "the numpy fixture is embedded");
-    for (case, want) in numpy.cases.iter().zip(grade::cases::numpy_outputs()) {
-        let got =
-            (catalog::find("moving_average").map(|s| s.reference)).map(|f| f(grade::Args(case)));
-        assert_eq!(got, Some(Output::F64s(want)));
-    }
-    let batches = grade::cases::fixture_batches();
-    assert_eq!(batches.len(), 3, "the PyTorch fixture replays");
-    for b in batches {
-        let ours = ppo_tutor::ppo::compute_advantage(b.config.gamma, b.config.lmbda, &b.td_delta);
-        let reference = ppo_tutor::grade::solutions::gae::compute_advantage(
-            b.config.gamma as f32,
-            b.config.lmbda as f32,
-            &b.td_delta,
+fn every_catalogued_wrong_answer_fails_naming_its_mistake() {
+    let names: Vec<&str> = plain().map(|e| e.name()).collect();
+    let (first, second) = names.split_at(names.len() / 2);
+    let run = |names: &[&str]| -> Vec<String> {
+        names
+            .iter()
+            .filter_map(|n| catalogue(n).err().map(|e| e.to_string()))
+            .collect()
+    };
+    let failures: Vec<String> = std::thread::scope(|s| {
+        let other = s.spawn(|| run(second));
+        let mut failures = run(first);
+        failures.extend(
+            other
+                .join()
+                .unwrap_or_else(|_| vec!["a grading thread panicked".into()]),
         );
-        for (x, y) in ours.iter().zip(&reference) {
-            assert!((x - y).abs() <= 1e-5 + 1e-5 * x.abs(), "{x} vs {y}");
-        }
+        failures
+    });
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+/// The registry, the catalogues in `src/grade/exercises/` and the prose in
+/// `lessons/*/exercise.toml` agree: each exercise's mistake ids are the same on both sides,
+/// every `[[exercise]]` is a registered exercise of that lesson, and the registry is in
+/// course order.
+#[test]
+fn prose_and_catalogues_name_the_same_mistakes() -> TestResult {
+    for exercise in grade::exercises() {
+        let name = exercise.name();
+        let prose = Prose::of(name)?;
+        assert_eq!(prose.lesson, exercise.meta().lesson, "{name}");
+        let mut code = exercise.mistake_ids();
+        code.sort_unstable();
+        let text: Vec<&str> = prose.text.mistakes.keys().map(String::as_str).collect();
+        assert_eq!(
+            code, text,
+            "{name}: the mistake ids of src/grade/exercises/{name}.rs and of \
+             lessons/{}/exercise.toml differ",
+            prose.lesson
+        );
     }
+    let prose = Prose::all()?;
+    assert_eq!(
+        prose.len(),
+        grade::exercises().len(),
+        "an [[exercise]] in lessons/*/exercise.toml is not in the registry: {:?}",
+        prose.keys().collect::<Vec<_>>()
+    );
+    let lessons: Vec<&str> = grade::exercises().iter().map(|e| e.meta().lesson).collect();
+    assert!(
+        lessons.is_sorted(),
+        "the registry is not in course order: {lessons:?}"
+    );
+    Ok(())
+}
+
+#[test]
+fn every_mistake_differs_from_the_reference_somewhere() -> TestResult {
+    for exercise in grade::exercises() {
+        let uncaught = exercise.uncaught_mistakes()?;
+        assert!(
+            uncaught.is_empty(),
+            "{}: {uncaught:?} never caught",
+            exercise.name()
+        );
+    }
+    Ok(())
 }
 
 #[test]
@@ -374,9 +366,8 @@ fn lessons_name_exactly_the_graded_exercises() -> TestResult {
             continue;
         };
         for name in exercise.names() {
-            let files = grade::files(name)?;
             assert_eq!(
-                files.lesson,
+                grade::find(name)?.meta().lesson,
                 format!("{:02}-{}", lesson.order, lesson.id),
                 "{name}"
             );
@@ -391,7 +382,7 @@ fn lessons_name_exactly_the_graded_exercises() -> TestResult {
     all.sort();
     assert_eq!(
         named, all,
-        "every exercise appears in its lesson's front matter"
+        "every exercise appears in its lesson's exercise.toml"
     );
     Ok(())
 }
@@ -473,11 +464,7 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
 }
 
 fn grade_candle(text: &str, limit: Duration) -> Result<Report, Box<dyn std::error::Error>> {
-    Ok(grade::ppo_losses::grade_source(
-        text,
-        "learner_candle.rs",
-        &candle_opts(limit),
-    )?)
+    Ok(grade::find("ppo_losses")?.grade_source(text, "learner_candle.rs", &candle_opts(limit))?)
 }
 
 /// The candle exercise, in one test so that its grading project is built once: the
@@ -486,7 +473,10 @@ fn grade_candle(text: &str, limit: Duration) -> Result<Report, Box<dyn std::erro
 /// non-scalar losses, panics and endless loops are reported.
 #[test]
 fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> TestResult {
-    use grade::ppo_losses::{self, mistakes::MISTAKES};
+    use grade::exercises::ppo_losses;
+    let exercise = grade::find("ppo_losses")?;
+    let prose = Prose::of("ppo_losses")?;
+    let ids = exercise.mistake_ids();
     let ten = Duration::from_secs(10);
     let lesson = Path::new(ROOT).join("lessons/11-losses");
 
@@ -527,16 +517,16 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
         })
         .collect::<Result<_, std::io::Error>>()?;
     stems.sort();
-    let mut ids: Vec<&str> = MISTAKES.iter().map(|m| m.id).collect();
-    ids.sort_unstable();
-    assert_eq!(stems, ids, "one wrong answer file per known mistake");
+    let mut sorted = ids.clone();
+    sorted.sort_unstable();
+    assert_eq!(stems, sorted, "one wrong answer file per known mistake");
     // Two at a time (CI has 2 cores): the builds queue on cargo's lock, the runs overlap.
-    let check = |mistake: &grade::ppo_losses::mistakes::Mistake| -> Result<(), String> {
-        let text = std::fs::read_to_string(dir.join(format!("{}.rs", mistake.id)))
-            .map_err(|e| e.to_string())?;
+    let check = |id: &&str| -> Result<(), String> {
+        let id = *id;
+        let text =
+            std::fs::read_to_string(dir.join(format!("{id}.rs"))).map_err(|e| e.to_string())?;
         let report = grade_candle(&text, ten).map_err(|e| e.to_string())?;
         let text = report.render();
-        let id = mistake.id;
         if report.passed() {
             return Err(format!("ppo_losses/{id} passed:\n{text}"));
         }
@@ -546,8 +536,7 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
                 report.mistake
             ));
         }
-        let title = mistake.hint.split(':').next().unwrap_or(mistake.hint);
-        if !text.contains(title) {
+        if !text.contains(prose.mistake(id)) {
             return Err(format!("ppo_losses/{id}: hint missing\n{text}"));
         }
         // A loss pushing the wrong way does not learn: the training check says so.
@@ -562,7 +551,7 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
         }
         Ok(())
     };
-    let (first, second) = MISTAKES.split_at(MISTAKES.len() / 2);
+    let (first, second) = ids.split_at(ids.len() / 2);
     let failures: Vec<String> = std::thread::scope(|s| {
         let other = s.spawn(|| {
             second
@@ -591,7 +580,7 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
     let report = grade_candle("pub fn ppo_losses(eps: f32) -> f32 { eps }\n", ten)?;
     let (summary, _) = report.compile_error.ok_or("compiled")?;
     assert!(
-        summary.contains("signature") && summary.contains(ppo_losses::SIGNATURE),
+        summary.contains("signature") && summary.contains(&exercise.signature()),
         "{summary}"
     );
 

@@ -102,6 +102,45 @@ fn a_broken_lesson_is_reported_with_its_folder_and_step() {
     assert!(err.contains("heading"), "{err}");
 }
 
+#[test]
+fn a_broken_exercise_file_is_reported_with_its_folder_and_key() {
+    use ppo_tutor::lesson::loader::parse_exercises;
+    let typo = "[[exercise]]\nname = \"f\"\nfallbak = \"a typo\"\n";
+    let err = parse_exercises("07-x", typo)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        err.contains("lessons/07-x/exercise.toml") && err.contains("fallbak"),
+        "{err}"
+    );
+    let good = "[[exercise]]\nname = \"f\"\nfallback = \"look again\"\n\n[exercise.mistakes]\nsign = \"The sign: ...\"\n";
+    let texts = parse_exercises("07-x", good).unwrap_or_default();
+    assert_eq!(texts.len(), 1);
+    assert_eq!(
+        texts[0].mistakes.get("sign").map(String::as_str),
+        Some("The sign: ...")
+    );
+}
+
+/// The lessons' exercises come from their `exercise.toml`: names in the lesson's order and
+/// the hints of every function, one after another.
+#[test]
+fn a_lesson_s_exercise_comes_from_its_exercise_file() -> Result<(), Box<dyn std::error::Error>> {
+    let course = Course::embedded()?;
+    let lesson = course.get("losses").ok_or("no losses lesson")?;
+    let exercise = lesson.exercise.as_ref().ok_or("no exercise")?;
+    assert_eq!(exercise.names(), ["critic_loss", "ppo_losses"]);
+    let files = ppo_tutor::lesson::loader::embedded_exercises()?;
+    let (_, texts) = files
+        .iter()
+        .find(|(dir, _)| dir == "11-losses")
+        .ok_or("no 11-losses/exercise.toml")?;
+    let hints: Vec<&String> = texts.iter().flat_map(|t| &t.hints).collect();
+    assert_eq!(exercise.hints.iter().collect::<Vec<_>>(), hints);
+    Ok(())
+}
+
 fn run(args: &[&str]) -> std::io::Result<std::process::Output> {
     Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
         .args(args)

@@ -284,9 +284,9 @@ fn exercise_cells(lesson: &Lesson) -> Result<Vec<Cell>> {
             "### The same on candle tensors: `{CANDLE}`\n\nBoth losses of one epoch, as the \
              agent computes them. Its grader also compares the gradients your losses send \
              back, then trains CartPole with them ({} episodes, a few seconds).\n",
-            ppo_tutor::grade::ppo_losses::TRAIN_EPISODES
+            ppo_tutor::grade::exercises::ppo_losses::TRAIN_EPISODES
         )));
-        let candle = lesson_file(&folder, ppo_tutor::grade::ppo_losses::STARTER)?;
+        let candle = lesson_file(&folder, ppo_tutor::grade::find(CANDLE)?.meta().starter)?;
         cells.push(Cell::Code(candle_cell(&candle)));
         cells.push(Cell::Code(format!(
             "ppo_tutor::grade::in_process::{CANDLE}({CANDLE})"
@@ -823,7 +823,7 @@ fn check_solutions(kernel: &mut Kernel, lesson: &Lesson, folder: &str) -> Result
         .run(&without_header(&solution))
         .with_context(|| format!("{folder}: the reference solution in the notebook"))?;
     if ex.names().contains(&CANDLE) {
-        let candle = lesson_file(folder, ppo_tutor::grade::ppo_losses::SOLUTION)?;
+        let candle = lesson_file(folder, ppo_tutor::grade::find(CANDLE)?.meta().solution)?;
         kernel
             .run(&candle_cell(&candle))
             .with_context(|| format!("{folder}: the candle reference solution in the notebook"))?;

@@ -68,12 +68,12 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     if report.passed() {
         record_pass(&report);
         if args.file.is_none()
-            && let Ok(files) = grade::files(name)
+            && let Ok(exercise) = grade::find(name)
         {
             writeln!(
                 std::io::stdout(),
                 "  The reference solution: {}",
-                files.solution_path()
+                exercise.solution_path()
             )?;
         }
         Ok(ExitCode::SUCCESS)
@@ -82,16 +82,13 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     }
 }
 
-/// Says so before a grading that first compiles candle (minutes, with no other output).
+/// Says so before a grading whose first build is slow (minutes, with no other output).
 fn note_first_build(name: &str, opts: &GradeOptions) {
-    if name == grade::ppo_losses::NAME
-        && grade::ppo_losses::project::first_build_pending(&opts.cache_dir)
+    if let Some(note) = grade::find(name)
+        .ok()
+        .and_then(|e| e.first_build_note(&opts.cache_dir))
     {
-        eprintln!(
-            "Compiling candle for the candle exercise's grader in {} (the first time only: \
-             a few minutes)…",
-            grade::ppo_losses::project::project_dir(&opts.cache_dir).display()
-        );
+        eprintln!("{note}");
     }
 }
 
@@ -99,9 +96,9 @@ fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout();
     writeln!(out, "{:<22} {:<38} result", "exercise", "file")?;
     let mut passed = 0;
-    let names = grade::exercise_names();
-    for name in &names {
-        let path = grade::files(name)?.starter_path();
+    let exercises = grade::exercises();
+    for exercise in exercises {
+        let (name, path) = (exercise.name(), exercise.starter_path());
         note_first_build(name, opts);
         let result = match grade::grade(name, None, opts) {
             Ok(report) => {
@@ -119,9 +116,9 @@ fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
         };
         writeln!(out, "{name:<22} {path:<38} {result}")?;
     }
-    writeln!(out, "score: {passed}/{} exercises pass", names.len())?;
+    writeln!(out, "score: {passed}/{} exercises pass", exercises.len())?;
     writeln!(out, "details: ppo-tutor grade <exercise>")?;
-    Ok(if passed == names.len() {
+    Ok(if passed == exercises.len() {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE

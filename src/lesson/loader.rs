@@ -1,5 +1,7 @@
 //! Parsing and validating `lessons/`: front matter, steps, and their references.
 
+use std::collections::BTreeMap;
+
 use include_dir::{Dir, include_dir};
 use serde::Deserialize;
 
@@ -59,6 +61,14 @@ pub enum LessonError {
         /// The name used.
         name: String,
     },
+    /// `exercise.toml` is not valid.
+    #[error("lessons/{dir}/exercise.toml: {reason}")]
+    ExerciseFile {
+        /// The folder.
+        dir: String,
+        /// What is wrong, from the TOML parser.
+        reason: String,
+    },
     /// Two lessons share an id, or an id does not match its folder.
     #[error("lessons/{dir}: {reason}")]
     BadId {
@@ -78,7 +88,75 @@ struct FrontMatter {
     summary: String,
     #[serde(default)]
     steps: Vec<StepMeta>,
-    exercise: Option<Exercise>,
+}
+
+/// What the learner reads of one exercise, as written in `lessons/NN-slug/exercise.toml`
+/// (one `[[exercise]]` table per graded function, in the order the lesson presents them).
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExerciseText {
+    /// The function's name.
+    pub name: String,
+    /// Hints revealed one by one (`h` in the tutor), from gentle to nearly the answer.
+    #[serde(default)]
+    pub hints: Vec<String>,
+    /// The grader's hint when no known mistake explains a wrong answer.
+    pub fallback: String,
+    /// The grader's hint for each typical mistake, by the mistake's id.
+    #[serde(default)]
+    pub mistakes: BTreeMap<String, String>,
+    /// Further hints the exercise's grader gives in situations of its own, by key.
+    #[serde(default)]
+    pub other: BTreeMap<String, String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ExerciseFile {
+    exercise: Vec<ExerciseText>,
+}
+
+/// Parses the `exercise.toml` of lesson folder `dir`.
+///
+/// # Errors
+/// [`LessonError::ExerciseFile`] with the TOML parser's message.
+pub fn parse_exercises(dir: &str, text: &str) -> Result<Vec<ExerciseText>, LessonError> {
+    toml::from_str::<ExerciseFile>(text)
+        .map(|f| f.exercise)
+        .map_err(|e| LessonError::ExerciseFile {
+            dir: dir.into(),
+            reason: e.message().to_string(),
+        })
+}
+
+/// Every embedded `exercise.toml`, as `(lesson folder, exercises)` in course order.
+///
+/// # Errors
+/// The first file that fails to parse.
+pub fn embedded_exercises() -> Result<Vec<(String, Vec<ExerciseText>)>, LessonError> {
+    let mut out: Vec<(String, Vec<ExerciseText>)> = Vec::new();
+    for d in LESSONS.dirs() {
+        let name = d.path().file_name().and_then(|n| n.to_str()).unwrap_or("");
+        let file = d
+            .get_file(d.path().join("exercise.toml"))
+            .and_then(|f| f.contents_utf8());
+        if let Some(text) = file {
+            out.push((name.to_string(), parse_exercises(name, text)?));
+        }
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    Ok(out)
+}
+
+/// The lesson's exercise as the tutor presents it: every function of `texts` in order,
+/// their hints one after another.
+fn lesson_exercise(texts: &[ExerciseText]) -> Option<Exercise> {
+    let (first, rest) = texts.split_first()?;
+    Some(Exercise {
+        name: first.name.clone(),
+        also: rest.iter().map(|t| t.name.clone()).collect(),
+        hints: texts.iter().flat_map(|t| t.hints.iter().cloned()).collect(),
+    })
 }
 
 #[derive(Debug, Deserialize)]
@@ -124,6 +202,15 @@ impl Course {
                 parse_lesson(dir, text)
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let mut lessons = lessons;
+        for (dir, texts) in embedded_exercises()? {
+            if let Some(lesson) = lessons
+                .iter_mut()
+                .find(|l| format!("{:02}-{}", l.order, l.id) == dir)
+            {
+                lesson.exercise = lesson_exercise(&texts);
+            }
+        }
         let course = Self { lessons };
         course.check_ids()?;
         Ok(course)
@@ -235,7 +322,7 @@ pub fn parse_lesson(dir: &str, text: &str) -> Result<Lesson, LessonError> {
         summary: meta.summary,
         order,
         steps,
-        exercise: meta.exercise,
+        exercise: None,
     })
 }
 

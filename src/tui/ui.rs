@@ -434,9 +434,11 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
     }
     if app.exercise.grading {
         lines.push(Line::raw(""));
-        let candle = names.iter().any(|n| n == crate::grade::ppo_losses::NAME);
+        let slow = names.iter().any(|n| {
+            crate::grade::find(n).is_ok_and(|e| e.meta().backend == crate::grade::Backend::Cargo)
+        });
         lines.push(Line::styled(
-            if candle {
+            if slow {
                 " grading… (the first time compiles, a few seconds; for the candle exercise, \
                  a few minutes)"
             } else {

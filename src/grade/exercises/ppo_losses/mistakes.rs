@@ -1,5 +1,5 @@
-//! Typical wrong answers to `ppo_losses`, each a complete losses function with the hint
-//! that names it. A mistake concerns one of the two losses (its [`Part`]) and computes the
+//! Typical wrong answers to `ppo_losses`, each a complete losses function (the hints that
+//! name them are in `lessons/11-losses/exercise.toml`). A mistake concerns one of the two losses (its [`Part`]) and computes the
 //! other one right, so the grader can name a mistake in each loss separately.
 
 use candle_core::{Result, Tensor};
@@ -17,15 +17,27 @@ pub enum Part {
     Critic,
 }
 
-/// A typical wrong answer and the hint that names it.
+impl Part {
+    /// Both, in the judge's order.
+    pub const BOTH: [Self; 2] = [Self::Actor, Self::Critic];
+
+    /// The judge's index of the part.
+    #[must_use]
+    pub const fn index(self) -> usize {
+        match self {
+            Self::Actor => 0,
+            Self::Critic => 1,
+        }
+    }
+}
+
+/// A typical wrong answer.
 #[derive(Debug, Clone, Copy)]
 pub struct Mistake {
     /// A stable id (the file stem of its wrong answer in `tests/wrong_answers/ppo_losses/`).
     pub id: &'static str,
     /// The loss it gets wrong.
     pub part: Part,
-    /// The hint, starting with the mistake's name.
-    pub hint: &'static str,
     /// The wrong function.
     pub answer: LossesFn,
 }
@@ -76,9 +88,6 @@ pub const MISTAKES: &[Mistake] = &[
     Mistake {
         id: "no_minus_sign",
         part: Part::Actor,
-        hint: "The actor loss without its minus sign: PPO maximises mean(min(surr1, surr2)) \
-               and the optimizer minimises, so the loss is mean(-min(surr1, surr2)); without \
-               the minus, training makes good actions less likely.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
             let surr1 = (&r * adv)?;
             let surr2 = (r.clamp(1.0 - eps, 1.0 + eps)? * adv)?;
@@ -88,9 +97,6 @@ pub const MISTAKES: &[Mistake] = &[
     Mistake {
         id: "max_instead_of_min",
         part: Part::Actor,
-        hint: "max instead of min: the clipped surrogate is the pessimistic one, \
-               min(surr1, surr2) (minimum), so a ratio that ran past the band in the \
-               advantage's favour gets no further reward.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
             let surr1 = (&r * adv)?;
             let surr2 = (r.clamp(1.0 - eps, 1.0 + eps)? * adv)?;
@@ -100,8 +106,6 @@ pub const MISTAKES: &[Mistake] = &[
     Mistake {
         id: "clamp_on_advantage",
         part: Part::Actor,
-        hint: "The clamp is applied to the advantage instead of the ratio: surr2 = \
-               clamp(ratio, 1 - eps, 1 + eps) * advantage.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
             let surr1 = (&r * adv)?;
             let surr2 = (&r * adv.clamp(1.0 - eps, 1.0 + eps)?)?;
@@ -111,15 +115,11 @@ pub const MISTAKES: &[Mistake] = &[
     Mistake {
         id: "unclipped",
         part: Part::Actor,
-        hint: "No clipping: the loss uses surr1 = ratio * advantage alone; PPO takes \
-               min(surr1, surr2) with surr2 = clamp(ratio, 1 - eps, 1 + eps) * advantage.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| (&r * adv)?.neg()?.mean_all()?),
     },
     Mistake {
         id: "ratio_without_exp",
         part: Part::Actor,
-        hint: "The ratio without exp: log_probs - old_log_probs is the log of the ratio; \
-               ratio = exp(log_probs - old_log_probs), which is π/π_old.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
             let ratio = (log_probs(p, a)? - o)?;
             clipped_loss(&ratio, adv, eps)?
@@ -128,8 +128,6 @@ pub const MISTAKES: &[Mistake] = &[
     Mistake {
         id: "ratio_inverted",
         part: Part::Actor,
-        hint: "The ratio is inverted: exp(old_log_probs - log_probs) is π_old/π; the ratio \
-               is exp(log_probs - old_log_probs), the new policy over the old one.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
             let ratio = (o - log_probs(p, a)?)?.exp()?;
             clipped_loss(&ratio, adv, eps)?
@@ -138,8 +136,6 @@ pub const MISTAKES: &[Mistake] = &[
     Mistake {
         id: "no_log",
         part: Part::Actor,
-        hint: "The log is missing: gather picks the action's probability, and \
-               log_probs = log(gather(probs)); old_log_probs is a log too.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
             let ratio = (p.gather(a, 1)? - o)?.exp()?;
             clipped_loss(&ratio, adv, eps)?
@@ -148,8 +144,6 @@ pub const MISTAKES: &[Mistake] = &[
     Mistake {
         id: "actor_sum",
         part: Part::Actor,
-        hint: "sum instead of mean in the actor loss: the seed averages over the steps \
-               (torch.mean), so the step size does not grow with the episode's length.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
             let surr1 = (&r * adv)?;
             let surr2 = (r.clamp(1.0 - eps, 1.0 + eps)? * adv)?;
@@ -159,38 +153,26 @@ pub const MISTAKES: &[Mistake] = &[
     Mistake {
         id: "ratio_detached",
         part: Part::Actor,
-        hint: "No gradient reaches the actor: the loss has the right value, but the ratio \
-               was cut from the graph (detach, or numbers taken out with to_vec and put \
-               back); compute it from probs with tensor operations all the way.",
         answer: actor_mistake!(|r, p, a, o, adv, eps| clipped_loss(&r.detach(), adv, eps)?),
     },
     Mistake {
         id: "target_not_detached",
         part: Part::Critic,
-        hint: "td_target is not detached: the loss has the right value, but its gradient \
-               also moves V(s_{t+1}) inside the target towards V(s_t); use \
-               td_target.detach(), as the seed does.",
         answer: critic_mistake!(|v, td| (v - td)?.sqr()?.mean_all()?),
     },
     Mistake {
         id: "critic_rms",
         part: Part::Critic,
-        hint: "A root-mean-square critic loss: F.mse_loss is the mean of the squared \
-               errors, with no square root.",
         answer: critic_mistake!(|v, td| (v - td.detach())?.sqr()?.mean_all()?.sqrt()?),
     },
     Mistake {
         id: "critic_sum",
         part: Part::Critic,
-        hint: "sum instead of mean in the critic loss: F.mse_loss averages the squared \
-               errors over the steps.",
         answer: critic_mistake!(|v, td| (v - td.detach())?.sqr()?.sum_all()?),
     },
     Mistake {
         id: "critic_half",
         part: Part::Critic,
-        hint: "Half the mean squared error (CleanRL's 0.5 * v_loss): the seed's F.mse_loss \
-               has no 1/2, and the critic's steps would be half the size.",
         answer: critic_mistake!(|v, td| ((v - td.detach())?.sqr()?.mean_all()? * 0.5)?),
     },
 ];

@@ -155,7 +155,7 @@ pub fn all() -> Result<Cases, PpoError> {
 pub fn fixture() -> Result<Vec<Case>, PpoError> {
     let file = "ppo_update_pytorch.json";
     let mut out = Vec::new();
-    for rc in parse_replay(crate::grade::cases::PPO_FIXTURE, file)? {
+    for rc in parse_replay(crate::grade::fixture::PPO_FIXTURE, file)? {
         let mut agent = Agent::from_weights(&rc.config, &rc.weights_before, 0, file)?;
         let trace = agent.update(&rc.batch)?;
         for k in FIXTURE_EPOCHS {

@@ -1,0 +1,143 @@
+//! Building the learner's file into a program, with one content-hashed cache.
+//!
+//! The learner's file is declared as a module `learner` of a small generated program
+//! ([`Source`]: a `main.rs` that takes the exercise's function through a pointer of its
+//! exact type, plus any support files) and built by its exercise's [`Backend`]:
+//!
+//! - [`Backend::Rustc`]: plain Rust, `rustc -O` into `<cache>/<name>-<key>/`;
+//! - [`Backend::Cargo`]: code that uses candle, one binary target `l<key>` of a cargo
+//!   project `<cache>/<name>/` ([`cargo`]).
+//!
+//! Both name a build by [`key`], a hash of every source that goes into it, so grading an
+//! unchanged file again skips the build, and distinct files never overwrite each other.
+
+pub mod cargo;
+mod rustc;
+
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+
+use super::error::GradeError;
+
+/// How an exercise's program is built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Backend {
+    /// Plain Rust: `rustc` alone, a second or two.
+    Rustc,
+    /// Rust against candle: a cargo project in the cache; the first build compiles candle
+    /// (minutes), later ones seconds.
+    Cargo,
+}
+
+/// The program around the learner's file (which becomes `learner.rs`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Source {
+    /// `main.rs`: declares `mod learner;` and serves the function on stdin/stdout.
+    pub main: String,
+    /// Further files beside it, `(file name, text)`.
+    pub files: Vec<(&'static str, &'static str)>,
+}
+
+/// The outcome of building a learner's program.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Build {
+    /// The program.
+    Ready(Program),
+    /// The learner's file does not compile: a one-line summary and the compiler's errors
+    /// (paths are the learner's).
+    Failed {
+        /// What went wrong, in one sentence.
+        summary: String,
+        /// The compiler's output.
+        compiler: String,
+    },
+}
+
+/// A built learner program and the path its messages use for the learner's file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Program {
+    /// The executable.
+    pub binary: PathBuf,
+    /// The learner's file as the compiler names it (`learner.rs`, or
+    /// `src/bin/l<key>/learner.rs` in the cargo project).
+    pub learner_path: String,
+}
+
+impl Program {
+    /// `text` with the program's name for the learner's file replaced by `display`.
+    #[must_use]
+    pub fn rename(&self, text: &str, display: &str) -> String {
+        text.replace(&format!("{}:", self.learner_path), &format!("{display}:"))
+    }
+}
+
+/// The cache key of a build from `parts` (and this version of ppo-tutor).
+#[must_use]
+pub fn key(parts: &[&str]) -> String {
+    let mut h = std::hash::DefaultHasher::new();
+    env!("CARGO_PKG_VERSION").hash(&mut h);
+    for p in parts {
+        p.hash(&mut h);
+    }
+    format!("{:016x}", h.finish())
+}
+
+/// Builds (or finds in `cache`) exercise `name`'s program `source` around `learner`, the learner's text
+/// (`display` is its path in messages); `signature` is what a mismatch message asks for.
+///
+/// # Errors
+/// [`GradeError::Cache`] if the cache cannot be written; [`GradeError::NoRustc`] or
+/// [`GradeError::NoCargo`] if the compiler cannot be started; [`GradeError::Cargo`] if
+/// cargo fails for a reason other than the learner's code.
+pub fn build(
+    name: &str,
+    backend: Backend,
+    source: &Source,
+    signature: &str,
+    learner: &str,
+    display: &str,
+    cache: &Path,
+) -> Result<Build, GradeError> {
+    let failed = |stderr: &str, main: &str, program: &Program, compiler: &str| Build::Failed {
+        summary: summarize(name, signature, stderr, main, display, compiler),
+        compiler: program.rename(stderr, display),
+    };
+    match backend {
+        Backend::Rustc => rustc::build(name, source, learner, cache, failed),
+        Backend::Cargo => cargo::build(name, source, learner, cache, failed),
+    }
+}
+
+/// A sentence before a build that is slow the first time, `None` when it is quick.
+#[must_use]
+pub fn first_build_note(name: &str, backend: Backend, cache: &Path) -> Option<String> {
+    (backend == Backend::Cargo && cargo::first_build_pending(name, cache)).then(|| {
+        format!(
+            "Compiling candle for the candle exercise's grader in {} (the first time only: \
+             a few minutes)…",
+            cargo::project_dir(name, cache).display()
+        )
+    })
+}
+
+/// One sentence for a failed build: the learner's own errors, or a missing, private or
+/// mistyped function (errors in `main`, where the function is taken).
+fn summarize(
+    name: &str,
+    signature: &str,
+    stderr: &str,
+    main: &str,
+    display: &str,
+    compiler: &str,
+) -> String {
+    if !stderr.contains(&format!("--> {main}")) {
+        return format!("{display} does not compile ({compiler} errors below)");
+    }
+    if stderr.contains("E0425") || stderr.contains(&format!("cannot find function `{name}`")) {
+        format!("{display} has no function `{name}`: write `{signature}`")
+    } else if stderr.contains("E0603") {
+        format!("`{name}` in {display} is private: declare it `{signature}`")
+    } else {
+        format!("`{name}` in {display} does not have the exercise's signature: `{signature}`")
+    }
+}

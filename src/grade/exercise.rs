@@ -1,0 +1,132 @@
+//! One exercise, as every face sees it: its files, its signature, and grading.
+//!
+//! The faces (the terminal app, `ppo-tutor grade`/`reset`, the notebooks, the tests) only
+//! ever hold a `&dyn Exercise` from the registry ([`super::exercises::ALL`]); none of them
+//! names a particular exercise. Every [`Spec`] is an `Exercise` through the one grading
+//! pipeline in [`super::pipeline`].
+
+use std::path::{Path, PathBuf};
+
+use super::build;
+use super::error::{GradeError, GradeOptions};
+use super::pipeline;
+use super::report::Report;
+pub use super::spec::Meta;
+use super::spec::Spec;
+
+/// An exercise of the course: what the faces can ask of it.
+pub trait Exercise: Sync {
+    /// Its name, lesson, files and backend.
+    fn meta(&self) -> Meta;
+
+    /// `pub fn name(a: T, ...) -> R`, as the learner must declare it.
+    fn signature(&self) -> String;
+
+    /// Grades `source` (the text of a learner's file, shown as `display`).
+    ///
+    /// # Errors
+    /// A [`GradeError`] when grading cannot happen (no compiler, unwritable cache); a file
+    /// that does not compile, panics or loops is a failing [`Report`].
+    fn grade_source(
+        &self,
+        source: &str,
+        display: &str,
+        opts: &GradeOptions,
+    ) -> Result<Report, GradeError>;
+
+    /// The ids of its typical mistakes, in the order the judge tries them (each has a
+    /// hint in the lesson's `exercise.toml` and a wrong answer in `tests/wrong_answers/`).
+    fn mistake_ids(&self) -> Vec<&'static str>;
+
+    /// The typical mistakes that no case tells apart from the reference (a catalogue
+    /// check: it must be empty).
+    ///
+    /// # Errors
+    /// [`GradeError::Fixture`] if the cases cannot be made.
+    fn uncaught_mistakes(&self) -> Result<Vec<&'static str>, GradeError>;
+
+    /// The function's name.
+    fn name(&self) -> &'static str {
+        self.meta().name
+    }
+
+    /// The starter's path relative to the course root: `lessons/<lesson>/<starter>`.
+    fn starter_path(&self) -> String {
+        let m = self.meta();
+        format!("lessons/{}/{}", m.lesson, m.starter)
+    }
+
+    /// The reference solution's path relative to the course root.
+    fn solution_path(&self) -> String {
+        let m = self.meta();
+        format!("lessons/{}/{}", m.lesson, m.solution)
+    }
+
+    /// The embedded starter's text.
+    fn starter(&self) -> Option<&'static str> {
+        let m = self.meta();
+        crate::lesson::loader::embedded_file(&format!("{}/{}", m.lesson, m.starter))
+    }
+
+    /// The embedded reference solution (shown after a pass).
+    fn solution(&self) -> Option<&'static str> {
+        let m = self.meta();
+        crate::lesson::loader::embedded_file(&format!("{}/{}", m.lesson, m.solution))
+    }
+
+    /// A sentence to print before a grading whose build is slow the first time (the candle
+    /// backend compiles candle once), `None` when the next build is quick.
+    fn first_build_note(&self, cache: &Path) -> Option<String> {
+        let m = self.meta();
+        build::first_build_note(m.name, m.backend, cache)
+    }
+
+    /// Writes the starter back to `root/<starter path>`; returns the path.
+    ///
+    /// # Errors
+    /// [`GradeError::Write`] if the file cannot be written.
+    fn reset(&self, root: &Path) -> Result<PathBuf, GradeError> {
+        let rel = self.starter_path();
+        let text = self.starter().ok_or_else(|| GradeError::Write {
+            file: PathBuf::from(&rel),
+            reason: "no starter is embedded for this exercise".into(),
+        })?;
+        let path = root.join(rel);
+        let write_err = |e: std::io::Error| GradeError::Write {
+            file: path.clone(),
+            reason: e.to_string(),
+        };
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(write_err)?;
+        }
+        std::fs::write(&path, text).map_err(write_err)?;
+        Ok(path)
+    }
+}
+
+impl<S: Spec> Exercise for S {
+    fn meta(&self) -> Meta {
+        Spec::meta(self)
+    }
+
+    fn signature(&self) -> String {
+        Spec::signature(self)
+    }
+
+    fn grade_source(
+        &self,
+        source: &str,
+        display: &str,
+        opts: &GradeOptions,
+    ) -> Result<Report, GradeError> {
+        pipeline::grade_source(self, source, display, opts)
+    }
+
+    fn mistake_ids(&self) -> Vec<&'static str> {
+        Spec::mistakes(self).into_iter().map(|(id, _)| id).collect()
+    }
+
+    fn uncaught_mistakes(&self) -> Result<Vec<&'static str>, GradeError> {
+        pipeline::uncaught_mistakes(self)
+    }
+}

@@ -1,0 +1,37 @@
+//! The registry: every exercise of the course, in course order, each in its own module
+//! (signature, reference, cases, typical mistakes; its prose is in its lesson's
+//! `exercise.toml`).
+//!
+//! To add an exercise, add its module here and to the list below (see the README's
+//! "Adding an exercise"). The list makes [`ALL`], which every face iterates, and the
+//! in-place graders a notebook cell calls (`grade::in_process::<name>(<name>)`).
+
+use super::exercise::Exercise;
+
+/// Declares the exercise modules and the registry from one list, in course order.
+macro_rules! registry {
+    ($($name:ident),+ $(,)?) => {
+        $(pub mod $name;)+
+
+        /// Every exercise, in course order.
+        pub static ALL: &[&dyn Exercise] = &[$(&$name::EXERCISE),+];
+
+        /// The in-place grader of every exercise, by the exercise's name.
+        pub mod in_place {
+            $(pub use super::$name::in_place as $name;)+
+        }
+    };
+}
+
+registry! {
+    sample_action,
+    td_target,
+    td_delta,
+    compute_advantage,
+    log_prob_of_actions,
+    ratio,
+    actor_loss,
+    critic_loss,
+    ppo_losses,
+    moving_average,
+}

@@ -1,0 +1,204 @@
+//! The one judge: compares the learner's answers with the reference's, finds the first
+//! failing case of each check, and names the likely mistake from the exercise's catalogue.
+//!
+//! A diagnosis is made per *part* (what a mistake concerns: the whole result of a plain
+//! exercise; the actor or the critic loss of the candle one). Among the mistakes of a part
+//! that reproduce at least one of the learner's wrong answers, the one agreeing with the
+//! learner on the most cases wins (wrong and right ones alike, so a variant that is wrong
+//! only where the learner is beats one that happens to coincide on a single input; the
+//! first listed wins a tie). Its hint, from the lesson's `exercise.toml`, goes with every
+//! failure in that part.
+
+use super::hints;
+use super::learner::Answer;
+use super::prose::Prose;
+use super::report::{CheckReport, CheckStatus, Failure, Problem};
+use super::spec::{Check, Spec};
+
+/// The learner's, the reference's and the diagnosed mistakes' values on every case.
+pub struct Judge<'a, S: Spec> {
+    spec: &'a S,
+    prose: &'a Prose,
+    cases: &'a [S::Case],
+    answers: Vec<Answer<S::Reply>>,
+    learner: Vec<Option<Result<S::Value, String>>>,
+    reference: Vec<Option<S::Value>>,
+    /// The diagnosed mistake's id, per part.
+    diagnosis: Vec<Option<&'static str>>,
+}
+
+impl<'a, S: Spec> Judge<'a, S> {
+    /// Judges `answers`, one per case of `cases`.
+    pub fn new(
+        spec: &'a S,
+        prose: &'a Prose,
+        cases: &'a [S::Case],
+        answers: Vec<Answer<S::Reply>>,
+    ) -> Self {
+        let reference = cases
+            .iter()
+            .map(|c| spec.value(c, spec.reference(c)?).ok())
+            .collect();
+        let learner = answers
+            .iter()
+            .zip(cases)
+            .map(|(a, c)| match a {
+                Answer::Value(reply) => Some(spec.value(c, reply.clone())),
+                _ => None,
+            })
+            .collect();
+        let parts = spec
+            .mistakes()
+            .iter()
+            .map(|(_, p)| p + 1)
+            .max()
+            .unwrap_or(1);
+        let mut judge = Self {
+            spec,
+            prose,
+            cases,
+            answers,
+            learner,
+            reference,
+            diagnosis: Vec::new(),
+        };
+        judge.diagnosis = (0..parts).map(|part| judge.diagnose(part)).collect();
+        judge
+    }
+
+    fn learner_value(&self, i: usize) -> Option<&S::Value> {
+        self.learner.get(i)?.as_ref()?.as_ref().ok()
+    }
+
+    /// The known mistake in `part` that best explains the learner's values.
+    fn diagnose(&self, part: usize) -> Option<&'static str> {
+        let n = self.cases.len();
+        let wrong: Vec<bool> = (0..n)
+            .map(|i| match (self.learner_value(i), &self.reference[i]) {
+                (Some(l), Some(r)) => !self.spec.agrees(l, r, part),
+                _ => false,
+            })
+            .collect();
+        if !wrong.contains(&true) {
+            return None;
+        }
+        let mut best: Option<(&'static str, usize)> = None;
+        for (index, (id, p)) in self.spec.mistakes().into_iter().enumerate() {
+            if p != part {
+                continue;
+            }
+            let agrees: Vec<bool> = self
+                .cases
+                .iter()
+                .enumerate()
+                .map(|(i, case)| {
+                    let theirs = self
+                        .spec
+                        .mistake(index, case)
+                        .and_then(|r| self.spec.value(case, r).ok());
+                    match (self.learner_value(i), theirs) {
+                        (Some(l), Some(m)) => self.spec.agrees(l, &m, part),
+                        _ => false,
+                    }
+                })
+                .collect();
+            let explains = agrees.iter().zip(&wrong).any(|(a, w)| *a && *w);
+            let score = agrees.iter().filter(|a| **a).count();
+            if explains && best.is_none_or(|(_, b)| score > b) {
+                best = Some((id, score));
+            }
+        }
+        best.map(|(id, _)| id)
+    }
+
+    /// The first diagnosed mistake, in part order.
+    pub fn any_diagnosis(&self) -> Option<&'static str> {
+        self.diagnosis.iter().flatten().next().copied()
+    }
+
+    /// The hint for a wrong `part`: its diagnosed mistake's, else the prose at `fallback`.
+    fn hint(&self, part: usize, fallback: &str) -> String {
+        match self.diagnosis.get(part).copied().flatten() {
+            Some(id) => self.prose.mistake(id).to_string(),
+            None => self.prose.text(fallback).to_string(),
+        }
+    }
+
+    /// The report line of `check`: passed, or its first failing case.
+    pub fn report_line(&self, check: &Check<S::Kind>) -> CheckReport {
+        CheckReport {
+            name: check.name.clone(),
+            cases: check.cases.len(),
+            status: self.status(check),
+        }
+    }
+
+    fn status(&self, check: &Check<S::Kind>) -> CheckStatus {
+        for &i in &check.cases {
+            let (problem, expected, got, detail, hint) = match &self.answers[i] {
+                Answer::Value(_) => match (&self.learner[i], &self.reference[i]) {
+                    (Some(Ok(l)), Some(r)) => {
+                        let Some(d) = self.spec.differs(check.kind, l, r) else {
+                            continue;
+                        };
+                        let hint = self.hint(d.part, d.fallback);
+                        (Problem::Wrong, d.expected, d.got, d.detail, hint)
+                    }
+                    (Some(Err(why)), _) => (
+                        Problem::Crashed(why.clone()),
+                        String::new(),
+                        String::new(),
+                        String::new(),
+                        self.prose.text("fallback").to_string(),
+                    ),
+                    _ => (
+                        Problem::Crashed("the reference could not be computed".into()),
+                        String::new(),
+                        String::new(),
+                        String::new(),
+                        self.prose.text("fallback").to_string(),
+                    ),
+                },
+                Answer::NotRun => {
+                    return CheckStatus::NotRun("an earlier case stopped the program".into());
+                }
+                other => {
+                    let (problem, hint) = self.problem(other);
+                    (problem, String::new(), String::new(), String::new(), hint)
+                }
+            };
+            return CheckStatus::Failed(Box::new(Failure {
+                problem,
+                input: self.spec.show_input(&self.cases[i]),
+                expected,
+                got,
+                detail,
+                hint,
+            }));
+        }
+        CheckStatus::Passed
+    }
+
+    /// A failure that is not a value, and its hint.
+    pub fn problem(&self, answer: &Answer<S::Reply>) -> (Problem, String) {
+        problem(answer, self.prose)
+    }
+}
+
+/// A failure that is not a value, and its hint (`timed_out` in the exercise's prose
+/// overrides the general one).
+pub fn problem<R>(answer: &Answer<R>, prose: &Prose) -> (Problem, String) {
+    match answer {
+        Answer::Error(m) => (Problem::Error(m.clone()), hints::error(m)),
+        Answer::Panicked(m) => (Problem::Panicked(m.clone()), hints::panic(m)),
+        Answer::TimedOut(s) => (
+            Problem::TimedOut(*s),
+            prose
+                .other("timed_out")
+                .unwrap_or(hints::TIMED_OUT)
+                .to_string(),
+        ),
+        Answer::Crashed(m) => (Problem::Crashed(m.clone()), hints::CRASHED.to_string()),
+        Answer::Value(_) | Answer::NotRun => (Problem::Wrong, prose.text("fallback").to_string()),
+    }
+}
