@@ -136,8 +136,8 @@ fn spawn_grader(names: Vec<String>, tx: Sender<Event>) {
         let graded = names
             .into_iter()
             .map(|name| {
-                let report = crate::grade::grade(&name, None, &options).map_err(|e| e.to_string());
-                (name, report)
+                let result = crate::grade::grade(&name, None, &options).map_err(|e| e.to_string());
+                app::Graded { name, result }
             })
             .collect();
         let _ = tx.send(Event::Graded(graded));

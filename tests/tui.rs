@@ -148,7 +148,7 @@ fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
     app.update(Action::Enter);
     assert!((app.config.eps - 0.25).abs() < 1e-12);
     assert_eq!(
-        app.previous.as_ref().map(|(_, r)| r.clone()),
+        app.previous.as_ref().map(|p| p.values.clone()),
         Some(old_curve)
     );
     let sent: Vec<Command> = app.outbox.drain(..).collect();

@@ -30,7 +30,37 @@ pub enum Overlay {
 }
 
 /// The grading of one exercise function: its report, or why grading could not run.
-pub type Graded = (String, Result<Report, String>);
+#[derive(Debug, Clone)]
+pub struct Graded {
+    /// The function graded, as `ppo-tutor grade` names it.
+    pub name: String,
+    /// The grader's report, or why grading could not run.
+    pub result: Result<Report, String>,
+}
+
+impl From<(String, Result<Report, String>)> for Graded {
+    /// A `(name, result)` pair, as a grading loop builds it.
+    fn from((name, result): (String, Result<Report, String>)) -> Self {
+        Self { name, result }
+    }
+}
+
+impl Graded {
+    /// Whether the function was graded and passed every check.
+    #[must_use]
+    pub fn passed(&self) -> bool {
+        self.result.as_ref().is_ok_and(Report::passed)
+    }
+}
+
+/// A previous run's return curve, overlaid on the plot after a sandbox retrain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreviousCurve {
+    /// The legend, like `before (moving average)`.
+    pub label: String,
+    /// The curve: the run's moving average, or its returns when it had too few for one.
+    pub values: Vec<f64>,
+}
 
 /// The exercise of the open lesson: grading, its last result, and the hints revealed.
 #[derive(Debug, Clone, Default)]
@@ -93,8 +123,8 @@ pub struct App {
     pub frames: Vec<[f32; 4]>,
     /// Index into `frames`.
     pub frame: usize,
-    /// The previous run's returns, overlaid on the plot after a sandbox retrain.
-    pub previous: Option<(String, Vec<f64>)>,
+    /// The previous run's curve, overlaid on the plot after a sandbox retrain.
+    pub previous: Option<PreviousCurve>,
     /// Hyper-parameters of the current run.
     pub config: PpoConfig,
     /// Settings being edited in the sandbox.
@@ -293,12 +323,13 @@ impl App {
     }
 
     /// Applies a finished grading: shows it, and records passed exercises in the progress.
-    pub fn on_graded(&mut self, graded: Vec<Graded>) {
+    pub fn on_graded(&mut self, graded: impl IntoIterator<Item = impl Into<Graded>>) {
+        let graded: Vec<Graded> = graded.into_iter().map(Into::into).collect();
         self.exercise.grading = false;
         let passed: Vec<&str> = graded
             .iter()
-            .filter(|(_, r)| r.as_ref().is_ok_and(Report::passed))
-            .map(|(n, _)| n.as_str())
+            .filter(|g| g.passed())
+            .map(|g| g.name.as_str())
             .collect();
         for name in &passed {
             self.progress.exercises_done.insert((*name).to_string());
@@ -348,12 +379,15 @@ impl App {
                 // Keep the current run's smoothed curve on the plot for comparison.
                 let s = &self.snapshot;
                 if !s.returns.is_empty() {
-                    let (what, curve) = if s.moving_average.is_empty() {
+                    let (what, values) = if s.moving_average.is_empty() {
                         ("returns", s.returns.clone())
                     } else {
                         ("moving average", s.moving_average.clone())
                     };
-                    self.previous = Some((format!("before ({what})"), curve));
+                    self.previous = Some(PreviousCurve {
+                        label: format!("before ({what})"),
+                        values,
+                    });
                 }
                 self.reset_agent(self.sandbox.clone(), self.sandbox_seed, true);
             }

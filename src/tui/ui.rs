@@ -207,7 +207,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             previous: app
                 .previous
                 .as_ref()
-                .map(|(l, v)| (l.as_str(), v.as_slice())),
+                .map(|p| (p.label.as_str(), p.values.as_slice())),
             max_return: f64::from(app.config.env_id.max_episode_steps()),
             block: panel(&format!("PPO on {}", app.config.env_id), theme),
             theme,
@@ -447,11 +447,11 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
             theme.dim(),
         ));
     }
-    for (name, result) in &app.exercise.graded {
+    for graded in &app.exercise.graded {
         lines.push(Line::raw(""));
-        match result {
+        match &graded.result {
             Ok(report) => lines.extend(report.render().lines().map(|l| Line::raw(format!(" {l}")))),
-            Err(e) => lines.push(Line::raw(format!(" {name}: {e}"))),
+            Err(e) => lines.push(Line::raw(format!(" {}: {e}", graded.name))),
         }
     }
     if app.exercise_done() {
