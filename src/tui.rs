@@ -2,6 +2,7 @@
 //!
 //! - [`app`]: state and its one `update`; [`keys`]: key map; [`ui`]: drawing only;
 //!   [`theme`]: styles (`NO_COLOR` aware); [`widgets`]: plot, cart-pole, clip chart, tensors.
+//! - [`sandbox`]: the sandbox overlay's own state (the settings being edited).
 //! - [`worker`]: training on its own thread, talking to the UI over channels.
 //!
 //! The loop waits on one channel of [`Event`]s fed by an input thread, a ticker and the
@@ -9,6 +10,7 @@
 
 pub mod app;
 pub mod keys;
+pub mod sandbox;
 pub mod theme;
 pub mod ui;
 pub mod widgets;
@@ -115,7 +117,7 @@ pub fn handle(app: &mut App, event: Event) {
         Event::Graded(graded) => app.on_graded(graded),
         Event::Input(event::Event::Key(key)) => {
             let overlay = app.overlay != app::Overlay::None && app.overlay != app::Overlay::Help;
-            let sandbox = matches!(app.overlay, app::Overlay::Sandbox(_));
+            let sandbox = app.overlay == app::Overlay::Sandbox;
             if let Some(action) = keys::map(key, overlay, sandbox) {
                 app.update(action);
             }

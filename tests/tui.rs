@@ -5,6 +5,7 @@ use ppo_tutor::lesson::{Course, Progress, Snapshot};
 use ppo_tutor::ppo::PpoConfig;
 use ppo_tutor::tui::app::{App, Overlay, TrainState};
 use ppo_tutor::tui::keys::Action;
+use ppo_tutor::tui::sandbox::Field;
 use ppo_tutor::tui::theme::Theme;
 use ppo_tutor::tui::ui::View;
 use ppo_tutor::tui::worker::Command;
@@ -139,8 +140,9 @@ fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
     app.update(Action::Increase); // eps 0.2 -> 0.25
     app.update(Action::Down);
     app.update(Action::Decrease); // gamma 0.98 -> 0.97
-    assert!((app.sandbox.eps - 0.25).abs() < 1e-12);
-    assert!((app.sandbox.gamma - 0.97).abs() < 1e-12);
+    assert_eq!(app.sandbox.selected, Field::Gamma);
+    assert!((app.sandbox.config.eps - 0.25).abs() < 1e-12);
+    assert!((app.sandbox.config.gamma - 0.97).abs() < 1e-12);
     assert!(
         (app.config.eps - 0.2).abs() < 1e-12,
         "nothing changes before Enter"

@@ -8,6 +8,7 @@ use crate::ppo::PpoConfig;
 use crate::ppo::moving_average;
 
 use super::keys::Action;
+use super::sandbox::{Outcome, Sandbox};
 use super::worker::{Command, EpisodeData, WorkerEvent};
 
 /// Prefix of a status message that episode updates must not overwrite.
@@ -23,8 +24,8 @@ pub enum Overlay {
     Help,
     /// The lesson list; the field is the highlighted row.
     Lessons(usize),
-    /// The sandbox; the field is the highlighted setting.
-    Sandbox(usize),
+    /// The sandbox (its state, the highlighted setting included, is [`App::sandbox`]).
+    Sandbox,
     /// The exercise panel (status, hints, grading result); the field is the scroll offset.
     Exercise(u16),
 }
@@ -87,19 +88,6 @@ pub enum TrainState {
     Finished,
 }
 
-/// The sandbox's editable settings, in display order.
-pub const SANDBOX_FIELDS: [&str; 9] = [
-    "eps",
-    "gamma",
-    "lmbda",
-    "actor_lr",
-    "critic_lr",
-    "seed",
-    "bootstrap_on_truncation",
-    "normalize_advantage",
-    "env",
-];
-
 /// Everything the app shows and remembers.
 #[derive(Debug)]
 pub struct App {
@@ -127,12 +115,10 @@ pub struct App {
     pub previous: Option<PreviousCurve>,
     /// Hyper-parameters of the current run.
     pub config: PpoConfig,
-    /// Settings being edited in the sandbox.
-    pub sandbox: PpoConfig,
     /// Seed of the current run.
     pub seed: u64,
-    /// Seed being edited in the sandbox.
-    pub sandbox_seed: u64,
+    /// The sandbox overlay's settings being edited.
+    pub sandbox: Sandbox,
     /// A one-line status message (warnings, errors, confirmations).
     pub status: String,
     /// Saved progress.
@@ -169,10 +155,9 @@ impl App {
             frames: Vec::new(),
             frame: 0,
             previous: None,
-            sandbox: config.clone(),
+            sandbox: Sandbox::new(config.clone(), 0),
             config,
             seed: 0,
-            sandbox_seed: 0,
             status: String::new(),
             progress,
             progress_path,
@@ -213,7 +198,7 @@ impl App {
                 _ => {}
             },
             Overlay::Lessons(i) => self.update_lessons(action, i),
-            Overlay::Sandbox(i) => self.update_sandbox(action, i),
+            Overlay::Sandbox => self.update_sandbox(action),
             Overlay::Exercise(scroll) => self.update_exercise(action, scroll),
             Overlay::None => self.update_main(action),
         }
@@ -231,9 +216,8 @@ impl App {
             Action::Lessons => self.overlay = Overlay::Lessons(self.lesson),
             Action::Help => self.overlay = Overlay::Help,
             Action::Sandbox => {
-                self.sandbox = self.config.clone();
-                self.sandbox_seed = self.seed;
-                self.overlay = Overlay::Sandbox(0);
+                self.sandbox = Sandbox::new(self.config.clone(), self.seed);
+                self.overlay = Overlay::Sandbox;
             }
             Action::TrainToggle => self.toggle_training(),
             Action::OneEpisode => {
@@ -364,17 +348,12 @@ impl App {
         }
     }
 
-    fn update_sandbox(&mut self, action: Action, i: usize) {
-        let n = SANDBOX_FIELDS.len();
-        match action {
-            Action::Quit => self.quit(),
-            Action::Up | Action::ScrollUp => self.overlay = Overlay::Sandbox(i.saturating_sub(1)),
-            Action::Down | Action::ScrollDown => {
-                self.overlay = Overlay::Sandbox((i + 1).min(n - 1))
-            }
-            Action::Increase => self.nudge(i, true),
-            Action::Decrease => self.nudge(i, false),
-            Action::Enter => {
+    fn update_sandbox(&mut self, action: Action) {
+        match self.sandbox.update(action) {
+            Outcome::Stay => {}
+            Outcome::Close => self.overlay = Overlay::None,
+            Outcome::Quit => self.quit(),
+            Outcome::Retrain => {
                 self.overlay = Overlay::None;
                 // Keep the current run's smoothed curve on the plot for comparison.
                 let s = &self.snapshot;
@@ -389,47 +368,8 @@ impl App {
                         values,
                     });
                 }
-                self.reset_agent(self.sandbox.clone(), self.sandbox_seed, true);
+                self.reset_agent(self.sandbox.config.clone(), self.sandbox.seed, true);
             }
-            Action::Sandbox | Action::Back => self.overlay = Overlay::None,
-            _ => {}
-        }
-    }
-
-    /// Changes sandbox field `i` one notch up or down, within its valid range.
-    fn nudge(&mut self, i: usize, up: bool) {
-        let s = &mut self.sandbox;
-        let scale = |v: f64, f: f64| if up { v * f } else { v / f };
-        match SANDBOX_FIELDS.get(i).copied() {
-            Some("eps") => {
-                s.eps = round3((s.eps + if up { 0.05 } else { -0.05 }).clamp(0.05, 0.95))
-            }
-            Some("gamma") => {
-                s.gamma = round3((s.gamma + if up { 0.01 } else { -0.01 }).clamp(0.5, 1.0))
-            }
-            Some("lmbda") => {
-                s.lmbda = round3((s.lmbda + if up { 0.05 } else { -0.05 }).clamp(0.0, 1.0))
-            }
-            Some("actor_lr") => s.actor_lr = scale(s.actor_lr, 2.0).clamp(1e-6, 1.0),
-            Some("critic_lr") => s.critic_lr = scale(s.critic_lr, 2.0).clamp(1e-6, 1.0),
-            Some("seed") => {
-                self.sandbox_seed = if up {
-                    self.sandbox_seed.saturating_add(1)
-                } else {
-                    self.sandbox_seed.saturating_sub(1)
-                };
-            }
-            Some("bootstrap_on_truncation") => {
-                s.bootstrap_on_truncation = !s.bootstrap_on_truncation
-            }
-            Some("normalize_advantage") => s.normalize_advantage = !s.normalize_advantage,
-            Some("env") => {
-                s.env_id = match s.env_id {
-                    crate::env::EnvId::CartPoleV1 => crate::env::EnvId::CartPoleV0,
-                    crate::env::EnvId::CartPoleV0 => crate::env::EnvId::CartPoleV1,
-                };
-            }
-            _ => {}
         }
     }
 
@@ -581,8 +521,4 @@ impl App {
         self.outbox.push(Command::Quit);
         self.quit = true;
     }
-}
-
-fn round3(v: f64) -> f64 {
-    (v * 1000.0).round() / 1000.0
 }

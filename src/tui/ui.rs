@@ -5,8 +5,9 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Clear, Gauge, Paragraph, Widget, Wrap};
 
-use super::app::{App, Overlay, SANDBOX_FIELDS, TrainState};
+use super::app::{App, Overlay, TrainState};
 use super::keys::HELP;
+use super::sandbox::Field;
 use super::theme::Theme;
 use super::widgets::{cartpole::CartPoleView, clip::ClipChart, plot::ReturnPlot, tensors, text};
 use crate::lesson::{TensorView, VIEWS};
@@ -48,7 +49,7 @@ impl Widget for &View<'_> {
             Overlay::None => {}
             Overlay::Help => draw_help(theme, area, buf),
             Overlay::Lessons(i) => draw_lessons(app, theme, i, area, buf),
-            Overlay::Sandbox(i) => draw_sandbox(app, theme, i, area, buf),
+            Overlay::Sandbox => draw_sandbox(app, theme, area, buf),
             Overlay::Exercise(scroll) => draw_exercise(app, theme, scroll, area, buf),
         }
     }
@@ -337,28 +338,15 @@ fn draw_lessons(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut 
         .render(rect, buf);
 }
 
-fn draw_sandbox(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut Buffer) {
-    let rect = centered(area, 64, SANDBOX_FIELDS.len() as u16 + 7);
+fn draw_sandbox(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
+    let rect = centered(area, 64, Field::ALL.len() as u16 + 7);
     Clear.render(rect, buf);
-    let s = &app.sandbox;
-    let values = [
-        s.eps.to_string(),
-        s.gamma.to_string(),
-        s.lmbda.to_string(),
-        format!("{:.2e}", s.actor_lr),
-        format!("{:.2e}", s.critic_lr),
-        app.sandbox_seed.to_string(),
-        s.bootstrap_on_truncation.to_string(),
-        s.normalize_advantage.to_string(),
-        s.env_id.to_string(),
-    ];
-    let mut lines: Vec<Line> = SANDBOX_FIELDS
+    let sandbox = &app.sandbox;
+    let mut lines: Vec<Line> = Field::ALL
         .iter()
-        .zip(values)
-        .enumerate()
-        .map(|(i, (name, value))| {
-            let text = format!(" {name:<26} {value}");
-            if i == selected {
+        .map(|&field| {
+            let text = format!(" {:<26} {}", field.name(), sandbox.value(field));
+            if field == sandbox.selected {
                 Line::styled(text, theme.highlight())
             } else {
                 Line::raw(text)

@@ -1,0 +1,251 @@
+//! The sandbox overlay's state: a copy of the run's settings being edited, and the
+//! highlighted field. Enter retrains with the copy; nothing changes before that.
+
+use crate::env::EnvId;
+use crate::ppo::PpoConfig;
+
+use super::keys::Action;
+
+/// One editable setting of the sandbox.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Field {
+    /// The clip range ε.
+    #[default]
+    Eps,
+    /// The discount γ.
+    Gamma,
+    /// GAE's λ.
+    Lmbda,
+    /// The actor's learning rate.
+    ActorLr,
+    /// The critic's learning rate.
+    CriticLr,
+    /// The seed of the agent and the environment.
+    Seed,
+    /// Whether the TD target bootstraps `V(s')` on a time-limit truncation.
+    BootstrapOnTruncation,
+    /// Whether the advantage is normalised per batch.
+    NormalizeAdvantage,
+    /// CartPole-v1 or v0.
+    Env,
+}
+
+impl Field {
+    /// Every field, in display order.
+    pub const ALL: [Self; 9] = [
+        Self::Eps,
+        Self::Gamma,
+        Self::Lmbda,
+        Self::ActorLr,
+        Self::CriticLr,
+        Self::Seed,
+        Self::BootstrapOnTruncation,
+        Self::NormalizeAdvantage,
+        Self::Env,
+    ];
+
+    /// The setting's name, as in [`PpoConfig`] (and the `--flag` of `ppo-tutor train`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Eps => "eps",
+            Self::Gamma => "gamma",
+            Self::Lmbda => "lmbda",
+            Self::ActorLr => "actor_lr",
+            Self::CriticLr => "critic_lr",
+            Self::Seed => "seed",
+            Self::BootstrapOnTruncation => "bootstrap_on_truncation",
+            Self::NormalizeAdvantage => "normalize_advantage",
+            Self::Env => "env",
+        }
+    }
+
+    /// The position in [`Field::ALL`].
+    #[must_use]
+    pub fn index(self) -> usize {
+        Self::ALL.iter().position(|&f| f == self).unwrap_or(0)
+    }
+
+    fn at(index: usize) -> Self {
+        Self::ALL[index.min(Self::ALL.len() - 1)]
+    }
+}
+
+/// What the sandbox asks of the app after a key.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// Nothing beyond the sandbox's own state changed.
+    Stay,
+    /// Close the sandbox, keeping the current run.
+    Close,
+    /// Close the sandbox and retrain with its settings.
+    Retrain,
+    /// Leave the app.
+    Quit,
+}
+
+/// The settings being edited and the highlighted field.
+#[derive(Debug, Clone, Default)]
+pub struct Sandbox {
+    /// The hyper-parameters of the next run.
+    pub config: PpoConfig,
+    /// The seed of the next run.
+    pub seed: u64,
+    /// The highlighted field.
+    pub selected: Field,
+}
+
+impl Sandbox {
+    /// A sandbox starting from the current run's settings, first field highlighted.
+    #[must_use]
+    pub fn new(config: PpoConfig, seed: u64) -> Self {
+        Self {
+            config,
+            seed,
+            selected: Field::default(),
+        }
+    }
+
+    /// Applies one key's action: move the highlight, change the highlighted value, or ask
+    /// the app to close, retrain or quit.
+    pub fn update(&mut self, action: Action) -> Outcome {
+        match action {
+            Action::Quit => return Outcome::Quit,
+            Action::Up | Action::ScrollUp => {
+                self.selected = Field::at(self.selected.index().saturating_sub(1));
+            }
+            Action::Down | Action::ScrollDown => {
+                self.selected = Field::at(self.selected.index() + 1);
+            }
+            Action::Increase => self.nudge(self.selected, true),
+            Action::Decrease => self.nudge(self.selected, false),
+            Action::Enter => return Outcome::Retrain,
+            Action::Sandbox | Action::Back => return Outcome::Close,
+            _ => {}
+        }
+        Outcome::Stay
+    }
+
+    /// The value of `field` as the sandbox shows it.
+    #[must_use]
+    pub fn value(&self, field: Field) -> String {
+        let c = &self.config;
+        match field {
+            Field::Eps => c.eps.to_string(),
+            Field::Gamma => c.gamma.to_string(),
+            Field::Lmbda => c.lmbda.to_string(),
+            Field::ActorLr => format!("{:.2e}", c.actor_lr),
+            Field::CriticLr => format!("{:.2e}", c.critic_lr),
+            Field::Seed => self.seed.to_string(),
+            Field::BootstrapOnTruncation => c.bootstrap_on_truncation.to_string(),
+            Field::NormalizeAdvantage => c.normalize_advantage.to_string(),
+            Field::Env => c.env_id.to_string(),
+        }
+    }
+
+    /// Changes `field` one notch up or down, within its valid range.
+    fn nudge(&mut self, field: Field, up: bool) {
+        let c = &mut self.config;
+        let step = |v: f64, by: f64, lo: f64, hi: f64| {
+            round3((v + if up { by } else { -by }).clamp(lo, hi))
+        };
+        let scale = |v: f64| (if up { v * 2.0 } else { v / 2.0 }).clamp(1e-6, 1.0);
+        match field {
+            Field::Eps => c.eps = step(c.eps, 0.05, 0.05, 0.95),
+            Field::Gamma => c.gamma = step(c.gamma, 0.01, 0.5, 1.0),
+            Field::Lmbda => c.lmbda = step(c.lmbda, 0.05, 0.0, 1.0),
+            Field::ActorLr => c.actor_lr = scale(c.actor_lr),
+            Field::CriticLr => c.critic_lr = scale(c.critic_lr),
+            Field::Seed => {
+                self.seed = if up {
+                    self.seed.saturating_add(1)
+                } else {
+                    self.seed.saturating_sub(1)
+                };
+            }
+            Field::BootstrapOnTruncation => {
+                c.bootstrap_on_truncation = !c.bootstrap_on_truncation;
+            }
+            Field::NormalizeAdvantage => c.normalize_advantage = !c.normalize_advantage,
+            Field::Env => {
+                c.env_id = match c.env_id {
+                    EnvId::CartPoleV1 => EnvId::CartPoleV0,
+                    EnvId::CartPoleV0 => EnvId::CartPoleV1,
+                };
+            }
+        }
+    }
+}
+
+fn round3(v: f64) -> f64 {
+    (v * 1000.0).round() / 1000.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_match_the_config_fields_in_display_order() {
+        let names: Vec<&str> = Field::ALL.iter().map(|f| f.name()).collect();
+        assert_eq!(
+            names,
+            [
+                "eps",
+                "gamma",
+                "lmbda",
+                "actor_lr",
+                "critic_lr",
+                "seed",
+                "bootstrap_on_truncation",
+                "normalize_advantage",
+                "env"
+            ]
+        );
+        assert!(Field::ALL.iter().enumerate().all(|(i, f)| f.index() == i));
+    }
+
+    #[test]
+    fn the_highlight_stays_within_the_fields() {
+        let mut s = Sandbox::default();
+        assert_eq!(s.update(Action::Up), Outcome::Stay);
+        assert_eq!(s.selected, Field::Eps);
+        for _ in 0..20 {
+            s.update(Action::Down);
+        }
+        assert_eq!(s.selected, Field::Env);
+    }
+
+    #[test]
+    fn every_field_changes_within_its_range() {
+        let mut s = Sandbox::new(PpoConfig::default(), 0);
+        for field in Field::ALL {
+            let before = s.value(field);
+            s.selected = field;
+            s.update(Action::Increase);
+            assert_ne!(s.value(field), before, "{} did not change", field.name());
+        }
+        for _ in 0..100 {
+            for field in Field::ALL {
+                s.selected = field;
+                s.update(Action::Decrease);
+            }
+        }
+        let c = &s.config;
+        assert_eq!((c.eps, c.gamma, c.lmbda, s.seed), (0.05, 0.5, 0.0, 0));
+        assert_eq!((c.actor_lr, c.critic_lr), (1e-6, 1e-6));
+        assert!(
+            c.validate().is_ok(),
+            "the sandbox's lower ends are valid settings"
+        );
+    }
+
+    #[test]
+    fn enter_retrains_and_escape_closes() {
+        let mut s = Sandbox::default();
+        assert_eq!(s.update(Action::Enter), Outcome::Retrain);
+        assert_eq!(s.update(Action::Back), Outcome::Close);
+        assert_eq!(s.update(Action::Sandbox), Outcome::Close);
+        assert_eq!(s.update(Action::Quit), Outcome::Quit);
+    }
+}
