@@ -6,7 +6,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use ppo_tutor::lesson::{Course, Progress, Snapshot};
+use ppo_tutor::lesson::{Course, Progress, Session};
 use ppo_tutor::ppo::{PpoConfig, Trainer};
 use ppo_tutor::tui::app::App;
 use ppo_tutor::tui::keys::Action;
@@ -24,8 +24,7 @@ fn app_at(lesson: &str, step: usize) -> Option<App> {
     };
     let mut app = App::new(course, progress, None);
     // A long episode's batch: the heaviest tensors and clip charts.
-    app.snapshot = Snapshot::after_training(PpoConfig::default(), 0, 120).ok()?;
-    app.frames = app.snapshot.trace.as_ref()?.states.clone();
+    app.show(Session::run(PpoConfig::default(), 0, 120).ok()?);
     Some(app)
 }
 

@@ -11,6 +11,8 @@
 //!
 //! - [`loader`]: parsing and validation ([`Course::embedded`]).
 //! - [`anchor`]: Rust code pulled from `src/` by `// ANCHOR: name` markers.
+//! - [`live`]: the live training [`Session`] and the [`Snapshot`] of named values it keeps
+//!   up to date, episode by episode, for every face.
 //! - [`progress`]: where the learner is, saved atomically.
 
 pub mod anchor;
@@ -18,7 +20,7 @@ pub mod live;
 pub mod loader;
 pub mod progress;
 
-pub use live::{Mark, Snapshot, TensorView};
+pub use live::{Mark, Session, Snapshot, TensorView};
 pub use loader::{Course, LessonError};
 pub use progress::Progress;
 

@@ -19,7 +19,7 @@
 use std::fmt::Write as _;
 
 use crate::grade::{CheckStatus, Report};
-use crate::lesson::{Mark, Snapshot, TensorView};
+use crate::lesson::{Mark, Session, Snapshot, TensorView};
 use crate::plot::{PlotError, return_plot_svg};
 use crate::ppo::{EpochTrace, PpoConfig};
 
@@ -286,15 +286,16 @@ impl Snapshot {
     }
 }
 
-/// Trains `episodes` episodes of the seed's PPO with `config` and `seed`, and returns what
-/// the terminal app would show after them: the latest batch and every intermediate of its
-/// update, the probabilities, the weights, the return curve and its moving average.
+/// Trains `episodes` episodes of the seed's PPO with `config` and `seed` in a live
+/// [`Session`], and returns what the terminal app would show after them: the latest batch
+/// and every intermediate of its update, the probabilities, the weights, the return curve
+/// and its moving average.
 ///
 /// # Errors
 /// Invalid settings, or a diverged run.
 pub fn snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::Result<Snapshot> {
     hint_candle_threads();
-    Ok(Snapshot::after_training(config, seed, episodes)?)
+    Ok(Session::run(config, seed, episodes)?)
 }
 
 /// Once per kernel, when `RAYON_NUM_THREADS` is unset: says how to make training twice as

@@ -3,7 +3,8 @@
 //! - [`app`]: state and its one `update`; [`keys`]: key map; [`ui`]: drawing only;
 //!   [`theme`]: styles (`NO_COLOR` aware); [`widgets`]: plot, cart-pole, clip chart, tensors.
 //! - [`sandbox`]: the sandbox overlay's own state (the settings being edited).
-//! - [`worker`]: training on its own thread, talking to the UI over channels.
+//! - [`worker`]: the engine's live training session on its own thread, talking to the UI
+//!   over channels.
 //!
 //! The loop waits on one channel of [`Event`]s fed by an input thread, a ticker and the
 //! worker, so the UI never blocks on training.

@@ -1,14 +1,18 @@
 //! The terminal app without a terminal: every lesson step's screen as an insta snapshot
-//! (drawn on ratatui's `TestBackend` from a real 3-episode run, seed 0), and key → state.
+//! (drawn on ratatui's `TestBackend` from a real 3-episode session, seed 0), key → state,
+//! and the worker thread against the same session.
 
-use ppo_tutor::lesson::{Course, Progress, Snapshot};
+use std::sync::mpsc;
+use std::time::Duration;
+
+use ppo_tutor::lesson::{Course, Progress, Session};
 use ppo_tutor::ppo::PpoConfig;
 use ppo_tutor::tui::app::{App, Overlay, TrainState};
 use ppo_tutor::tui::keys::Action;
 use ppo_tutor::tui::sandbox::Field;
 use ppo_tutor::tui::theme::Theme;
 use ppo_tutor::tui::ui::View;
-use ppo_tutor::tui::worker::Command;
+use ppo_tutor::tui::worker::{self, Command, WorkerEvent};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 
@@ -16,13 +20,7 @@ type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 fn app() -> Result<App, Box<dyn std::error::Error>> {
     let mut app = App::new(Course::embedded()?, Progress::default(), None);
-    let snapshot = Snapshot::after_training(PpoConfig::default(), 0, 3)?;
-    app.frames = snapshot
-        .trace
-        .as_ref()
-        .map(|t| t.states.clone())
-        .unwrap_or_default();
-    app.snapshot = snapshot;
+    app.show(Session::run(PpoConfig::default(), 0, 3)?);
     Ok(app)
 }
 
@@ -175,5 +173,55 @@ fn quitting_saves_progress() -> TestResult {
     assert_eq!((saved.lesson.as_str(), saved.step), ("what-is-ppo", 1));
     let restored = App::new(Course::embedded()?, saved, None);
     assert_eq!((restored.lesson, restored.step), (0, 1));
+    Ok(())
+}
+
+#[test]
+fn the_worker_sends_its_session_snapshot_after_each_episode() -> TestResult {
+    let config = PpoConfig::default();
+    let (cmd_tx, cmd_rx) = mpsc::channel();
+    let (event_tx, events) = mpsc::channel();
+    let handle = worker::spawn(config.clone(), 5, cmd_rx, event_tx);
+    let mut app = App::new(Course::embedded()?, Progress::default(), None);
+    for _ in 0..2 {
+        cmd_tx.send(Command::OneEpisode)?;
+        let event = events.recv_timeout(Duration::from_secs(60))?;
+        assert!(matches!(event, WorkerEvent::Episode(_)), "{event:?}");
+        app.on_worker(event);
+    }
+    cmd_tx.send(Command::Quit)?;
+    handle.join().map_err(|_| "the worker panicked")?;
+    let expected = Session::run(config, 5, 2)?;
+    assert_eq!(
+        app.snapshot, expected,
+        "the app shows what the session computed"
+    );
+    let last = expected.returns.last().ok_or("no return")?;
+    assert_eq!(app.status, format!("episode 2: return {last}"));
+    let frames = expected.observation_count();
+    assert!(frames > 1);
+    for _ in 0..frames {
+        app.tick();
+    }
+    assert_eq!(
+        app.frame, 0,
+        "the animation loops over the episode's observations"
+    );
+    Ok(())
+}
+
+#[test]
+fn a_worker_that_cannot_start_says_why() -> TestResult {
+    let bad = PpoConfig {
+        gamma: 0.0,
+        ..PpoConfig::default()
+    };
+    let (_cmd_tx, cmd_rx) = mpsc::channel::<Command>();
+    let (event_tx, events) = mpsc::channel();
+    let _handle = worker::spawn(bad, 0, cmd_rx, event_tx);
+    match events.recv_timeout(Duration::from_secs(10))? {
+        WorkerEvent::Error(message) => assert!(message.contains("gamma"), "{message}"),
+        other => return Err(format!("expected an error, got {other:?}").into()),
+    }
     Ok(())
 }

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 
-use crate::lesson::{Course, Snapshot, anchor};
+use crate::lesson::{Course, Session, Snapshot, anchor};
 use crate::ppo::PpoConfig;
 
 /// Arguments of `ppo-tutor show`.
@@ -127,7 +127,7 @@ pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
         Some(n) => n - 1..n,
         None => 0..steps,
     };
-    let snapshot = Snapshot::after_training(PpoConfig::default(), args.seed, args.episodes.max(1))?;
+    let snapshot = Session::run(PpoConfig::default(), args.seed, args.episodes.max(1))?;
     let mut out = std::io::stdout();
     for step in range {
         write!(out, "{}", render_step(&course, index, step, &snapshot))?;

@@ -6,37 +6,15 @@
 //! turns a name from a lesson's `show` list into a [`TensorView`] with its shape,
 //! dtype, values and the entries that matter marked (clipped ratios, done flags, the
 //! sign of the advantage).
+//!
+//! - [`session`]: [`Session`], the one training run that turns episodes into snapshots; the
+//!   terminal app's worker, `ppo-tutor show`, the notebooks and the tests all go through it.
 
-use crate::ppo::model::ActorSnapshot;
-use crate::ppo::{Agent, PpoConfig, PpoError, Trainer, UpdateTrace, moving_average};
+pub mod session;
 
-/// `π(·|s)` under `policy` for each of `states` (NaN where a probability is missing).
-///
-/// Pass the policy the episode was *played* with, copied before its update
-/// ([`ActorSnapshot::of`]): those are the probabilities the actions were sampled from and
-/// whose logs are `old_log_probs`.
-#[must_use]
-pub fn probs_over(policy: &ActorSnapshot, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
-    states
-        .iter()
-        .map(|s| {
-            let p = policy.probs(s);
-            [
-                p.first().copied().unwrap_or(f32::NAN),
-                p.get(1).copied().unwrap_or(f32::NAN),
-            ]
-        })
-        .collect()
-}
+pub use session::Session;
 
-/// Every parameter of `agent` as `(name, shape, values)` (empty if candle cannot read them).
-#[must_use]
-pub fn weights_of(agent: &Agent) -> Vec<(String, Vec<usize>, Vec<f32>)> {
-    agent
-        .weights()
-        .map(|w| w.into_iter().map(|(n, t)| (n, t.shape, t.data)).collect())
-        .unwrap_or_default()
-}
+use crate::ppo::{NamedWeights, PpoConfig, UpdateTrace};
 
 /// Every live value name a lesson may show (views such as `plot` are listed in [`super::VIEWS`]).
 pub const NAMES: [&str; 28] = [
@@ -200,6 +178,8 @@ impl TensorView {
 }
 
 /// What the tutor knows after the latest episode and update.
+///
+/// A [`Session`] fills it in, once per episode; [`Snapshot::new`] is the view before any.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Snapshot {
     /// The hyper-parameters in force, as `(name, value)` in the seed's order.
@@ -208,74 +188,54 @@ pub struct Snapshot {
     pub episodes: usize,
     /// Every episode's return, in order.
     pub returns: Vec<f64>,
-    /// The seed's `moving_average(returns, 9)`, same length as `returns`.
+    /// The seed's `moving_average(returns, 9)`, same length as `returns` (empty while there
+    /// are too few returns for the window).
     pub moving_average: Vec<f64>,
     /// The latest update's batch and intermediates.
     pub trace: Option<UpdateTrace>,
-    /// `π(·|s_t)` over the latest batch, before the update.
+    /// `π(·|s_t)` over the latest batch under the policy that played it (before the update).
     pub probs: Vec<[f32; 2]>,
     /// Gymnasium's `terminated` for each step of the latest episode.
     pub terminated: Vec<bool>,
     /// Gymnasium's `truncated` for each step of the latest episode.
     pub truncated: Vec<bool>,
-    /// The actor's and critic's parameters: `(name, shape, values)`.
-    pub weights: Vec<(String, Vec<usize>, Vec<f32>)>,
+    /// The actor's and critic's parameters after the latest update, by PyTorch name.
+    pub weights: NamedWeights,
     /// The clip range ε in force (for marking clipped ratios).
     pub eps: f32,
 }
 
 impl Snapshot {
-    /// Trains `episodes` episodes and returns what the tutor shows after them: the latest
-    /// batch and every intermediate of its update, the probabilities the episode was played
-    /// with, the weights, the return curve and its moving average.
-    ///
-    /// # Errors
-    /// Invalid settings or a diverged run.
-    pub fn after_training(config: PpoConfig, seed: u64, episodes: usize) -> Result<Self, PpoError> {
-        let mut snapshot = Self::default();
-        snapshot.set_hyper(&config, seed);
-        let mut trainer = Trainer::new(config, seed)?;
-        for _ in 0..episodes {
-            // The policy the episode is played with, before the episode's update changes it.
-            let played_with = ActorSnapshot::of(trainer.agent().actor())?;
-            let Some(report) = trainer.next_episode()? else {
-                break;
-            };
-            snapshot.episodes = report.episode + 1;
-            snapshot.returns.push(report.episode_return);
-            snapshot.probs = probs_over(&played_with, &report.trace.states);
-            snapshot.terminated = report.terminated;
-            snapshot.truncated = report.truncated;
-            snapshot.trace = Some(report.trace);
+    /// What the tutor shows before the first episode of a run with `config` and `seed`:
+    /// the hyper-parameters and nothing else.
+    #[must_use]
+    pub fn new(config: &PpoConfig, seed: u64) -> Self {
+        Self {
+            hyper: hyper_table(config, seed),
+            eps: config.eps as f32,
+            ..Self::default()
         }
-        snapshot.moving_average = moving_average(&snapshot.returns, 9).unwrap_or_default();
-        snapshot.weights = weights_of(trainer.agent());
-        Ok(snapshot)
     }
 
-    /// Fills the snapshot's hyper-parameter table from a config, in the seed's order.
-    pub fn set_hyper(&mut self, c: &PpoConfig, seed: u64) {
-        self.eps = c.eps as f32;
-        self.hyper = vec![
-            ("actor_lr".into(), format!("{}", c.actor_lr)),
-            ("critic_lr".into(), format!("{}", c.critic_lr)),
-            ("num_episodes".into(), c.num_episodes.to_string()),
-            ("hidden_dim".into(), c.hidden_dim.to_string()),
-            ("gamma".into(), c.gamma.to_string()),
-            ("lmbda".into(), c.lmbda.to_string()),
-            ("epochs".into(), c.epochs.to_string()),
-            ("eps".into(), c.eps.to_string()),
-            ("env_name".into(), c.env_id.as_str().into()),
-            ("seed".into(), seed.to_string()),
-            (
-                "bootstrap_on_truncation".into(),
-                c.bootstrap_on_truncation.to_string(),
-            ),
-            (
-                "normalize_advantage".into(),
-                c.normalize_advantage.to_string(),
-            ),
-        ];
+    /// How many observations the latest episode went through: each state it acted in, then
+    /// the one it ended in (0 before the first episode). The frames of the cart-pole animation.
+    #[must_use]
+    pub fn observation_count(&self) -> usize {
+        self.trace.as_ref().map_or(0, |t| {
+            t.states.len() + usize::from(!t.next_states.is_empty())
+        })
+    }
+
+    /// The latest episode's observation `i` (0 is the reset, [`Self::observation_count`]
+    /// − 1 where it ended), `None` past the end.
+    #[must_use]
+    pub fn observation(&self, i: usize) -> Option<[f32; 4]> {
+        let t = self.trace.as_ref()?;
+        match t.states.get(i) {
+            Some(state) => Some(*state),
+            None if i == t.states.len() => t.next_states.last().copied(),
+            None => None,
+        }
     }
 
     /// The view of live value `name`, `None` if nothing has been computed for it yet.
@@ -374,13 +334,14 @@ impl Snapshot {
             }
             "weights" if !self.weights.is_empty() => {
                 let mut t = TensorView::new(name, vec![self.weights.len()], "", vec![]);
-                for (n, shape, values) in &self.weights {
-                    let norm = values
+                for (n, w) in &self.weights {
+                    let norm = w
+                        .data
                         .iter()
                         .map(|v| f64::from(*v).powi(2))
                         .sum::<f64>()
                         .sqrt();
-                    let dims: Vec<String> = shape.iter().map(ToString::to_string).collect();
+                    let dims: Vec<String> = w.shape.iter().map(ToString::to_string).collect();
                     t.labels
                         .push(format!("{n} ({}) ‖·‖ = {norm:.4}", dims.join(", ")));
                     t.values.push(norm);
@@ -432,6 +393,30 @@ fn epoch_series(
     TensorView::new(name, vec![values.len()], "float32", values)
 }
 
+/// The hyper-parameter table of a run, in the seed's order.
+fn hyper_table(c: &PpoConfig, seed: u64) -> Vec<(String, String)> {
+    vec![
+        ("actor_lr".into(), format!("{}", c.actor_lr)),
+        ("critic_lr".into(), format!("{}", c.critic_lr)),
+        ("num_episodes".into(), c.num_episodes.to_string()),
+        ("hidden_dim".into(), c.hidden_dim.to_string()),
+        ("gamma".into(), c.gamma.to_string()),
+        ("lmbda".into(), c.lmbda.to_string()),
+        ("epochs".into(), c.epochs.to_string()),
+        ("eps".into(), c.eps.to_string()),
+        ("env_name".into(), c.env_id.as_str().into()),
+        ("seed".into(), seed.to_string()),
+        (
+            "bootstrap_on_truncation".into(),
+            c.bootstrap_on_truncation.to_string(),
+        ),
+        (
+            "normalize_advantage".into(),
+            c.normalize_advantage.to_string(),
+        ),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -472,5 +457,36 @@ mod tests {
     fn every_name_is_known_and_unknown_names_are_not() {
         assert!(NAMES.iter().all(|n| is_known(n)));
         assert!(!is_known("td_targets"));
+    }
+
+    #[test]
+    fn observations_are_the_states_then_where_the_episode_ended() {
+        let mut s = Snapshot::new(&PpoConfig::default(), 0);
+        assert_eq!((s.observation_count(), s.observation(0)), (0, None));
+        s.trace = Some(UpdateTrace {
+            states: vec![[0.0; 4], [1.0; 4]],
+            next_states: vec![[1.0; 4], [2.0; 4]],
+            ..UpdateTrace::default()
+        });
+        assert_eq!(s.observation_count(), 3);
+        assert_eq!(s.observation(1), Some([1.0; 4]));
+        assert_eq!(s.observation(2), Some([2.0; 4]));
+        assert_eq!(s.observation(3), None);
+    }
+
+    #[test]
+    fn a_new_snapshot_shows_only_the_hyper_parameters() -> Result<(), &'static str> {
+        let config = PpoConfig {
+            eps: 0.3,
+            ..PpoConfig::default()
+        };
+        let s = Snapshot::new(&config, 7);
+        let hyper = s.tensor("hyper").ok_or("no hyper")?;
+        assert!(hyper.labels.contains(&"seed = 7".to_string()));
+        assert!(hyper.labels.contains(&"eps = 0.3".to_string()));
+        assert!((s.eps - 0.3).abs() < 1e-6);
+        assert!(s.tensor("returns").is_none() && s.tensor("td_target").is_none());
+        assert!(s.tensor("no_such_value").is_none());
+        Ok(())
     }
 }

@@ -5,11 +5,10 @@ use std::path::PathBuf;
 use crate::grade::Report;
 use crate::lesson::{Course, Lesson, Progress, Snapshot, Step};
 use crate::ppo::PpoConfig;
-use crate::ppo::moving_average;
 
 use super::keys::Action;
 use super::sandbox::{Outcome, Sandbox};
-use super::worker::{Command, EpisodeData, WorkerEvent};
+use super::worker::{Command, WorkerEvent};
 
 /// Prefix of a status message that episode updates must not overwrite.
 pub const WARNING: &str = "warning: ";
@@ -105,11 +104,10 @@ pub struct App {
     pub overlay: Overlay,
     /// Training state.
     pub train: TrainState,
-    /// The live values from the latest episode.
+    /// The live values after the latest episode, as the worker's session sent them.
     pub snapshot: Snapshot,
-    /// The episode's states for the cart-pole animation, and the frame shown.
-    pub frames: Vec<[f32; 4]>,
-    /// Index into `frames`.
+    /// The cart-pole animation's frame: an index into the latest episode's observations
+    /// ([`Snapshot::observation`]).
     pub frame: usize,
     /// The previous run's curve, overlaid on the plot after a sandbox retrain.
     pub previous: Option<PreviousCurve>,
@@ -141,8 +139,7 @@ impl App {
         let lesson = course.index_of(&progress.lesson).unwrap_or(0);
         let steps = course.lessons.get(lesson).map_or(1, |l| l.steps.len());
         let step = progress.step.min(steps.saturating_sub(1));
-        let mut snapshot = Snapshot::default();
-        snapshot.set_hyper(&config, 0);
+        let snapshot = Snapshot::new(&config, 0);
         Self {
             course,
             lesson,
@@ -152,7 +149,6 @@ impl App {
             overlay: Overlay::None,
             train: TrainState::Paused,
             snapshot,
-            frames: Vec::new(),
             frame: 0,
             previous: None,
             sandbox: Sandbox::new(config.clone(), 0),
@@ -401,10 +397,7 @@ impl App {
         });
         self.config = config;
         self.seed = seed;
-        self.snapshot = Snapshot::default();
-        self.snapshot.set_hyper(&self.config, seed);
-        self.frames.clear();
-        self.frame = 0;
+        self.show(Snapshot::new(&self.config, seed));
         self.train = TrainState::Paused;
         if run {
             self.outbox.push(Command::Run);
@@ -416,7 +409,7 @@ impl App {
     /// Applies one event from the training worker.
     pub fn on_worker(&mut self, event: WorkerEvent) {
         match event {
-            WorkerEvent::Episode(data) => self.on_episode(*data),
+            WorkerEvent::Episode(snapshot) => self.on_episode(*snapshot),
             WorkerEvent::Finished => {
                 self.train = TrainState::Finished;
                 self.status = format!("finished {} episodes", self.snapshot.returns.len());
@@ -429,35 +422,29 @@ impl App {
         }
     }
 
-    fn on_episode(&mut self, data: EpisodeData) {
-        let s = &mut self.snapshot;
-        s.episodes = data.report.episode + 1;
-        s.returns.push(data.report.episode_return);
-        s.moving_average = moving_average(&s.returns, 9).unwrap_or_default();
-        self.frames = data.report.trace.states.clone();
-        if let Some(last) = data.report.trace.next_states.last() {
-            self.frames.push(*last);
-        }
-        self.frame = 0;
-        s.trace = Some(data.report.trace);
-        s.probs = data.probs;
-        s.weights = data.weights;
-        s.terminated = data.report.terminated;
-        s.truncated = data.report.truncated;
+    fn on_episode(&mut self, snapshot: Snapshot) {
+        self.show(snapshot);
         // A start-up warning stays until the learner does something.
-        if self.train == TrainState::Paused && !self.status.starts_with(WARNING) {
-            self.status = format!(
-                "episode {}: return {}",
-                data.report.episode + 1,
-                data.report.episode_return
-            );
+        if self.train == TrainState::Paused
+            && !self.status.starts_with(WARNING)
+            && let Some(r) = self.snapshot.returns.last()
+        {
+            self.status = format!("episode {}: return {r}", self.snapshot.episodes);
         }
+    }
+
+    /// Shows `snapshot` (from the worker's session) and restarts the cart-pole animation on
+    /// its episode.
+    pub fn show(&mut self, snapshot: Snapshot) {
+        self.snapshot = snapshot;
+        self.frame = 0;
     }
 
     /// Advances the cart-pole animation by one frame (called on each tick).
     pub fn tick(&mut self) {
-        if !self.frames.is_empty() {
-            self.frame = (self.frame + 1) % self.frames.len();
+        let frames = self.snapshot.observation_count();
+        if frames > 0 {
+            self.frame = (self.frame + 1) % frames;
         }
     }
 

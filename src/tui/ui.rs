@@ -215,11 +215,11 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
         }
         .render(area, buf),
         "cartpole" => {
-            let obs = app.frames.get(app.frame).copied().unwrap_or([0.0; 4]);
+            let obs = s.observation(app.frame).unwrap_or([0.0; 4]);
             let title = format!(
                 "the latest episode, step {}/{}",
                 app.frame,
-                app.frames.len().saturating_sub(1)
+                s.observation_count().saturating_sub(1)
             );
             CartPoleView {
                 obs,

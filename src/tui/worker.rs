@@ -1,14 +1,17 @@
 //! The training worker: runs the PPO on its own thread so the UI never waits on it.
 //!
-//! The UI sends [`Command`]s; the worker answers with [`WorkerEvent`]s over a channel.
+//! The worker owns a live [`Session`] (the engine's job of turning episodes into snapshots);
+//! the UI sends [`Command`]s and the worker answers with [`WorkerEvent`]s over a channel,
+//! among them the session's [`Snapshot`] after each episode.
+//!
 //! Errors (a diverged run, invalid settings) travel as events too: a panic in a worker
 //! thread would restore the terminal under the running UI.
 
 use std::sync::mpsc::{Receiver, Sender, TryRecvError};
 use std::thread::JoinHandle;
 
-use crate::ppo::model::ActorSnapshot;
-use crate::ppo::{EpisodeReport, PpoConfig, Trainer};
+use crate::lesson::{Session, Snapshot};
+use crate::ppo::PpoConfig;
 
 /// What the UI asks of the worker.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,22 +33,11 @@ pub enum Command {
     Quit,
 }
 
-/// One finished episode, with what the lessons show beside the update's trace.
-#[derive(Debug, Clone)]
-pub struct EpisodeData {
-    /// The trainer's report (return, steps, the update trace).
-    pub report: EpisodeReport,
-    /// `π(·|s_t)` for every state of the batch, under the updated actor.
-    pub probs: Vec<[f32; 2]>,
-    /// Every parameter after the update: `(name, shape, values)`.
-    pub weights: Vec<(String, Vec<usize>, Vec<f32>)>,
-}
-
 /// What the worker tells the UI.
 #[derive(Debug, Clone)]
 pub enum WorkerEvent {
-    /// An episode and its update finished.
-    Episode(Box<EpisodeData>),
+    /// An episode and its update finished: what the tutor shows after it.
+    Episode(Box<Snapshot>),
     /// The run reached its configured number of episodes.
     Finished,
     /// A fresh agent is ready (after [`Command::Reset`]).
@@ -69,13 +61,7 @@ pub fn spawn(
 }
 
 fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Sender<WorkerEvent>) {
-    let mut trainer = match Trainer::new(config, seed) {
-        Ok(t) => Some(t),
-        Err(e) => {
-            let _ = events.send(WorkerEvent::Error(e.to_string()));
-            None
-        }
-    };
+    let mut session = start(config, seed, events);
     let mut running = false;
     let mut one_more = false;
     loop {
@@ -99,16 +85,10 @@ fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Send
             Some(Command::Reset { config, seed }) => {
                 running = false;
                 one_more = false;
-                trainer = match Trainer::new(*config, seed) {
-                    Ok(t) => {
-                        let _ = events.send(WorkerEvent::Reset { seed });
-                        Some(t)
-                    }
-                    Err(e) => {
-                        let _ = events.send(WorkerEvent::Error(e.to_string()));
-                        None
-                    }
-                };
+                session = start(*config, seed, events);
+                if session.is_some() {
+                    let _ = events.send(WorkerEvent::Reset { seed });
+                }
             }
             None => {}
         }
@@ -116,16 +96,14 @@ fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Send
             continue;
         }
         one_more = false;
-        let Some(t) = trainer.as_mut() else {
+        let Some(s) = session.as_mut() else {
             running = false;
             continue;
         };
-        // The policy the episode is played with, before the episode's update changes it.
-        let played_with = ActorSnapshot::of(t.agent().actor()).unwrap_or_default();
-        match t.next_episode() {
-            Ok(Some(report)) => {
-                let data = episode_data(t, &played_with, report);
-                if events.send(WorkerEvent::Episode(Box::new(data))).is_err() {
+        match s.next_episode() {
+            Ok(Some(snapshot)) => {
+                let event = WorkerEvent::Episode(Box::new(snapshot.clone()));
+                if events.send(event).is_err() {
                     return;
                 }
             }
@@ -135,25 +113,20 @@ fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Send
             }
             Err(e) => {
                 running = false;
-                trainer = None;
+                session = None;
                 let _ = events.send(WorkerEvent::Error(e.to_string()));
             }
         }
     }
 }
 
-/// Gathers what the lessons show beside the trace.
-fn episode_data(
-    trainer: &Trainer,
-    played_with: &ActorSnapshot,
-    report: EpisodeReport,
-) -> EpisodeData {
-    let agent = trainer.agent();
-    let probs = crate::lesson::live::probs_over(played_with, &report.trace.states);
-    let weights = crate::lesson::live::weights_of(agent);
-    EpisodeData {
-        report,
-        probs,
-        weights,
+/// A fresh session, or `None` after sending the reason it could not start.
+fn start(config: PpoConfig, seed: u64, events: &Sender<WorkerEvent>) -> Option<Session> {
+    match Session::new(config, seed) {
+        Ok(session) => Some(session),
+        Err(e) => {
+            let _ = events.send(WorkerEvent::Error(e.to_string()));
+            None
+        }
     }
 }
