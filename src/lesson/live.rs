@@ -9,50 +9,15 @@
 //!
 //! - [`session`]: [`Session`], the one training run that turns episodes into snapshots; the
 //!   terminal app's worker, `ppo-tutor show`, the notebooks and the tests all go through it.
+//! - [`values`]: [`LIVE`], the table of live value names and their views.
 
 pub mod session;
+pub mod values;
 
 pub use session::Session;
+pub use values::{LIVE, LiveValue, NAMES, is_known, lookup};
 
 use crate::ppo::{NamedWeights, PpoConfig, UpdateTrace};
-
-/// Every live value name a lesson may show (views such as `plot` are listed in [`super::VIEWS`]).
-pub const NAMES: [&str; 28] = [
-    "hyper",
-    "weights",
-    "probs",
-    "obs",
-    "states",
-    "actions",
-    "rewards",
-    "next_states",
-    "dones",
-    "terminated",
-    "truncated",
-    "values",
-    "next_values",
-    "td_target",
-    "td_delta",
-    "advantage",
-    "old_log_probs",
-    "log_probs",
-    "ratio",
-    "surr1",
-    "surr2",
-    "clipped",
-    "actor_loss",
-    "critic_loss",
-    "approx_kl",
-    "clip_frac",
-    "returns",
-    "moving_average",
-];
-
-/// Whether `name` is a live value the tutor can show.
-#[must_use]
-pub fn is_known(name: &str) -> bool {
-    NAMES.contains(&name)
-}
 
 /// How an entry is highlighted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -217,6 +182,13 @@ impl Snapshot {
         }
     }
 
+    /// The view of live value `name`, `None` if it is not a live value (see [`LIVE`]) or
+    /// nothing has been computed for it yet.
+    #[must_use]
+    pub fn tensor(&self, name: &str) -> Option<TensorView> {
+        lookup(name)?.view(self)
+    }
+
     /// How many observations the latest episode went through: each state it acted in, then
     /// the one it ended in (0 before the first episode). The frames of the cart-pole animation.
     #[must_use]
@@ -237,160 +209,6 @@ impl Snapshot {
             None => None,
         }
     }
-
-    /// The view of live value `name`, `None` if nothing has been computed for it yet.
-    #[must_use]
-    pub fn tensor(&self, name: &str) -> Option<TensorView> {
-        if let Some(t) = self.scalar_or_curve(name) {
-            return Some(t);
-        }
-        let trace = self.trace.as_ref()?;
-        let last = trace.epochs.last();
-        let first = trace.epochs.first();
-        Some(match name {
-            "states" => TensorView::rows(name, &trace.states),
-            "obs" | "next_states" => TensorView::rows(name, &trace.next_states),
-            "actions" => TensorView::new(
-                name,
-                vec![trace.actions.len(), 1],
-                "int64",
-                trace.actions.iter().map(|&a| a as f64).collect(),
-            ),
-            "rewards" => TensorView::column(name, &trace.rewards),
-            "dones" => TensorView::flags(name, &trace.dones),
-            "values" => TensorView::column(name, &trace.values),
-            "next_values" => TensorView::column(name, &trace.next_values),
-            "td_target" => TensorView::column(name, &trace.td_target),
-            "td_delta" => signed(TensorView::column(name, &trace.td_delta)),
-            "advantage" => signed(TensorView::column(name, &trace.advantage)),
-            "old_log_probs" => TensorView::column(name, &trace.old_log_probs),
-            "log_probs" => TensorView::column(name, &last?.log_probs),
-            "ratio" => self.ratio_view(name, last?),
-            "surr1" => TensorView::column(name, &last?.surr1),
-            "surr2" => TensorView::column(name, &last?.surr2),
-            "clipped" => {
-                let mut t = TensorView::flags(name, &last?.clipped);
-                t.dtype = "bool";
-                t.marks = last?
-                    .clipped
-                    .iter()
-                    .map(|&c| if c { Mark::Clipped } else { Mark::Plain })
-                    .collect();
-                t
-            }
-            "actor_loss" => epoch_series(name, &trace.epochs, |e| e.actor_loss),
-            "critic_loss" => epoch_series(name, &trace.epochs, |e| e.critic_loss),
-            "approx_kl" => epoch_series(name, &trace.epochs, |e| e.approx_kl),
-            "clip_frac" => epoch_series(name, &trace.epochs, |e| e.clip_fraction),
-            _ => {
-                let _ = first;
-                return None;
-            }
-        })
-    }
-
-    fn scalar_or_curve(&self, name: &str) -> Option<TensorView> {
-        match name {
-            "hyper" => {
-                let mut t = TensorView::new(
-                    name,
-                    vec![self.hyper.len()],
-                    "",
-                    vec![f64::NAN; self.hyper.len()],
-                );
-                t.labels = self
-                    .hyper
-                    .iter()
-                    .map(|(k, v)| format!("{k} = {v}"))
-                    .collect();
-                Some(t)
-            }
-            "returns" if !self.returns.is_empty() => Some(TensorView::new(
-                name,
-                vec![self.returns.len()],
-                "float64",
-                self.returns.clone(),
-            )),
-            "moving_average" if !self.moving_average.is_empty() => Some(TensorView::new(
-                name,
-                vec![self.moving_average.len()],
-                "float64",
-                self.moving_average.clone(),
-            )),
-            "probs" if !self.probs.is_empty() => {
-                let values = self.probs.iter().flatten().map(|&p| f64::from(p)).collect();
-                Some(TensorView::new(
-                    name,
-                    vec![self.probs.len(), 2],
-                    "float32",
-                    values,
-                ))
-            }
-            "terminated" if !self.terminated.is_empty() => {
-                Some(TensorView::flags(name, &self.terminated))
-            }
-            "truncated" if !self.truncated.is_empty() => {
-                Some(TensorView::flags(name, &self.truncated))
-            }
-            "weights" if !self.weights.is_empty() => {
-                let mut t = TensorView::new(name, vec![self.weights.len()], "", vec![]);
-                for (n, w) in &self.weights {
-                    let norm = w
-                        .data
-                        .iter()
-                        .map(|v| f64::from(*v).powi(2))
-                        .sum::<f64>()
-                        .sqrt();
-                    let dims: Vec<String> = w.shape.iter().map(ToString::to_string).collect();
-                    t.labels
-                        .push(format!("{n} ({}) ‖·‖ = {norm:.4}", dims.join(", ")));
-                    t.values.push(norm);
-                    t.marks.push(Mark::Plain);
-                }
-                t.shape = vec![t.labels.len()];
-                Some(t)
-            }
-            _ => None,
-        }
-    }
-
-    fn ratio_view(&self, name: &str, epoch: &crate::ppo::EpochTrace) -> TensorView {
-        let mut t = TensorView::column(name, &epoch.ratio);
-        t.marks = epoch
-            .clipped
-            .iter()
-            .map(|&c| if c { Mark::Clipped } else { Mark::Plain })
-            .collect();
-        t
-    }
-}
-
-/// Marks each entry by its sign.
-fn signed(mut t: TensorView) -> TensorView {
-    t.marks = t
-        .values
-        .iter()
-        .map(|&v| {
-            if v > 0.0 {
-                Mark::Positive
-            } else if v < 0.0 {
-                Mark::Negative
-            } else {
-                Mark::Plain
-            }
-        })
-        .collect();
-    t
-}
-
-/// A per-epoch scalar as a vector over epochs (`(epochs,)`).
-fn epoch_series(
-    name: &str,
-    epochs: &[crate::ppo::EpochTrace],
-    f: impl Fn(&crate::ppo::EpochTrace) -> f32,
-) -> TensorView {
-    let values: Vec<f64> = epochs.iter().map(|e| f64::from(f(e))).collect();
-    TensorView::new(name, vec![values.len()], "float32", values)
 }
 
 /// The hyper-parameter table of a run, in the seed's order.
@@ -451,12 +269,6 @@ mod tests {
         assert_eq!(dones.count(Mark::Done), 1);
         assert_eq!(adv.shape_text(), "(2, 1) float32");
         Ok(())
-    }
-
-    #[test]
-    fn every_name_is_known_and_unknown_names_are_not() {
-        assert!(NAMES.iter().all(|n| is_known(n)));
-        assert!(!is_known("td_targets"));
     }
 
     #[test]

@@ -121,7 +121,7 @@ fn probs_over(policy: &ActorSnapshot, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lesson::live::NAMES;
+    use crate::lesson::live::LIVE;
 
     type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -135,13 +135,13 @@ mod tests {
     #[test]
     fn every_live_value_resolves_after_a_short_run() -> TestResult {
         let snapshot = Session::run(PpoConfig::default(), 0, 10)?;
-        for name in NAMES {
+        for v in LIVE {
             let t = snapshot
-                .tensor(name)
-                .ok_or_else(|| format!("{name} has no view after 10 episodes"))?;
-            assert_eq!(t.name, name);
+                .tensor(v.name)
+                .ok_or_else(|| format!("{} has no view after 10 episodes", v.name))?;
+            assert_eq!(t.name, v.name);
             let rows = t.values.len().max(t.labels.len());
-            assert!(rows > 0, "{name} is empty");
+            assert!(rows > 0, "{} is empty", v.name);
         }
         Ok(())
     }

@@ -1,0 +1,318 @@
+//! The live-value table: every name a lesson's `show` list may use, each beside the one
+//! function that views it in a [`Snapshot`].
+//!
+//! [`LIVE`] is the only place a live value is named: [`NAMES`], [`is_known`] (which the lesson
+//! loader checks `show` lists against) and [`Snapshot::tensor`] all read it, so a name cannot
+//! be known without a view, or viewed without being known.
+//!
+//! ```
+//! use ppo_tutor::lesson::live::{LIVE, NAMES, is_known, lookup};
+//!
+//! assert_eq!(NAMES.len(), LIVE.len());
+//! assert!(is_known("td_target") && !is_known("td_targets"));
+//! assert_eq!(lookup("ratio").map(|v| v.name), Some("ratio"));
+//! ```
+
+use super::{Mark, Snapshot, TensorView};
+use crate::ppo::{EpochTrace, UpdateTrace};
+
+/// One live value: its name in lessons and how to view it in a snapshot.
+#[derive(Debug, Clone, Copy)]
+pub struct LiveValue {
+    /// The name, as in the seed's code (`td_target`, `ratio`, ...).
+    pub name: &'static str,
+    /// The view of the value named by the first argument; `None` while nothing computed it.
+    view: fn(&'static str, &Snapshot) -> Option<TensorView>,
+}
+
+impl LiveValue {
+    /// This value in `snapshot`, `None` if nothing has been computed for it yet.
+    #[must_use]
+    pub fn view(&self, snapshot: &Snapshot) -> Option<TensorView> {
+        (self.view)(self.name, snapshot)
+    }
+}
+
+/// Every live value a lesson may show, in the seed's order (views such as `plot` are listed
+/// in [`crate::lesson::VIEWS`]).
+pub const LIVE: &[LiveValue] = &[
+    LiveValue {
+        name: "hyper",
+        view: hyper,
+    },
+    LiveValue {
+        name: "weights",
+        view: weights,
+    },
+    LiveValue {
+        name: "probs",
+        view: probs,
+    },
+    LiveValue {
+        name: "obs",
+        view: |n, s| Some(TensorView::rows(n, &trace(s)?.next_states)),
+    },
+    LiveValue {
+        name: "states",
+        view: |n, s| Some(TensorView::rows(n, &trace(s)?.states)),
+    },
+    LiveValue {
+        name: "actions",
+        view: actions,
+    },
+    LiveValue {
+        name: "rewards",
+        view: |n, s| Some(TensorView::column(n, &trace(s)?.rewards)),
+    },
+    LiveValue {
+        name: "next_states",
+        view: |n, s| Some(TensorView::rows(n, &trace(s)?.next_states)),
+    },
+    LiveValue {
+        name: "dones",
+        view: |n, s| Some(TensorView::flags(n, &trace(s)?.dones)),
+    },
+    LiveValue {
+        name: "terminated",
+        view: |n, s| (!s.terminated.is_empty()).then(|| TensorView::flags(n, &s.terminated)),
+    },
+    LiveValue {
+        name: "truncated",
+        view: |n, s| (!s.truncated.is_empty()).then(|| TensorView::flags(n, &s.truncated)),
+    },
+    LiveValue {
+        name: "values",
+        view: |n, s| Some(TensorView::column(n, &trace(s)?.values)),
+    },
+    LiveValue {
+        name: "next_values",
+        view: |n, s| Some(TensorView::column(n, &trace(s)?.next_values)),
+    },
+    LiveValue {
+        name: "td_target",
+        view: |n, s| Some(TensorView::column(n, &trace(s)?.td_target)),
+    },
+    LiveValue {
+        name: "td_delta",
+        view: |n, s| Some(signed(TensorView::column(n, &trace(s)?.td_delta))),
+    },
+    LiveValue {
+        name: "advantage",
+        view: |n, s| Some(signed(TensorView::column(n, &trace(s)?.advantage))),
+    },
+    LiveValue {
+        name: "old_log_probs",
+        view: |n, s| Some(TensorView::column(n, &trace(s)?.old_log_probs)),
+    },
+    LiveValue {
+        name: "log_probs",
+        view: |n, s| Some(TensorView::column(n, &last_epoch(s)?.log_probs)),
+    },
+    LiveValue {
+        name: "ratio",
+        view: ratio,
+    },
+    LiveValue {
+        name: "surr1",
+        view: |n, s| Some(TensorView::column(n, &last_epoch(s)?.surr1)),
+    },
+    LiveValue {
+        name: "surr2",
+        view: |n, s| Some(TensorView::column(n, &last_epoch(s)?.surr2)),
+    },
+    LiveValue {
+        name: "clipped",
+        view: clipped,
+    },
+    LiveValue {
+        name: "actor_loss",
+        view: |n, s| epoch_series(n, s, |e| e.actor_loss),
+    },
+    LiveValue {
+        name: "critic_loss",
+        view: |n, s| epoch_series(n, s, |e| e.critic_loss),
+    },
+    LiveValue {
+        name: "approx_kl",
+        view: |n, s| epoch_series(n, s, |e| e.approx_kl),
+    },
+    LiveValue {
+        name: "clip_frac",
+        view: |n, s| epoch_series(n, s, |e| e.clip_fraction),
+    },
+    LiveValue {
+        name: "returns",
+        view: |n, s| curve(n, &s.returns),
+    },
+    LiveValue {
+        name: "moving_average",
+        view: |n, s| curve(n, &s.moving_average),
+    },
+];
+
+/// Every live value name, in [`LIVE`]'s order.
+pub const NAMES: [&str; LIVE.len()] = {
+    let mut names = [""; LIVE.len()];
+    let mut i = 0;
+    while i < LIVE.len() {
+        names[i] = LIVE[i].name;
+        i += 1;
+    }
+    names
+};
+
+/// The live value called `name`, if there is one.
+#[must_use]
+pub fn lookup(name: &str) -> Option<&'static LiveValue> {
+    LIVE.iter().find(|v| v.name == name)
+}
+
+/// Whether `name` is a live value the tutor can show.
+#[must_use]
+pub fn is_known(name: &str) -> bool {
+    lookup(name).is_some()
+}
+
+fn trace(s: &Snapshot) -> Option<&UpdateTrace> {
+    s.trace.as_ref()
+}
+
+fn last_epoch(s: &Snapshot) -> Option<&EpochTrace> {
+    trace(s)?.epochs.last()
+}
+
+/// The hyper-parameters as `name = value` rows (shown even before the first episode).
+fn hyper(name: &'static str, s: &Snapshot) -> Option<TensorView> {
+    let mut t = TensorView::new(name, vec![s.hyper.len()], "", vec![f64::NAN; s.hyper.len()]);
+    t.labels = s.hyper.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+    Some(t)
+}
+
+/// One row per parameter: its name, shape and Euclidean norm.
+fn weights(name: &'static str, s: &Snapshot) -> Option<TensorView> {
+    if s.weights.is_empty() {
+        return None;
+    }
+    let mut t = TensorView::new(name, vec![s.weights.len()], "", vec![]);
+    for (n, w) in &s.weights {
+        let norm = w
+            .data
+            .iter()
+            .map(|v| f64::from(*v).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let dims: Vec<String> = w.shape.iter().map(ToString::to_string).collect();
+        t.labels
+            .push(format!("{n} ({}) ‖·‖ = {norm:.4}", dims.join(", ")));
+        t.values.push(norm);
+        t.marks.push(Mark::Plain);
+    }
+    t.shape = vec![t.labels.len()];
+    Some(t)
+}
+
+fn probs(name: &'static str, s: &Snapshot) -> Option<TensorView> {
+    if s.probs.is_empty() {
+        return None;
+    }
+    let values = s.probs.iter().flatten().map(|&p| f64::from(p)).collect();
+    Some(TensorView::new(
+        name,
+        vec![s.probs.len(), 2],
+        "float32",
+        values,
+    ))
+}
+
+fn actions(name: &'static str, s: &Snapshot) -> Option<TensorView> {
+    let actions = &trace(s)?.actions;
+    Some(TensorView::new(
+        name,
+        vec![actions.len(), 1],
+        "int64",
+        actions.iter().map(|&a| a as f64).collect(),
+    ))
+}
+
+/// The last epoch's ratio, clipped entries marked.
+fn ratio(name: &'static str, s: &Snapshot) -> Option<TensorView> {
+    let epoch = last_epoch(s)?;
+    let mut t = TensorView::column(name, &epoch.ratio);
+    t.marks = clip_marks(&epoch.clipped);
+    Some(t)
+}
+
+/// The last epoch's clip flags as a bool column, clipped entries marked.
+fn clipped(name: &'static str, s: &Snapshot) -> Option<TensorView> {
+    let epoch = last_epoch(s)?;
+    let mut t = TensorView::flags(name, &epoch.clipped);
+    t.dtype = "bool";
+    t.marks = clip_marks(&epoch.clipped);
+    Some(t)
+}
+
+fn clip_marks(clipped: &[bool]) -> Vec<Mark> {
+    clipped
+        .iter()
+        .map(|&c| if c { Mark::Clipped } else { Mark::Plain })
+        .collect()
+}
+
+/// A float64 curve over episodes, `None` before the first episode.
+fn curve(name: &'static str, values: &[f64]) -> Option<TensorView> {
+    (!values.is_empty())
+        .then(|| TensorView::new(name, vec![values.len()], "float64", values.to_vec()))
+}
+
+/// Marks each entry by its sign.
+fn signed(mut t: TensorView) -> TensorView {
+    t.marks = t
+        .values
+        .iter()
+        .map(|&v| {
+            if v > 0.0 {
+                Mark::Positive
+            } else if v < 0.0 {
+                Mark::Negative
+            } else {
+                Mark::Plain
+            }
+        })
+        .collect();
+    t
+}
+
+/// A per-epoch scalar of the latest update as a vector over epochs (`(epochs,)`).
+fn epoch_series(
+    name: &'static str,
+    s: &Snapshot,
+    f: impl Fn(&EpochTrace) -> f32,
+) -> Option<TensorView> {
+    let values: Vec<f64> = trace(s)?.epochs.iter().map(|e| f64::from(f(e))).collect();
+    Some(TensorView::new(name, vec![values.len()], "float32", values))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    #[test]
+    fn names_are_unique_and_known() {
+        let unique: HashSet<&str> = NAMES.iter().copied().collect();
+        assert_eq!(unique.len(), LIVE.len(), "a name is listed twice");
+        assert!(NAMES.iter().all(|n| is_known(n)));
+        assert!(!is_known("td_targets"));
+        assert!(!is_known("plot"), "views are not live values");
+    }
+
+    #[test]
+    fn every_view_is_named_after_its_row() {
+        let snapshot = Snapshot::default();
+        for v in LIVE {
+            if let Some(t) = v.view(&snapshot) {
+                assert_eq!(t.name, v.name);
+            }
+        }
+    }
+}
