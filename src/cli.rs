@@ -11,6 +11,7 @@ use clap::{Parser, Subcommand};
 
 pub mod args;
 pub mod cartpole;
+pub mod dev;
 pub mod grade;
 pub mod lessons;
 pub mod play;
@@ -46,6 +47,9 @@ pub enum Command {
     Grade(grade::GradeArgs),
     /// Restore an exercise's starter file (lessons/NN-slug/exercise.rs).
     Reset(grade::ResetArgs),
+    /// Developer commands that regenerate the course's content (`dev notebooks`).
+    #[command(hide = true)]
+    Dev(dev::DevArgs),
 }
 
 /// Exit code for bad command-line input (as clap uses).
@@ -139,9 +143,10 @@ fn rerun_with_one_candle_thread() -> Option<anyhow::Result<ExitCode>> {
 /// Whatever the subcommand reports (bad files, invalid settings, I/O).
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     // Training, showing live values and grading run candle: one candle thread is faster.
+    // (`dev notebooks` re-runs itself with one thread among its other settings.)
     let uses_candle = !matches!(
         cli.command,
-        Some(Command::Cartpole(_) | Command::Lessons | Command::Reset(_))
+        Some(Command::Cartpole(_) | Command::Lessons | Command::Reset(_) | Command::Dev(_))
     );
     if uses_candle && let Some(done) = rerun_with_one_candle_thread() {
         return done;
@@ -155,6 +160,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Replay(args)) => replay::run(&args),
         Some(Command::Grade(args)) => grade::run(&args),
         Some(Command::Reset(args)) => grade::reset(&args),
+        Some(Command::Dev(args)) => dev::run(&args),
         None => {
             crate::tui::run()?;
             Ok(ExitCode::SUCCESS)

@@ -7,7 +7,8 @@
 //! - [`plot`]: return curves in the terminal and as PNG/SVG figures (plotters).
 //! - [`grade`]: graded exercises: the learner's plain-Rust PPO pieces against the references.
 //! - [`lesson`]: the course as data (`lessons/`, embedded), code anchors, live values, progress.
-//! - [`notebook`]: rich output for the Jupyter notebooks (evcxr): HTML tables, inline SVG.
+//! - [`notebook`]: rich output for the Jupyter notebooks (evcxr): HTML tables, inline SVG;
+//!   and the generator of the notebooks themselves (`ppo-tutor dev notebooks`).
 //! - [`tui`]: the terminal app (ratatui), training on a worker thread.
 //! - [`cli`]: the `ppo-tutor` command line (the binary only parses arguments and calls it).
 //!

@@ -15,6 +15,16 @@
 //! let picture = cartpole_svg(&[0.1, 0.0, 0.05, 0.0]);
 //! assert!(picture.as_str().starts_with("<svg"));
 //! ```
+//!
+//! The notebooks themselves are generated: [`build`] makes a lesson's cells from its
+//! `lesson.md` and recipe, [`ipynb`] writes them as a notebook file, and `kernel` (feature
+//! `notebook-runner`) executes them on evcxr (`ppo-tutor dev notebooks`,
+//! `tests/notebooks.rs`).
+
+pub mod build;
+pub mod ipynb;
+#[cfg(feature = "notebook-runner")]
+pub mod kernel;
 
 use std::fmt::Write as _;
 

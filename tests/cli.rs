@@ -35,6 +35,28 @@ fn help_exists_for_every_subcommand() -> TestResult {
     Ok(())
 }
 
+/// The developer command `dev` is hidden from the main help but has its own, which says
+/// how to run `dev notebooks` (it needs the `notebook-runner` feature).
+#[test]
+fn dev_is_hidden_and_documented() -> TestResult {
+    let top = String::from_utf8(run(&["--help"])?.stdout)?;
+    assert!(
+        !top.lines().any(|l| l.trim_start().starts_with("dev ")),
+        "{top}"
+    );
+    let dev = run(&["dev", "--help"])?;
+    assert!(dev.status.success());
+    assert!(String::from_utf8(dev.stdout)?.contains("notebooks"));
+    let notebooks = run(&["dev", "notebooks", "--help"])?;
+    assert!(notebooks.status.success());
+    let text = String::from_utf8(notebooks.stdout)?;
+    assert!(
+        text.contains("cargo run --features notebook-runner -- dev notebooks"),
+        "{text}"
+    );
+    Ok(())
+}
+
 /// Each bad input gives one line on stderr naming the argument, exit code 2, no panic.
 #[test]
 fn bad_input_is_one_line_and_exit_2() -> TestResult {

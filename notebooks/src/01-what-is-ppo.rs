@@ -1,6 +1,6 @@
 //! Recipe for notebooks/01-what-is-ppo.ipynb: code cells between `// %%` lines; the
 //! markdown, the live-value cells and the exercise come from lessons/01-what-is-ppo.
-//! Regenerate: PPO_TUTOR_NOTEBOOKS=overwrite cargo test --test notebooks -- 01
+//! Regenerate: cargo run --features notebook-runner -- dev notebooks 01
 
 // %%
 use ppo_tutor::lesson::Snapshot;

@@ -641,6 +641,15 @@ mod tests {
 
     type TestResult = Result<(), Box<dyn std::error::Error>>;
 
+    #[test]
+    fn the_notebook_text_names_the_training_length() -> TestResult {
+        let prose = crate::grade::prose::Prose::of("ppo_losses")?;
+        let text = prose.other("notebook").ok_or("no `notebook` text")?;
+        let says = format!("({TRAIN_EPISODES} episodes");
+        assert!(text.contains(&says), "{text:?} should say {says:?}");
+        Ok(())
+    }
+
     fn all() -> Result<Vec<Case>, PpoError> {
         let c = cases::all()?;
         Ok(c.fixture

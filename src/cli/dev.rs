@@ -1,0 +1,165 @@
+//! `ppo-tutor dev`: developer commands that change the course's content, hidden from the
+//! main help (rustlings' `dev`).
+//!
+//! `dev notebooks` regenerates `notebooks/*.ipynb` from the lessons and the recipes in
+//! `notebooks/src/`, executing every cell on the evcxr engine. evcxr is behind the cargo
+//! feature `notebook-runner`; without it the command says how to run it
+//! ([`REGENERATE`](crate::notebook::build::REGENERATE)) and exits with code 2.
+
+use std::process::ExitCode;
+
+use clap::{Args, Subcommand};
+
+/// Developer commands: regenerate content from its sources.
+#[derive(Debug, Args)]
+pub struct DevArgs {
+    /// What to regenerate.
+    #[command(subcommand)]
+    pub command: DevCommand,
+}
+
+/// The developer subcommands.
+#[derive(Debug, Subcommand)]
+pub enum DevCommand {
+    /// Regenerate notebooks/*.ipynb (cells and outputs) from the lessons and notebooks/src/.
+    #[command(
+        long_about = "Regenerate notebooks/*.ipynb (cells and outputs) from the lessons and \
+                      the recipes in notebooks/src/, executing every cell on the evcxr engine \
+                      (the first run compiles ppo-tutor and candle inside it: several minutes).\n\n\
+                      Needs the `notebook-runner` feature; in the repository run:\n  \
+                      cargo run --features notebook-runner -- dev notebooks [LESSONS]...\n\
+                      then check the result with `cargo test --test notebooks`."
+    )]
+    Notebooks(NotebooksArgs),
+}
+
+/// Arguments of `dev notebooks`.
+#[derive(Debug, Args)]
+pub struct NotebooksArgs {
+    /// Only the lessons whose folder contains one of these strings (`07`, `gae`); all
+    /// lessons when none is given.
+    pub lessons: Vec<String>,
+}
+
+/// Runs a developer command.
+///
+/// # Errors
+/// Whatever the command reports (a recipe out of step with its lesson, a failing cell, I/O).
+pub fn run(args: &DevArgs) -> anyhow::Result<ExitCode> {
+    match &args.command {
+        DevCommand::Notebooks(args) => notebooks(args),
+    }
+}
+
+/// The message for a build without the notebook runner.
+#[cfg(any(test, not(feature = "notebook-runner")))]
+fn no_runner_message() -> String {
+    format!(
+        "error: `ppo-tutor dev notebooks` executes the notebooks on the evcxr engine, which \
+         this build leaves out (cargo feature `notebook-runner`); in the repository, run:\n  \
+         {}",
+        crate::notebook::build::REGENERATE
+    )
+}
+
+#[cfg(not(feature = "notebook-runner"))]
+fn notebooks(_args: &NotebooksArgs) -> anyhow::Result<ExitCode> {
+    eprintln!("{}", no_runner_message());
+    Ok(ExitCode::from(super::EXIT_USAGE))
+}
+
+#[cfg(feature = "notebook-runner")]
+fn notebooks(args: &NotebooksArgs) -> anyhow::Result<ExitCode> {
+    runner::notebooks(args)
+}
+
+/// The notebook runner, built with the `notebook-runner` feature.
+#[cfg(feature = "notebook-runner")]
+mod runner {
+    use std::path::{Path, PathBuf};
+    use std::process::ExitCode;
+    use std::time::Instant;
+
+    use anyhow::{Context as _, bail};
+
+    use super::NotebooksArgs;
+    use crate::lesson::Course;
+    use crate::notebook::build::{self, REGENERATE};
+    use crate::notebook::ipynb::{notebook_json, to_text};
+    use crate::notebook::kernel::{self, Kernel};
+
+    /// The checkout this binary was built from: its lessons are the embedded ones, so its
+    /// recipes and notebooks are the ones to regenerate.
+    const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+    /// evcxr's work folder: `tmp/evcxr` in the target folder holding this binary
+    /// (`target/debug/ppo-tutor`), the folder `tests/notebooks.rs` uses, so the kernel's
+    /// build of ppo-tutor and candle is shared.
+    fn evcxr_tmp(root: &Path) -> PathBuf {
+        std::env::current_exe()
+            .ok()
+            .and_then(|exe| Some(exe.parent()?.parent()?.join("tmp").join("evcxr")))
+            .unwrap_or_else(|| root.join("target").join("tmp").join("evcxr"))
+    }
+
+    pub(super) fn notebooks(args: &NotebooksArgs) -> anyhow::Result<ExitCode> {
+        let root = Path::new(ROOT);
+        if !root.join("notebooks").join("src").is_dir() {
+            bail!(
+                "{} has no notebooks/src: run `{REGENERATE}` in a checkout of ppo-tutor",
+                root.display()
+            );
+        }
+        if !kernel::is_driver() {
+            let status = kernel::relaunch(root, &evcxr_tmp(root))?;
+            if status.code().is_none() {
+                // Killed: the driver could not say why.
+                bail!("the notebook driver stopped: {status}");
+            }
+            return Ok(if status.success() {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::FAILURE
+            });
+        }
+        let course = Course::embedded()?;
+        build::recipe_folders(root, &course)?;
+        // Build every notebook first: a recipe out of step with its lesson fails at once.
+        let mut notebooks = Vec::new();
+        for lesson in &course.lessons {
+            notebooks.push((build::folder(lesson), build::notebook_cells(root, lesson)?));
+        }
+        for (folder, cells) in &notebooks {
+            if !args.lessons.is_empty() && !args.lessons.iter().any(|f| folder.contains(f.as_str()))
+            {
+                continue;
+            }
+            let started = Instant::now();
+            let name = format!("notebooks/{folder}.ipynb");
+            let outputs = Kernel::start()?.run_cells(cells, &name)?;
+            let text = to_text(&notebook_json(cells, &outputs))?;
+            std::fs::write(root.join(&name), text).with_context(|| format!("writing {name}"))?;
+            println!(
+                "{name}: {} cells ran in {:.1} s",
+                cells.len(),
+                started.elapsed().as_secs_f64()
+            );
+        }
+        println!("check them with `cargo test --test notebooks`");
+        Ok(ExitCode::SUCCESS)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_message_without_the_runner_gives_the_command() {
+        let msg = no_runner_message();
+        assert!(
+            msg.ends_with("cargo run --features notebook-runner -- dev notebooks"),
+            "{msg}"
+        );
+    }
+}

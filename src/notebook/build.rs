@@ -1,0 +1,684 @@
+//! The notebook generator: the cells of `notebooks/NN-slug.ipynb`, from the lesson and a
+//! recipe of code cells.
+//!
+//! A recipe is `notebooks/src/NN-slug.rs`: code cells separated by `// %%` lines (text
+//! before the first one is the recipe's own header), `// %% step: TITLE` where the lesson's
+//! step TITLE begins, and `// %% exercise` where the exercise goes. The generator adds the
+//! rest from `lessons/NN-slug/`: a title cell, the `:dep` cell, each step's explanation
+//! with the seed's Python and the Rust code by anchor, cells showing the step's live values
+//! (as the terminal app does beside the text), and the exercise with its grading cells.
+//!
+//! [`super::ipynb`] writes the cells (and their outputs) as a notebook file; executing them
+//! needs the evcxr engine (`super::kernel`, feature `notebook-runner`). Regenerate every
+//! notebook with [`REGENERATE`].
+//!
+//! ```
+//! use ppo_tutor::lesson::Course;
+//! use ppo_tutor::notebook::build::{Cell, cells_from_recipe};
+//! use std::path::Path;
+//!
+//! let course = Course::embedded()?;
+//! let lesson = course.get("what-is-ppo").ok_or("no lesson 1")?;
+//! let steps: String = lesson.steps.iter().map(|s| format!("// %% step: {}\n", s.title)).collect();
+//! let recipe = format!("// %%\nlet x = 1;\n{steps}");
+//! let cells = cells_from_recipe(lesson, &recipe, "recipe.rs", Path::new(env!("CARGO_MANIFEST_DIR")))?;
+//! assert_eq!(cells[1], Cell::Code(r#":dep ppo-tutor = { path = ".." }"#.to_string()));
+//! assert_eq!(cells[2], Cell::Code("let x = 1;".to_string()));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use crate::grade::prose::Prose;
+use crate::grade::{Backend, Exercise};
+use crate::lesson::{Course, Lesson};
+
+/// The command that regenerates the notebooks (sources and outputs), run in the repository.
+pub const REGENERATE: &str = "cargo run --features notebook-runner -- dev notebooks";
+
+/// The first cell of every notebook: the crate, resolved from `notebooks/` as Jupyter does.
+pub const DEP_CELL: &str = ":dep ppo-tutor = { path = \"..\" }";
+
+/// One cell of a generated notebook.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Cell {
+    /// Text: a title, a step's explanation, the exercise's instructions.
+    Markdown(String),
+    /// Rust the kernel runs.
+    Code(String),
+}
+
+/// What can go wrong building a notebook; each message names the file and the fix.
+#[derive(Debug, thiserror::Error)]
+pub enum BuildError {
+    /// A file or folder could not be read.
+    #[error("{path}: cannot read it: {source}")]
+    Read {
+        /// The path, relative to the repository.
+        path: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// `notebooks/src/` does not hold exactly one recipe per lesson.
+    #[error(
+        "notebooks/src/ must hold one recipe per lesson, named after its folder:\n  \
+         lessons: {lessons:?}\n  recipes: {recipes:?}"
+    )]
+    Recipes {
+        /// The lesson folders, in order.
+        lessons: Vec<String>,
+        /// The recipes found (file names without `.rs`), sorted.
+        recipes: Vec<String>,
+    },
+    /// A `// %% step:` marker past the lesson's last step.
+    #[error(
+        "{file}: step '{title}' is beyond the lesson's last step; remove the marker or add \
+         the step to the lesson"
+    )]
+    ExtraStep {
+        /// The recipe.
+        file: String,
+        /// The marker's title.
+        title: String,
+    },
+    /// A `// %% step:` marker whose title is not the lesson's next step.
+    #[error(
+        "{file}: step {index} is '{lesson}' in the lesson, '{recipe}' in the recipe; the \
+         markers must name the lesson's steps in order"
+    )]
+    WrongStep {
+        /// The recipe.
+        file: String,
+        /// The step's number, from 1.
+        index: usize,
+        /// The step's title in the lesson.
+        lesson: String,
+        /// The marker's title.
+        recipe: String,
+    },
+    /// The recipe stops before the lesson's last step.
+    #[error(
+        "{file}: the recipe covers {covered} of the lesson's {total} steps; add `// %% step: {next}`"
+    )]
+    MissingStep {
+        /// The recipe.
+        file: String,
+        /// Steps the recipe has markers for.
+        covered: usize,
+        /// Steps in the lesson.
+        total: usize,
+        /// The title of the first step without a marker.
+        next: String,
+    },
+    /// The lesson has an exercise and the recipe no `// %% exercise` marker.
+    #[error("{file}: the lesson has an exercise; add a `// %% exercise` cell marker")]
+    MissingExercise {
+        /// The recipe.
+        file: String,
+    },
+    /// A `// %% exercise` marker in a lesson without an exercise.
+    #[error(
+        "{file}: `// %% exercise` in a lesson without an exercise; remove the marker or add \
+         an [exercise] to the lesson's front matter"
+    )]
+    NoExercise {
+        /// The recipe.
+        file: String,
+    },
+    /// An exercise the grading registry does not have.
+    #[error(
+        "{file}: the lesson's exercise `{name}` is not in the registry; add it to \
+         src/grade/exercises.rs (CONTRIBUTING.md, \"Adding an exercise\")"
+    )]
+    Unregistered {
+        /// The recipe.
+        file: String,
+        /// The exercise.
+        name: String,
+    },
+    /// An exercise built with cargo (on candle) whose `exercise.toml` entry has no
+    /// `notebook` text to introduce its cell.
+    #[error(
+        "lessons/{lesson}/exercise.toml: exercise `{name}` has its own notebook cell; add \
+         `notebook = \"...\"` under [exercise.other] to introduce it"
+    )]
+    NoIntro {
+        /// The lesson folder.
+        lesson: String,
+        /// The exercise.
+        name: String,
+    },
+}
+
+/// The folder name of a lesson, `NN-slug`: its notebook is `notebooks/NN-slug.ipynb`, its
+/// recipe `notebooks/src/NN-slug.rs`, its files are in `lessons/NN-slug/`.
+#[must_use]
+pub fn folder(lesson: &Lesson) -> String {
+    format!("{:02}-{}", lesson.order, lesson.id)
+}
+
+/// The lesson folders of `course`, in order, after checking that `root/notebooks/src/`
+/// holds one recipe for each and nothing else.
+///
+/// # Errors
+/// [`BuildError::Recipes`] listing both sides, or [`BuildError::Read`].
+pub fn recipe_folders(root: &Path, course: &Course) -> Result<Vec<String>, BuildError> {
+    let lessons: Vec<String> = course.lessons.iter().map(folder).collect();
+    let recipes = stems(root, "notebooks/src", ".rs")?;
+    if recipes != lessons {
+        return Err(BuildError::Recipes { lessons, recipes });
+    }
+    Ok(lessons)
+}
+
+/// The sorted names, without `ext`, of the files in `root/dir` that end in `ext`.
+///
+/// # Errors
+/// [`BuildError::Read`] naming `dir`.
+pub fn stems(root: &Path, dir: &str, ext: &str) -> Result<Vec<String>, BuildError> {
+    let read_error = |source| BuildError::Read {
+        path: dir.to_string(),
+        source,
+    };
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(root.join(dir)).map_err(read_error)? {
+        let name = entry.map_err(read_error)?.file_name();
+        if let Some(stem) = name.to_string_lossy().strip_suffix(ext) {
+            names.push(stem.to_string());
+        }
+    }
+    names.sort();
+    Ok(names)
+}
+
+/// Reads `root/path`.
+fn read(root: &Path, path: &str) -> Result<String, BuildError> {
+    std::fs::read_to_string(root.join(path)).map_err(|source| BuildError::Read {
+        path: path.to_string(),
+        source,
+    })
+}
+
+/// The cells of `lesson`'s notebook, from its recipe `root/notebooks/src/NN-slug.rs`.
+///
+/// # Errors
+/// See [`cells_from_recipe`]; also [`BuildError::Read`] for the recipe.
+pub fn notebook_cells(root: &Path, lesson: &Lesson) -> Result<Vec<Cell>, BuildError> {
+    let file = format!("notebooks/src/{}.rs", folder(lesson));
+    let recipe = read(root, &file)?;
+    cells_from_recipe(lesson, &recipe, &file, root)
+}
+
+/// The cells of `lesson`'s notebook from the text of its recipe (`file` names it in
+/// errors); the exercise's starter files are read from `root/lessons/NN-slug/`.
+///
+/// # Errors
+/// A [`BuildError`] when the recipe's step markers are not the lesson's steps in order,
+/// the exercise marker is missing or extra, an exercise cannot be graded in a cell, or a
+/// starter file cannot be read.
+pub fn cells_from_recipe(
+    lesson: &Lesson,
+    recipe: &str,
+    file: &str,
+    root: &Path,
+) -> Result<Vec<Cell>, BuildError> {
+    let mut cells = vec![
+        Cell::Markdown(title_markdown(lesson)),
+        Cell::Code(DEP_CELL.to_string()),
+    ];
+    let mut next_step = 0;
+    let mut pending_show: Vec<Cell> = Vec::new();
+    let mut exercise_done = false;
+    for piece in parse_recipe(recipe) {
+        match piece {
+            Piece::Code(code) => cells.push(Cell::Code(code)),
+            Piece::Step(title) => {
+                let Some(step) = lesson.steps.get(next_step) else {
+                    return Err(BuildError::ExtraStep {
+                        file: file.to_string(),
+                        title,
+                    });
+                };
+                if step.title != title {
+                    return Err(BuildError::WrongStep {
+                        file: file.to_string(),
+                        index: next_step + 1,
+                        lesson: step.title.clone(),
+                        recipe: title,
+                    });
+                }
+                cells.append(&mut pending_show);
+                cells.push(Cell::Markdown(step_markdown(lesson, next_step)));
+                pending_show = show_cells(lesson, next_step);
+                next_step += 1;
+            }
+            Piece::Exercise => {
+                cells.append(&mut pending_show);
+                cells.extend(exercise_cells(lesson, file, root)?);
+                exercise_done = true;
+            }
+        }
+    }
+    cells.append(&mut pending_show);
+    if next_step != lesson.steps.len() {
+        return Err(BuildError::MissingStep {
+            file: file.to_string(),
+            covered: next_step,
+            total: lesson.steps.len(),
+            next: lesson
+                .steps
+                .get(next_step)
+                .map_or_else(String::new, |s| s.title.clone()),
+        });
+    }
+    if lesson.exercise.is_some() && !exercise_done {
+        return Err(BuildError::MissingExercise {
+            file: file.to_string(),
+        });
+    }
+    Ok(cells)
+}
+
+/// One piece of a recipe.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum Piece {
+    /// A code cell, trimmed.
+    Code(String),
+    /// `// %% step: TITLE`.
+    Step(String),
+    /// `// %% exercise`.
+    Exercise,
+}
+
+/// Splits a recipe at its `// %%` lines; text before the first one and empty cells are
+/// dropped.
+fn parse_recipe(text: &str) -> Vec<Piece> {
+    let mut pieces = Vec::new();
+    let mut code: Option<String> = None;
+    let flush = |code: &mut Option<String>, pieces: &mut Vec<Piece>| {
+        if let Some(c) = code.take() {
+            let c = c.trim().to_string();
+            if !c.is_empty() {
+                pieces.push(Piece::Code(c));
+            }
+        }
+    };
+    for line in text.lines() {
+        if let Some(marker) = line.strip_prefix("// %%") {
+            flush(&mut code, &mut pieces);
+            let marker = marker.trim();
+            if let Some(title) = marker.strip_prefix("step:") {
+                pieces.push(Piece::Step(title.trim().to_string()));
+            } else if marker == "exercise" {
+                pieces.push(Piece::Exercise);
+            }
+            code = Some(String::new());
+        } else if let Some(c) = code.as_mut() {
+            c.push_str(line);
+            c.push('\n');
+        }
+    }
+    flush(&mut code, &mut pieces);
+    pieces
+}
+
+/// The notebook's first cell.
+fn title_markdown(lesson: &Lesson) -> String {
+    format!(
+        "# Lesson {}: {}\n\n{}\n\nThis notebook mirrors lesson {} of the terminal app \
+         (`cargo run --release`), on the [evcxr](https://github.com/evcxr/evcxr) Rust \
+         kernel. Every number below comes from the real PPO and CartPole of the \
+         `ppo-tutor` crate. The first cell compiles the crate (with candle) once, which \
+         takes a few minutes; after that each cell takes a second or two.",
+        lesson.order, lesson.title, lesson.summary, lesson.order
+    )
+}
+
+/// Step `k`'s explanation, the seed's Python and the Rust code (by anchor).
+fn step_markdown(lesson: &Lesson, k: usize) -> String {
+    let step = &lesson.steps[k];
+    let mut md = format!("## {}. {}\n\n{}\n", k + 1, step.title, step.body);
+    if !step.python.is_empty() {
+        let _ = write!(
+            md,
+            "\n**The seed (PyTorch):**\n\n```python\n{}\n```\n",
+            step.python.trim()
+        );
+    }
+    if let Some((path, code)) = (!step.code.is_empty())
+        .then(|| crate::lesson::anchor::find(&step.code))
+        .flatten()
+    {
+        let _ = write!(
+            md,
+            "\n**ppo-tutor (`src/{path}`):**\n\n```rust\n{}\n```\n",
+            code.trim_end()
+        );
+    }
+    md
+}
+
+/// The cells that show step `k`'s live values, as the terminal app does beside the text.
+fn show_cells(lesson: &Lesson, k: usize) -> Vec<Cell> {
+    let step = &lesson.steps[k];
+    let tensors: Vec<String> = step
+        .show
+        .iter()
+        .filter(|n| !crate::lesson::VIEWS.contains(&n.as_str()))
+        .map(|n| format!("{n:?}"))
+        .collect();
+    let mut cells = Vec::new();
+    if !tensors.is_empty() {
+        cells.push(Cell::Code(format!(
+            "// What the terminal app shows beside this step:\nsnap.show(&[{}])",
+            tensors.join(", ")
+        )));
+    }
+    for view in &step.show {
+        match view.as_str() {
+            "plot" => cells.push(Cell::Code(
+                "snap.return_plot(\"PPO on CartPole-v1\")?".to_string(),
+            )),
+            "cartpole" => cells.push(Cell::Code("snap.cartpole()".to_string())),
+            "clip_chart" => cells.push(Cell::Code("snap.clip_chart()".to_string())),
+            _ => {}
+        }
+    }
+    cells
+}
+
+/// A lesson's Rust file as a cell: the file without its `//!` header.
+fn without_header(file: &str) -> String {
+    file.lines()
+        .skip_while(|l| l.starts_with("//!") || l.trim().is_empty())
+        .collect::<Vec<_>>()
+        .join("\n")
+        .trim_end()
+        .to_string()
+}
+
+/// A candle exercise's file as a cell: candle comes through ppo-tutor (no `:dep` of its
+/// own), so `use candle_core::` becomes `use ppo_tutor::candle_core::`.
+fn candle_cell(file: &str) -> String {
+    without_header(file).replace("use candle_core::", "use ppo_tutor::candle_core::")
+}
+
+/// The cell that grades the function `name` defined by an earlier cell, in place.
+#[must_use]
+pub fn grade_cell(name: &str) -> String {
+    format!("ppo_tutor::grade::in_process::{name}({name})")
+}
+
+/// The lesson's exercises from the registry, in the lesson's order (`file` names the recipe
+/// in errors); empty for a lesson without an exercise. Every registered exercise can be
+/// graded in a cell (`ppo_tutor::grade::in_process::NAME`).
+fn registered(lesson: &Lesson, file: &str) -> Result<Vec<&'static dyn Exercise>, BuildError> {
+    let Some(ex) = &lesson.exercise else {
+        return Ok(Vec::new());
+    };
+    ex.names()
+        .into_iter()
+        .map(|name| {
+            crate::grade::find(name).map_err(|_| BuildError::Unregistered {
+                file: file.to_string(),
+                name: name.to_string(),
+            })
+        })
+        .collect()
+}
+
+/// Whether `ex` is written in the lesson's shared starter (plain Rust, built with `rustc`);
+/// the others (on candle, built with cargo) have a starter and a cell of their own.
+fn shares_the_starter(ex: &dyn Exercise) -> bool {
+    ex.meta().backend == Backend::Rustc
+}
+
+/// The markdown cell before the own cell of `ex` (built with cargo, on candle): its
+/// heading, then the `notebook` text of its `exercise.toml` entry.
+fn intro(ex: &dyn Exercise) -> Result<String, BuildError> {
+    let m = ex.meta();
+    let text = Prose::of(m.name)
+        .ok()
+        .and_then(|p| p.other("notebook"))
+        .ok_or_else(|| BuildError::NoIntro {
+            lesson: m.lesson.to_string(),
+            name: m.name.to_string(),
+        })?;
+    Ok(format!(
+        "### The same on candle tensors: `{}`\n\n{text}\n",
+        m.name
+    ))
+}
+
+/// The exercise's cells: instructions and hints, the starter, a grading cell per plain
+/// exercise, then each candle exercise with its introduction, starter and grading cell.
+fn exercise_cells(lesson: &Lesson, file: &str, root: &Path) -> Result<Vec<Cell>, BuildError> {
+    let Some(ex) = &lesson.exercise else {
+        return Err(BuildError::NoExercise {
+            file: file.to_string(),
+        });
+    };
+    let exercises = registered(lesson, file)?;
+    let list: Vec<String> = ex.names().iter().map(|n| format!("`{n}`")).collect();
+    let mut md = format!("## Exercise: {}\n\n", list.join(" and "));
+    md.push_str(
+        "Replace each `todo!()` in the next cell with your code and run it; the cell after it \
+         grades your function with the same checks, hints and messages as \
+         `ppo-tutor grade` in a terminal. A function that never returns cannot be \
+         interrupted: the grader reports it after 10 s, then restart the kernel.\n",
+    );
+    if !ex.hints.is_empty() {
+        md.push_str("\n<details><summary>Hints</summary>\n\n");
+        for (i, h) in ex.hints.iter().enumerate() {
+            let _ = writeln!(md, "{}. {h}", i + 1);
+        }
+        md.push_str("\n</details>\n");
+    }
+    let dir = format!("lessons/{}", folder(lesson));
+    let (shared, own): (Vec<&dyn Exercise>, Vec<&dyn Exercise>) =
+        exercises.into_iter().partition(|e| shares_the_starter(*e));
+    let mut cells = vec![Cell::Markdown(md)];
+    if let Some(first) = shared.first() {
+        let starter = read(root, &format!("{dir}/{}", first.meta().starter))?;
+        cells.push(Cell::Code(without_header(&starter)));
+    }
+    for ex in &shared {
+        cells.push(Cell::Code(grade_cell(ex.name())));
+    }
+    for ex in &own {
+        cells.push(Cell::Markdown(intro(*ex)?));
+        let starter = read(root, &format!("{dir}/{}", ex.meta().starter))?;
+        cells.push(Cell::Code(candle_cell(&starter)));
+        cells.push(Cell::Code(grade_cell(ex.name())));
+    }
+    Ok(cells)
+}
+
+/// The code cells that define the reference solutions of `lesson`'s exercises (from
+/// `root/lessons/NN-slug/`), in the notebook's form; empty for a lesson without one. Run
+/// them, then each exercise's [`grade_cell`], to check that the solutions pass in a kernel.
+///
+/// # Errors
+/// [`BuildError::Unregistered`], [`BuildError::NoIntro`] or [`BuildError::Read`].
+pub fn solution_cells(root: &Path, lesson: &Lesson) -> Result<Vec<String>, BuildError> {
+    let dir = format!("lessons/{}", folder(lesson));
+    let file = format!("notebooks/src/{}.rs", folder(lesson));
+    let exercises = registered(lesson, &file)?;
+    let (shared, own): (Vec<&dyn Exercise>, Vec<&dyn Exercise>) =
+        exercises.into_iter().partition(|e| shares_the_starter(*e));
+    let mut cells = Vec::new();
+    if let Some(first) = shared.first() {
+        let solution = read(root, &format!("{dir}/{}", first.meta().solution))?;
+        cells.push(without_header(&solution));
+    }
+    for ex in &own {
+        let solution = read(root, &format!("{dir}/{}", ex.meta().solution))?;
+        cells.push(candle_cell(&solution));
+    }
+    Ok(cells)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lesson::{Exercise, Step};
+
+    fn root() -> &'static Path {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+    }
+
+    fn step(title: &str, show: &[&str]) -> Step {
+        Step {
+            title: title.into(),
+            python: String::new(),
+            code: String::new(),
+            show: show.iter().map(|s| (*s).to_string()).collect(),
+            body: format!("About {title}."),
+        }
+    }
+
+    fn lesson(steps: Vec<Step>) -> Lesson {
+        Lesson {
+            id: "made-up".into(),
+            title: "Made up".into(),
+            summary: "A lesson for the generator's tests.".into(),
+            order: 99,
+            steps,
+            exercise: None,
+        }
+    }
+
+    #[test]
+    fn a_recipe_splits_at_its_markers() {
+        let text = "//! header\n// %%\nlet a = 1;\n\n// %% step: One\n// %%\n\n// %% exercise\nx\n";
+        assert_eq!(
+            parse_recipe(text),
+            vec![
+                Piece::Code("let a = 1;".into()),
+                Piece::Step("One".into()),
+                Piece::Exercise,
+                Piece::Code("x".into()),
+            ]
+        );
+    }
+
+    #[test]
+    fn show_cells_follow_the_step_before_the_next_heading() -> Result<(), BuildError> {
+        let l = lesson(vec![step("One", &["td_target", "plot"]), step("Two", &[])]);
+        let cells = cells_from_recipe(&l, "// %% step: One\na\n// %% step: Two\n", "r.rs", root())?;
+        let code: Vec<&Cell> = cells.iter().skip(3).collect();
+        assert_eq!(
+            code,
+            [
+                &Cell::Code("a".into()),
+                &Cell::Code(
+                    "// What the terminal app shows beside this step:\nsnap.show(&[\"td_target\"])"
+                        .into()
+                ),
+                &Cell::Code("snap.return_plot(\"PPO on CartPole-v1\")?".into()),
+                &Cell::Markdown("## 2. Two\n\nAbout Two.\n".into()),
+            ]
+        );
+        Ok(())
+    }
+
+    #[test]
+    fn a_step_not_in_the_lesson_names_the_recipe() {
+        let l = lesson(vec![step("One", &[])]);
+        let err = cells_from_recipe(
+            &l,
+            "// %% step: One\n// %% step: Two\n",
+            "notebooks/src/99-made-up.rs",
+            root(),
+        )
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+        assert!(
+            err.starts_with("notebooks/src/99-made-up.rs: step 'Two' is beyond"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn steps_out_of_order_or_missing_are_errors() {
+        let l = lesson(vec![step("One", &[]), step("Two", &[])]);
+        let wrong = cells_from_recipe(&l, "// %% step: Two\n", "r.rs", root());
+        assert!(
+            matches!(&wrong, Err(BuildError::WrongStep { index: 1, recipe, .. }) if recipe == "Two"),
+            "{wrong:?}"
+        );
+        let short = cells_from_recipe(&l, "// %% step: One\n", "r.rs", root());
+        let msg = short.err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(
+            msg.contains("covers 1 of the lesson's 2 steps; add `// %% step: Two`"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn the_exercise_marker_must_match_the_lesson() {
+        let mut l = lesson(vec![]);
+        let extra = cells_from_recipe(&l, "// %% exercise\n", "r.rs", root());
+        assert!(
+            matches!(extra, Err(BuildError::NoExercise { .. })),
+            "{extra:?}"
+        );
+        l.exercise = Some(Exercise {
+            name: "td_target".into(),
+            also: vec![],
+            hints: vec![],
+        });
+        let missing = cells_from_recipe(&l, "// %%\nx\n", "r.rs", root());
+        assert!(
+            matches!(missing, Err(BuildError::MissingExercise { .. })),
+            "{missing:?}"
+        );
+    }
+
+    #[test]
+    fn an_unregistered_exercise_is_an_error() {
+        let mut l = lesson(vec![]);
+        l.exercise = Some(Exercise {
+            name: "not_an_exercise".into(),
+            also: vec![],
+            hints: vec![],
+        });
+        let err = cells_from_recipe(&l, "// %% exercise\n", "r.rs", root());
+        assert!(
+            matches!(&err, Err(BuildError::Unregistered { name, .. }) if name == "not_an_exercise"),
+            "{err:?}"
+        );
+    }
+
+    #[test]
+    fn the_candle_exercise_has_its_own_cells() -> Result<(), Box<dyn std::error::Error>> {
+        let course = Course::embedded()?;
+        let losses = course.get("losses").ok_or("no lesson `losses`")?;
+        let cells = notebook_cells(root(), losses)?;
+        let grading: Vec<&Cell> = cells
+            .iter()
+            .filter(|c| matches!(c, Cell::Code(code) if code.starts_with("ppo_tutor::grade::")))
+            .collect();
+        let last = grading.last().ok_or("no grading cell")?;
+        assert_eq!(**last, Cell::Code(grade_cell("ppo_losses")));
+        assert!(cells.iter().any(
+            |c| matches!(c, Cell::Code(code) if code.contains("use ppo_tutor::candle_core::"))
+        ));
+        assert_eq!(solution_cells(root(), losses)?.len(), 2);
+        Ok(())
+    }
+
+    #[test]
+    fn every_lesson_has_a_recipe_that_builds() -> Result<(), Box<dyn std::error::Error>> {
+        let course = Course::embedded()?;
+        let folders = recipe_folders(root(), &course)?;
+        assert_eq!(folders.len(), course.lessons.len());
+        for l in &course.lessons {
+            let cells = notebook_cells(root(), l)?;
+            assert_eq!(cells[1], Cell::Code(DEP_CELL.into()), "{}", folder(l));
+        }
+        Ok(())
+    }
+}
