@@ -26,9 +26,13 @@ let surr2: Vec<f32> = last
 TensorView::column("surr2", &surr2)
 
 // %% step: Taking the minimum
+// min picks surr2 only where surr2 < surr1: the ratio left the band in the direction its
+// advantage favours. Where the ratio left it the other way, surr1 < surr2 and min keeps surr1.
 let objective: Vec<f32> = surr1.iter().zip(&surr2).map(|(a, b)| a.min(*b)).collect();
-let differs = surr1.iter().zip(&surr2).filter(|(a, b)| a != b).count();
-println!("min(surr1, surr2) picked surr2 on {differs} of {} rows", objective.len());
+let picked_surr2 = surr1.iter().zip(&surr2).filter(|(a, b)| b < a).count();
+let kept_surr1 = surr1.iter().zip(&surr2).filter(|(a, b)| a < b).count();
+println!("min(surr1, surr2) picked surr2 on {picked_surr2} of {} rows", objective.len());
+println!("on {kept_surr1} other rows the ratio left the band against its advantage: min kept surr1");
 
 // %% step: When the advantage is positive
 // %% step: When the advantage is negative

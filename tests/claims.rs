@@ -1,0 +1,193 @@
+//! The numbers the lessons quote, computed here. Each test runs the experiment a lesson
+//! describes and checks that the lesson's sentence states its result, so a change to the
+//! PPO or to the text that makes a claim false fails.
+
+use ppo_tutor::ppo::{PpoConfig, Trainer, UpdateTrace};
+
+type TestResult = Result<(), Box<dyn std::error::Error>>;
+
+const LOSSES: &str = include_str!("../lessons/11-losses/lesson.md");
+
+/// `text` with every run of whitespace one space (lessons wrap lines anywhere).
+fn flat(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+fn says(lesson: &str, file: &str, claim: &str) {
+    assert!(
+        flat(lesson).contains(claim),
+        "{file} should say {claim:?} (the figure the experiment gives)"
+    );
+}
+
+fn percent(part: usize, whole: usize) -> String {
+    format!("{:.0}%", 100.0 * part as f64 / whole as f64)
+}
+
+/// What the lessons count over the first `EPISODES` episodes of seeds 0–4.
+#[derive(Debug, Default)]
+struct Updates {
+    updates: usize,
+    /// Updates whose critic loss rose from one epoch to the next at least once.
+    critic_rose: usize,
+    /// Updates whose last epoch's critic loss is below the first's.
+    critic_ended_lower: usize,
+    /// Updates whose last epoch left a ratio outside [1 − ε, 1 + ε].
+    ratio_outside: usize,
+    /// Rows outside the band after the last epoch, and all rows.
+    rows_outside: usize,
+    rows: usize,
+    /// The largest |r − 1| after a last epoch.
+    farthest: f32,
+    /// The mean over seeds of the mean return of the last 50 episodes.
+    late_return: f64,
+}
+
+const SEEDS: u64 = 5;
+const EPISODES: usize = 150;
+
+fn count(config: &PpoConfig) -> Result<Updates, Box<dyn std::error::Error>> {
+    let eps = config.eps as f32;
+    let mut u = Updates::default();
+    for seed in 0..SEEDS {
+        let mut trainer = Trainer::new(
+            PpoConfig {
+                num_episodes: EPISODES,
+                ..config.clone()
+            },
+            seed,
+        )?;
+        while let Some(report) = trainer.next_episode()? {
+            let epochs = &report.trace.epochs;
+            let (Some(first), Some(last)) = (epochs.first(), epochs.last()) else {
+                continue;
+            };
+            u.updates += 1;
+            if epochs
+                .windows(2)
+                .any(|w| w[1].critic_loss > w[0].critic_loss)
+            {
+                u.critic_rose += 1;
+            }
+            if last.critic_loss < first.critic_loss {
+                u.critic_ended_lower += 1;
+            }
+            let outside = last
+                .ratio
+                .iter()
+                .filter(|r| (**r - 1.0).abs() > eps)
+                .count();
+            u.ratio_outside += usize::from(outside > 0);
+            u.rows_outside += outside;
+            u.rows += last.ratio.len();
+            for r in &last.ratio {
+                u.farthest = u.farthest.max((r - 1.0).abs());
+            }
+        }
+        u.late_return += trainer.summary().mean_last(50) / SEEDS as f64;
+    }
+    Ok(u)
+}
+
+/// Lesson 11: the critic loss zigzags over the ten epochs at critic_lr 1e-2 though it ends
+/// lower; at 1e-3 it rises less often and the returns climb more slowly. And the clip does
+/// not bound the ratio: last epochs leave ratios outside the band.
+#[test]
+fn the_losses_lesson_states_what_the_runs_show() -> TestResult {
+    let fast = count(&PpoConfig::default())?;
+    let slow = count(&PpoConfig {
+        critic_lr: 1e-3,
+        ..PpoConfig::default()
+    })?;
+    let n = fast.updates;
+    assert_eq!(n, SEEDS as usize * EPISODES);
+    assert_eq!(slow.updates, n);
+    let file = "lessons/11-losses/lesson.md";
+    says(
+        LOSSES,
+        file,
+        &format!("first {EPISODES} episodes of seeds 0–4 ({n} updates)"),
+    );
+    says(
+        LOSSES,
+        file,
+        &format!(
+            "in {} updates ({}), although the tenth epoch still ended below the first in {} ({})",
+            fast.critic_rose,
+            percent(fast.critic_rose, n),
+            fast.critic_ended_lower,
+            percent(fast.critic_ended_lower, n)
+        ),
+    );
+    assert!(slow.critic_rose < fast.critic_rose, "{slow:?} vs {fast:?}");
+    says(
+        LOSSES,
+        file,
+        &format!(
+            "rarer, {} of {n} updates ({})",
+            slow.critic_rose,
+            percent(slow.critic_rose, n)
+        ),
+    );
+    assert!(slow.late_return < fast.late_return, "{slow:?} vs {fast:?}");
+    says(
+        LOSSES,
+        file,
+        &format!(
+            "drops from {:.0} to {:.0}",
+            fast.late_return, slow.late_return
+        ),
+    );
+    says(
+        LOSSES,
+        file,
+        &format!(
+            "in {} of {n} updates ({}), {:.1}% of all rows, and the farthest ratio was {:.2} away from 1",
+            fast.ratio_outside,
+            percent(fast.ratio_outside, n),
+            100.0 * fast.rows_outside as f64 / fast.rows as f64,
+            fast.farthest
+        ),
+    );
+    Ok(())
+}
+
+/// Lesson 10: min(surr1, surr2) picks surr2 exactly on the rows whose ratio left the band
+/// in the direction the advantage favours; rows that left it the other way keep surr1
+/// (so counting rows where surr1 ≠ surr2 overcounts).
+#[test]
+fn min_picks_surr2_only_where_the_advantage_favours_the_move() -> TestResult {
+    let config = PpoConfig::default();
+    let eps = config.eps as f32;
+    let mut trainer = Trainer::new(config, 0)?;
+    let mut kept_surr1 = 0;
+    for _ in 0..30 {
+        let Some(report) = trainer.next_episode()? else {
+            break;
+        };
+        let trace: &UpdateTrace = &report.trace;
+        for epoch in &trace.epochs {
+            let picked_surr2 = epoch
+                .surr1
+                .iter()
+                .zip(&epoch.surr2)
+                .filter(|(s1, s2)| s2 < s1)
+                .count();
+            let favoured = epoch
+                .ratio
+                .iter()
+                .zip(&trace.advantage)
+                .filter(|(r, a)| (**a > 0.0 && **r > 1.0 + eps) || (**a < 0.0 && **r < 1.0 - eps))
+                .count();
+            assert_eq!(picked_surr2, favoured);
+            kept_surr1 += epoch
+                .surr1
+                .iter()
+                .zip(&epoch.surr2)
+                .filter(|(s1, s2)| s1 < s2)
+                .count();
+        }
+    }
+    assert!(kept_surr1 > 0, "no row left the band against its advantage");
+    Ok(())
+}
