@@ -1,6 +1,7 @@
 //! Return curves, as the seed plots them: raw returns per episode and their moving average.
 //!
-//! - [`terminal`]: the curve drawn with characters, for `ppo-tutor train`'s summary.
+//! - [`terminal`]: the curve drawn with characters, for `ppo-tutor train`'s summary (one
+//!   seed's curve, or several seeds' mean over their band).
 //! - [`file`](mod@file): the seed's matplotlib figure drawn with plotters, to PNG or SVG.
 //!
 //! - [`file::clip_chart_svg`]: the clip chart (`L^CLIP` against the ratio) as SVG.
@@ -11,8 +12,8 @@
 pub mod file;
 pub mod terminal;
 
-pub use file::{PlotError, clip_chart_svg, return_plot_svg, save_return_plot};
-pub use terminal::ascii_return_plot;
+pub use file::{PlotError, clip_chart_svg, return_plot_svg, save_band_plot, save_return_plot};
+pub use terminal::{ascii_band_plot, ascii_return_plot};
 
 /// `L^CLIP(r)` for advantage `a`: `min(r·a, clip(r, 1−ε, 1+ε)·a)`, one row of the seed's
 /// `torch.min(surr1, surr2)`.

@@ -11,6 +11,7 @@
 //! - [`trace`]: the recorded intermediates every face displays.
 //! - [`train`](mod@train): `train_on_policy_agent` as a step-by-step [`Trainer`].
 //! - [`moving_average`](mod@moving_average): `rl_utils.moving_average`, for the return curve.
+//! - [`seeds`]: one configuration over several seeds in parallel, and the band of their curves.
 //! - [`checkpoint`]: saving and loading an agent as safetensors with PyTorch's names.
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
 //!
@@ -27,6 +28,7 @@ pub mod model;
 pub mod moving_average;
 pub mod ops;
 pub mod replay;
+pub mod seeds;
 pub mod trace;
 pub mod train;
 

@@ -60,7 +60,7 @@ fn dev_is_hidden_and_documented() -> TestResult {
 /// Each bad input gives one line on stderr naming the argument, exit code 2, no panic.
 #[test]
 fn bad_input_is_one_line_and_exit_2() -> TestResult {
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 9] = [
         (
             &["cartpole", "--env", "CartPole-v9", "--actions", "0"],
             "--env",
@@ -70,6 +70,12 @@ fn bad_input_is_one_line_and_exit_2() -> TestResult {
         (&["cartpole", "--seed", "abc", "--actions", "0"], "--seed"),
         (&["cartpole", "--seed", "-3", "--actions", "0"], "--seed"),
         (&["cartpole", "--seed", "1"], "--actions"),
+        (&["train", "--seeds", "4-1"], "--seeds"),
+        (&["train", "--seeds", "0-2", "--seed", "3"], "--seeds"),
+        (
+            &["train", "--seeds", "0,1", "--save", "a.safetensors"],
+            "--save",
+        ),
     ];
     for (args, names) in cases {
         let out = run(args)?;

@@ -23,6 +23,73 @@ fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
+/// `--seeds`: each seed's run is the run `--seed` gives, and the summary is computed from
+/// them (mean ± sample std of the seeds' means of the last 50 returns, the band).
+#[test]
+fn train_over_seeds_summarises_the_single_seed_runs() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let json = dir.path().join("seeds.json");
+    let plot = dir.path().join("seeds.svg");
+    let out = ppo_tutor(&[
+        "train",
+        "--episodes",
+        "6",
+        "--seeds",
+        "2,0-1",
+        "--json",
+        path(&json)?,
+        "--plot",
+        path(&plot)?,
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8(out.stdout)?;
+    assert!(stdout.contains("3 seeds, 6 episodes each"), "{stdout}");
+    assert!(
+        stdout.contains("(* mean, : lowest to highest seed)"),
+        "{stdout}"
+    );
+    let all: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+    let runs = all["runs"].as_array().ok_or("no runs")?;
+    let mut means = Vec::new();
+    for (run, seed) in runs.iter().zip([2, 0, 1]) {
+        assert_eq!(run["seed"].as_u64(), Some(seed));
+        let one = dir.path().join(format!("seed{seed}.json"));
+        let single = ppo_tutor(&[
+            "train",
+            "--quiet",
+            "--episodes",
+            "6",
+            "--seed",
+            &seed.to_string(),
+            "--json",
+            path(&one)?,
+        ])?;
+        assert!(single.status.success(), "{}", stderr(&single));
+        let alone: Value = serde_json::from_str(&std::fs::read_to_string(&one)?)?;
+        assert_eq!(run["returns"], alone["returns"], "seed {seed}");
+        assert_eq!(run["mean_last_50"], alone["mean_last_50"], "seed {seed}");
+        let line = format!("seed {seed:>3}: mean return of the last 6 episodes");
+        assert!(stdout.contains(&line), "{line:?} in {stdout}");
+        means.push(alone["mean_last_50"].as_f64().ok_or("no mean")?);
+    }
+    let mean = means.iter().sum::<f64>() / 3.0;
+    let std = (means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / 2.0).sqrt();
+    let summary = &all["mean_last_50"];
+    assert!((summary["mean"].as_f64().ok_or("no mean")? - mean).abs() < 1e-9);
+    assert!((summary["std"].as_f64().ok_or("no std")? - std).abs() < 1e-9);
+    assert!(
+        stdout.contains(&format!("over 3 seeds: {mean:.1} ± {std:.1}")),
+        "{stdout}"
+    );
+    let band = &all["band"];
+    for key in ["mean", "low", "high"] {
+        assert_eq!(band[key].as_array().map(Vec::len), Some(6), "{key}");
+    }
+    let svg = std::fs::read_to_string(&plot)?;
+    assert!(svg.contains("lowest to highest of 3 seeds"));
+    Ok(())
+}
+
 #[test]
 fn train_writes_json_checkpoint_and_figure() -> TestResult {
     let dir = tempfile::tempdir()?;

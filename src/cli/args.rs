@@ -15,6 +15,52 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
     })
 }
 
+/// The most seeds one `--seeds` list may hold.
+pub const MAX_SEEDS: usize = 256;
+
+/// Seeds given on the command line as one list (`0-4`, `1,3,8`), in the order given.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SeedList(pub Vec<u64>);
+
+/// Parses a list of seeds: numbers and inclusive ranges separated by commas, `0-4`,
+/// `1,3,8`, `0-2,10`. Each seed at most once.
+///
+/// # Errors
+/// A message naming the part that is not a seed or a range, a range that runs backwards,
+/// a seed given twice, or a list longer than [`MAX_SEEDS`].
+pub fn parse_seeds(s: &str) -> Result<SeedList, String> {
+    let mut seeds: Vec<u64> = Vec::new();
+    for part in s.split(',').map(str::trim) {
+        let (from, to) = match part.split_once('-') {
+            Some((a, b)) => (parse_seed(a)?, parse_seed(b)?),
+            None if part.is_empty() => {
+                return Err(format!(
+                    "expected seeds like 0-4 or 1,3,8, got an empty item in '{s}'"
+                ));
+            }
+            None => {
+                let seed = parse_seed(part)?;
+                (seed, seed)
+            }
+        };
+        if from > to {
+            return Err(format!(
+                "the range '{part}' runs backwards; write {to}-{from}"
+            ));
+        }
+        if to - from >= MAX_SEEDS as u64 || seeds.len() + (to - from) as usize >= MAX_SEEDS {
+            return Err(format!("'{s}' lists more than {MAX_SEEDS} seeds"));
+        }
+        for seed in from..=to {
+            if seeds.contains(&seed) {
+                return Err(format!("seed {seed} is listed twice in '{s}'"));
+            }
+            seeds.push(seed);
+        }
+    }
+    Ok(SeedList(seeds))
+}
+
 /// Parses a Gymnasium environment id.
 ///
 /// # Errors
@@ -58,6 +104,27 @@ pub fn parse_actions(s: &str) -> Result<ActionList, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn seed_lists_parse_and_reject() {
+        assert_eq!(parse_seeds("0-4"), Ok(SeedList(vec![0, 1, 2, 3, 4])));
+        assert_eq!(parse_seeds("3"), Ok(SeedList(vec![3])));
+        assert_eq!(parse_seeds(" 1, 3 ,8-9"), Ok(SeedList(vec![1, 3, 8, 9])));
+        for (bad, says) in [
+            ("", "empty item"),
+            ("1,,2", "empty item"),
+            ("4-1", "runs backwards; write 1-4"),
+            ("0-3,2", "seed 2 is listed twice"),
+            ("x", "non-negative integer"),
+            ("1-y", "non-negative integer"),
+            ("0-256", "more than 256 seeds"),
+            ("0-18446744073709551615", "more than 256 seeds"),
+        ] {
+            let err = parse_seeds(bad).err().unwrap_or_default();
+            assert!(err.contains(says), "{bad:?}: {err}");
+        }
+        assert_eq!(parse_seeds("0-255").map(|s| s.0.len()), Ok(256));
+    }
 
     #[test]
     fn actions_parse_and_reject() {

@@ -11,7 +11,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 
-use super::args::{parse_env, parse_seed};
+use super::args::{SeedList, parse_env, parse_seed, parse_seeds};
 use crate::env::EnvId;
 use crate::plot::{ascii_return_plot, save_return_plot, smoothed_returns};
 use crate::ppo::train::mean_last;
@@ -20,7 +20,7 @@ use crate::ppo::{EpisodeReport, PpoConfig, PpoError, TrainSummary, train};
 /// Arguments of `ppo-tutor train`; defaults are the seed's.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  ppo-tutor train\n  ppo-tutor train --seed 3 --json run.json --save agent.safetensors --plot returns.svg\n  ppo-tutor play --load agent.safetensors"
+    after_help = "Examples:\n  ppo-tutor train\n  ppo-tutor train --seed 3 --json run.json --save agent.safetensors --plot returns.svg\n  ppo-tutor play --load agent.safetensors\n  ppo-tutor train --seeds 0-4 --plot seeds.svg --json seeds.json"
 )]
 pub struct TrainArgs {
     /// Episodes to train for (one update per episode).
@@ -29,6 +29,11 @@ pub struct TrainArgs {
     /// Seed of the network initialisation, the action sampling and the first env.reset.
     #[arg(long, default_value = "0", value_parser = parse_seed, allow_hyphen_values = true)]
     pub seed: u64,
+    /// Train several seeds in parallel (a range or a list: 0-4, 1,3,8): prints each seed's
+    /// mean of the last 50 returns and their mean ± std, and draws the mean curve over the
+    /// band of the seeds.
+    #[arg(long, value_name = "LIST", value_parser = parse_seeds, conflicts_with_all = ["seed", "save"])]
+    pub seeds: Option<SeedList>,
     /// Gymnasium environment id.
     #[arg(long = "env", default_value = "CartPole-v1", value_parser = parse_env)]
     pub env_id: EnvId,
@@ -119,6 +124,9 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         eprintln!("error: {err} (see --help)");
         return Ok(ExitCode::from(super::EXIT_USAGE));
     }
+    if let Some(seeds) = &args.seeds {
+        return several::run(args, &config, &seeds.0);
+    }
     let mut bars = Bars::new(!args.quiet && std::io::stderr().is_terminal(), !args.quiet);
     let (summary, agent) = train(config.clone(), args.seed, |report| {
         bars.update(report);
@@ -147,6 +155,8 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+mod several;
+
 /// The `--flag` spelling of a config field.
 fn flag_of(field: &str) -> String {
     match field {
@@ -157,7 +167,7 @@ fn flag_of(field: &str) -> String {
 }
 
 /// The `--json` document: what `seed_ppo.py --json` writes, plus the configuration.
-fn run_json(
+pub(super) fn run_json(
     summary: &TrainSummary,
     config: &PpoConfig,
     seed: u64,

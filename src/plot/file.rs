@@ -10,6 +10,8 @@ use std::sync::Once;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
+use crate::ppo::seeds::Band;
+
 /// The font every label uses (DejaVu Sans, Bitstream Vera license: assets/DejaVuSans-LICENSE.txt).
 static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
@@ -50,6 +52,36 @@ pub fn save_return_plot(
     returns: &[f64],
     smoothed: &[f64],
 ) -> Result<(), PlotError> {
+    save(path, title, Figure::Curve { returns, smoothed })
+}
+
+/// Writes several seeds' curves to `path` (`.png` or `.svg`, as [`save_return_plot`]):
+/// their mean as a line over the band from the lowest to the highest seed.
+///
+/// # Errors
+/// As [`save_return_plot`].
+pub fn save_band_plot(
+    path: &Path,
+    title: &str,
+    band: &Band,
+    seeds: usize,
+) -> Result<(), PlotError> {
+    save(path, title, Figure::Band { band, seeds })
+}
+
+/// What a return figure shows.
+#[derive(Clone, Copy)]
+enum Figure<'a> {
+    /// One run: the returns and their moving average.
+    Curve {
+        returns: &'a [f64],
+        smoothed: &'a [f64],
+    },
+    /// Several seeds: the mean of their curves over the min–max band.
+    Band { band: &'a Band, seeds: usize },
+}
+
+fn save(path: &Path, title: &str, figure: Figure<'_>) -> Result<(), PlotError> {
     register_font();
     let shown = path.display().to_string();
     let ext = path
@@ -63,12 +95,12 @@ pub fn save_return_plot(
     match ext.as_deref() {
         Some("svg") => {
             let root = SVGBackend::new(path, (1000, 600)).into_drawing_area();
-            draw(&root, title, returns, smoothed).map_err(|e| draw_err(&e))?;
+            draw(&root, title, figure).map_err(|e| draw_err(&e))?;
             root.present().map_err(|e| draw_err(&e))
         }
         Some("png") => {
             let root = BitMapBackend::new(path, (1000, 600)).into_drawing_area();
-            draw(&root, title, returns, smoothed).map_err(|e| draw_err(&e))?;
+            draw(&root, title, figure).map_err(|e| draw_err(&e))?;
             root.present().map_err(|e| draw_err(&e))
         }
         _ => Err(PlotError::UnknownFormat { path: shown }),
@@ -85,7 +117,9 @@ pub fn return_plot_svg(
     returns: &[f64],
     smoothed: &[f64],
 ) -> Result<String, PlotError> {
-    svg_string((800, 480), |root| draw(root, title, returns, smoothed))
+    svg_string((800, 480), |root| {
+        draw(root, title, Figure::Curve { returns, smoothed })
+    })
 }
 
 /// The clip chart as an SVG document (640x400): `L^CLIP(r)` for a unit advantage of each
@@ -181,12 +215,21 @@ fn draw_clip<DB: DrawingBackend>(
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
-    returns: &[f64],
-    smoothed: &[f64],
+    figure: Figure<'_>,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     root.fill(&WHITE)?;
-    let x_max = returns.len().saturating_sub(1).max(1) as f64;
-    let y_max = returns.iter().chain(smoothed).copied().fold(1.0, f64::max) * 1.05;
+    let (len, highest) = match figure {
+        Figure::Curve { returns, smoothed } => (
+            returns.len(),
+            returns.iter().chain(smoothed).copied().fold(1.0, f64::max),
+        ),
+        Figure::Band { band, .. } => (
+            band.mean.len(),
+            band.high.iter().copied().fold(1.0, f64::max),
+        ),
+    };
+    let x_max = len.saturating_sub(1).max(1) as f64;
+    let y_max = highest * 1.05;
     let mut chart = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 28))
         .margin(20)
@@ -210,14 +253,36 @@ fn draw<DB: DrawingBackend>(
             .map(|(i, &y)| (i as f64, y))
             .collect::<Vec<_>>()
     };
-    chart
-        .draw_series(LineSeries::new(points(returns), blue.stroke_width(1)))?
-        .label("returns")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], blue));
-    chart
-        .draw_series(LineSeries::new(points(smoothed), orange.stroke_width(2)))?
-        .label("moving average (9)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], orange));
+    match figure {
+        Figure::Curve { returns, smoothed } => {
+            chart
+                .draw_series(LineSeries::new(points(returns), blue.stroke_width(1)))?
+                .label("returns")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], blue));
+            chart
+                .draw_series(LineSeries::new(points(smoothed), orange.stroke_width(2)))?
+                .label("moving average (9)")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], orange));
+        }
+        Figure::Band { band, seeds } => {
+            // The band as one polygon: along the highest curve, back along the lowest.
+            let mut outline = points(&band.high);
+            outline.extend(points(&band.low).into_iter().rev());
+            chart
+                .draw_series(std::iter::once(Polygon::new(
+                    outline,
+                    blue.mix(0.2).filled(),
+                )))?
+                .label(format!("lowest to highest of {seeds} seeds"))
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 5), (x + 20, y + 5)], blue.mix(0.2).filled())
+                });
+            chart
+                .draw_series(LineSeries::new(points(&band.mean), blue.stroke_width(2)))?
+                .label("mean over seeds")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], blue));
+        }
+    }
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::LowerRight)
@@ -251,6 +316,20 @@ mod tests {
                 && svg.contains("PPO on CartPole-v1")
         );
         let err = save_return_plot(&dir.path().join("curve.jpg"), "t", &returns, &returns);
+        assert!(matches!(err, Err(PlotError::UnknownFormat { .. })));
+        Ok(())
+    }
+
+    #[test]
+    fn a_band_figure_names_its_seeds() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let band = Band::of(&[vec![10.0, 50.0, 90.0], vec![30.0, 70.0, 200.0]]);
+        let path = dir.path().join("band.svg");
+        save_band_plot(&path, "PPO on CartPole-v1, seeds 0-1", &band, 2)?;
+        let svg = std::fs::read_to_string(&path)?;
+        assert!(svg.contains("lowest to highest of 2 seeds") && svg.contains("mean over seeds"));
+        assert!(svg.contains("<polygon"), "the band is drawn");
+        let err = save_band_plot(&dir.path().join("band.txt"), "t", &band, 2);
         assert!(matches!(err, Err(PlotError::UnknownFormat { .. })));
         Ok(())
     }

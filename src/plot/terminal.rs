@@ -1,4 +1,5 @@
-//! The return curve drawn with characters: `.` per-episode returns, `*` their moving average.
+//! The return curve drawn with characters: `.` per-episode returns, `*` their moving average;
+//! or, for several seeds, their mean curve over the band they span.
 //!
 //! ```
 //! use ppo_tutor::plot::ascii_return_plot;
@@ -7,6 +8,8 @@
 //! let lines = ascii_return_plot(&returns, &returns, 30, 6);
 //! assert!(lines.iter().any(|l| l.contains('*')));
 //! ```
+
+use crate::ppo::seeds::Band;
 
 /// Draws `returns` (`.`) and `smoothed` (`*`, drawn over) in a `width` x `height` grid of
 /// cells, with a y axis from 0 to a round maximum and an x axis of episode numbers.
@@ -18,52 +21,133 @@ pub fn ascii_return_plot(
     width: usize,
     height: usize,
 ) -> Vec<String> {
-    let (width, height) = (width.max(10), height.max(3));
-    let top = nice_ceiling(returns.iter().chain(smoothed).copied().fold(0.0, f64::max));
-    let mut grid = vec![vec![' '; width]; height];
-    let n = returns.len();
-    let col = |i: usize| if n > 1 { i * (width - 1) / (n - 1) } else { 0 };
-    let row = |v: f64| {
-        let frac = (v / top).clamp(0.0, 1.0);
-        ((1.0 - frac) * (height - 1) as f64).round() as usize
-    };
+    let mut grid = Grid::new(
+        returns.iter().chain(smoothed).copied(),
+        returns.len(),
+        width,
+        height,
+    );
     for (series, mark) in [(returns, '.'), (smoothed, '*')] {
-        for (i, &v) in series.iter().enumerate().filter(|(_, v)| v.is_finite()) {
-            grid[row(v)][col(i)] = mark;
+        for (i, &v) in series.iter().enumerate() {
+            grid.put(i, v, mark);
         }
     }
-    let label_width = format!("{top}").len().max(1);
-    let mut lines = Vec::with_capacity(height + 3);
-    lines.push(format!(
-        "{:>label_width$}  Returns  (. per episode, * moving average)",
-        ""
-    ));
-    for (r, cells) in grid.into_iter().enumerate() {
-        let label = if r == 0 {
-            format!("{top}")
-        } else if r == (height - 1) / 2 && height > 4 {
-            format!("{}", top / 2.0)
-        } else if r == height - 1 {
-            "0".to_string()
-        } else {
-            String::new()
-        };
-        let axis = if label.is_empty() { '|' } else { '+' };
-        let line: String = cells.into_iter().collect();
-        lines.push(format!("{label:>label_width$} {axis}{}", line.trim_end()));
+    grid.lines("Returns  (. per episode, * moving average)")
+}
+
+/// Draws several seeds' curves as a band (`:` from the lowest to the highest seed at each
+/// episode) with their mean (`*`) over it, on the same axes as [`ascii_return_plot`].
+#[must_use]
+pub fn ascii_band_plot(band: &Band, seeds: usize, width: usize, height: usize) -> Vec<String> {
+    let mut grid = Grid::new(
+        band.high.iter().chain(&band.mean).copied(),
+        band.mean.len(),
+        width,
+        height,
+    );
+    for (i, (&lo, &hi)) in band.low.iter().zip(&band.high).enumerate() {
+        grid.fill(i, lo, hi, ':');
     }
-    lines.push(format!("{:>label_width$} +{}", "", "-".repeat(width)));
-    let last = format!("{}", n.saturating_sub(1));
-    let middle = "Episodes";
-    let gap = width.saturating_sub(1 + last.len() + middle.len());
-    let (left, right) = (gap / 2, gap - gap / 2);
-    lines.push(format!(
-        "{:>label_width$}  0{}{middle}{}{last}",
-        "",
-        " ".repeat(left),
-        " ".repeat(right)
-    ));
-    lines
+    for (i, &v) in band.mean.iter().enumerate() {
+        grid.put(i, v, '*');
+    }
+    grid.lines(&format!(
+        "Moving average of the returns over {seeds} seeds  (* mean, : lowest to highest seed)"
+    ))
+}
+
+/// A character grid with a y axis from 0 to a round maximum and `n` episodes across.
+struct Grid {
+    cells: Vec<Vec<char>>,
+    top: f64,
+    n: usize,
+    width: usize,
+    height: usize,
+}
+
+impl Grid {
+    fn new(values: impl Iterator<Item = f64>, n: usize, width: usize, height: usize) -> Self {
+        let (width, height) = (width.max(10), height.max(3));
+        let top = nice_ceiling(values.filter(|v| v.is_finite()).fold(0.0, f64::max));
+        Self {
+            cells: vec![vec![' '; width]; height],
+            top,
+            n,
+            width,
+            height,
+        }
+    }
+
+    fn col(&self, i: usize) -> usize {
+        if self.n > 1 {
+            i * (self.width - 1) / (self.n - 1)
+        } else {
+            0
+        }
+    }
+
+    fn row(&self, v: f64) -> usize {
+        let frac = (v / self.top).clamp(0.0, 1.0);
+        ((1.0 - frac) * (self.height - 1) as f64).round() as usize
+    }
+
+    /// Marks episode `i`'s value `v` (nothing for a value that is not finite).
+    fn put(&mut self, i: usize, v: f64, mark: char) {
+        if v.is_finite() {
+            let (r, c) = (self.row(v), self.col(i));
+            self.cells[r][c] = mark;
+        }
+    }
+
+    /// Marks episode `i`'s column from `lo` to `hi`.
+    fn fill(&mut self, i: usize, lo: f64, hi: f64, mark: char) {
+        if lo.is_finite() && hi.is_finite() {
+            let c = self.col(i);
+            for r in self.row(hi)..=self.row(lo) {
+                self.cells[r][c] = mark;
+            }
+        }
+    }
+
+    /// The lines to print: `legend`, the rows with y labels, the x axis and its labels.
+    fn lines(self, legend: &str) -> Vec<String> {
+        let Self {
+            cells,
+            top,
+            n,
+            width,
+            height,
+        } = self;
+        let label_width = format!("{top}").len().max(1);
+        let mut lines = Vec::with_capacity(height + 3);
+        lines.push(format!("{:>label_width$}  {legend}", ""));
+        for (r, row) in cells.into_iter().enumerate() {
+            let label = if r == 0 {
+                format!("{top}")
+            } else if r == (height - 1) / 2 && height > 4 {
+                format!("{}", top / 2.0)
+            } else if r == height - 1 {
+                "0".to_string()
+            } else {
+                String::new()
+            };
+            let axis = if label.is_empty() { '|' } else { '+' };
+            let line: String = row.into_iter().collect();
+            lines.push(format!("{label:>label_width$} {axis}{}", line.trim_end()));
+        }
+        lines.push(format!("{:>label_width$} +{}", "", "-".repeat(width)));
+        let last = format!("{}", n.saturating_sub(1));
+        let middle = "Episodes";
+        let gap = width.saturating_sub(1 + last.len() + middle.len());
+        let (left, right) = (gap / 2, gap - gap / 2);
+        lines.push(format!(
+            "{:>label_width$}  0{}{middle}{}{last}",
+            "",
+            " ".repeat(left),
+            " ".repeat(right)
+        ));
+        lines
+    }
 }
 
 /// The smallest of 1, 2, 5 times a power of ten that is at least `x` (at least 1).
@@ -82,6 +166,22 @@ fn nice_ceiling(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_band_spans_the_seeds_and_the_mean_is_drawn_over_it() {
+        let band = Band::of(&[vec![0.0, 100.0, 200.0], vec![100.0, 300.0, 500.0]]);
+        let lines = ascii_band_plot(&band, 2, 21, 11);
+        assert!(lines[0].contains("over 2 seeds"), "{}", lines[0]);
+        let column = |c: usize| -> String {
+            lines[1..12]
+                .iter()
+                .map(|l| l.chars().nth(5 + c).unwrap_or(' '))
+                .collect()
+        };
+        // The last episode: lowest 200, highest 500 (the top), mean 350, on a 0..500 axis.
+        assert_eq!(column(20).trim_end(), ":::*:::", "{lines:#?}");
+        assert_eq!(column(0).trim(), ":*:", "{lines:#?}");
+    }
 
     #[test]
     fn axis_tops_are_round() {

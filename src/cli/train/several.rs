@@ -1,0 +1,138 @@
+//! `ppo-tutor train --seeds LIST`: one configuration over several seeds at once, on every
+//! core, summarised as each seed's mean of the last 50 returns, their mean ± std, and the
+//! mean curve over the band the seeds span.
+
+use std::io::{IsTerminal, Write};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::json;
+
+use super::{TrainArgs, peak_rss_mb};
+use crate::plot::{ascii_band_plot, save_band_plot, smoothed_returns};
+use crate::ppo::PpoConfig;
+use crate::ppo::seeds::{Band, SeedRun, mean_std, train_seeds};
+
+/// Episodes at the end of a run whose mean return summarises it (the seed's 50).
+const LAST: usize = 50;
+
+/// Trains `config` once per seed and reports as the module says.
+///
+/// # Errors
+/// A run that diverged, or an output file that could not be written.
+pub(super) fn run(args: &TrainArgs, config: &PpoConfig, seeds: &[u64]) -> anyhow::Result<ExitCode> {
+    let threads = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .min(seeds.len());
+    let bar = progress(args.quiet, seeds.len() * config.num_episodes);
+    let started = Instant::now();
+    let runs = train_seeds(config, seeds, threads, |seed, report| {
+        if let Some(bar) = &bar {
+            bar.inc(1);
+        } else if !args.quiet && report.episode + 1 == config.num_episodes {
+            eprintln!("seed {seed}: {} episodes trained", config.num_episodes);
+        }
+    })
+    .context("training stopped")?;
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    let wall_s = started.elapsed().as_secs_f64();
+    let smoothed: Vec<Vec<f64>> = runs
+        .iter()
+        .map(|r| smoothed_returns(&r.summary.returns))
+        .collect();
+    let band = Band::of(&smoothed);
+    let finals: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(LAST)).collect();
+
+    let mut out = std::io::stdout().lock();
+    let steps: u64 = runs.iter().map(|r| r.summary.env_steps).sum();
+    writeln!(
+        out,
+        "PPO on {}, {} seeds, {} episodes each, {threads} at a time: {steps} env steps in {wall_s:.2} s",
+        config.env_id,
+        runs.len(),
+        config.num_episodes,
+    )?;
+    for run in &runs {
+        writeln!(
+            out,
+            "seed {:>3}: mean return of the last {} episodes {:6.1}",
+            run.seed,
+            run.summary.returns.len().min(LAST),
+            run.summary.mean_last(LAST)
+        )?;
+    }
+    let (mean, std) = mean_std(&finals);
+    writeln!(
+        out,
+        "over {} seeds: {mean:.1} ± {std:.1} (mean ± sample std of the seeds' means)",
+        runs.len()
+    )?;
+    if !args.quiet {
+        let width = crossterm::terminal::size().map_or(80, |(w, _)| usize::from(w));
+        writeln!(out)?;
+        for line in ascii_band_plot(&band, runs.len(), width.clamp(30, 120) - 8, 14) {
+            writeln!(out, "{line}")?;
+        }
+    }
+    if let Some(path) = &args.json {
+        let value = seeds_json(config, &runs, &smoothed, &band, wall_s);
+        std::fs::write(path, format!("{value}\n"))
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    if let Some(path) = &args.plot {
+        let title = format!("PPO on {}, {} seeds", config.env_id, runs.len());
+        save_band_plot(path, &title, &band, runs.len())?;
+        writeln!(out, "drew the seeds' curves to {}", path.display())?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// One bar over every episode of every seed, on a terminal and unless `quiet`.
+fn progress(quiet: bool, total: usize) -> Option<ProgressBar> {
+    if quiet || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let style = ProgressStyle::with_template(
+        "{prefix}: {percent:>3}%|{bar:30}| {pos}/{len} episodes [{elapsed}<{eta}]",
+    )
+    .unwrap_or_else(|_| ProgressStyle::default_bar());
+    Some(
+        ProgressBar::new(total as u64)
+            .with_style(style.progress_chars("█▉▊▋▌▍▎▏ "))
+            .with_prefix("all seeds"),
+    )
+}
+
+/// The `--json` document of a several-seed run: every seed's returns and moving average,
+/// the summary over seeds and the band.
+fn seeds_json(
+    config: &PpoConfig,
+    runs: &[SeedRun],
+    smoothed: &[Vec<f64>],
+    band: &Band,
+    wall_s: f64,
+) -> serde_json::Value {
+    let finals: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(LAST)).collect();
+    let (mean, std) = mean_std(&finals);
+    json!({
+        "episodes": config.num_episodes,
+        "seeds": runs.iter().map(|r| r.seed).collect::<Vec<_>>(),
+        "env": config.env_id.as_str(),
+        "wall_s": wall_s,
+        "peak_rss_mb": peak_rss_mb(),
+        "mean_last_50": { "mean": mean, "std": std },
+        "runs": runs.iter().zip(smoothed).map(|(r, s)| json!({
+            "seed": r.seed,
+            "env_steps": r.summary.env_steps,
+            "mean_last_50": r.summary.mean_last(LAST),
+            "returns": r.summary.returns,
+            "moving_average": s,
+        })).collect::<Vec<_>>(),
+        "band": { "of": "moving_average", "mean": band.mean, "low": band.low, "high": band.high },
+        "config": config,
+    })
+}
