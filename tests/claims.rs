@@ -2,11 +2,14 @@
 //! describes and checks that the lesson's sentence states its result, so a change to the
 //! PPO or to the text that makes a claim false fails.
 
+use ppo_tutor::plot::smoothed_returns;
+use ppo_tutor::ppo::seeds::train_seeds;
 use ppo_tutor::ppo::{PpoConfig, Trainer, UpdateTrace};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 const LOSSES: &str = include_str!("../lessons/11-losses/lesson.md");
+const TRAINING: &str = include_str!("../lessons/12-training/lesson.md");
 
 /// `text` with every run of whitespace one space (lessons wrap lines anywhere).
 fn flat(text: &str) -> String {
@@ -189,5 +192,74 @@ fn min_picks_surr2_only_where_the_advantage_favours_the_move() -> TestResult {
         }
     }
     assert!(kept_surr1 > 0, "no row left the band against its advantage");
+    Ok(())
+}
+
+/// Lesson 12: how fast five seeds learn, and their falls after first reaching 500 (the
+/// seed's settings, seeds 0–4, 500 episodes each).
+#[test]
+fn the_training_lesson_states_what_five_seeds_show() -> TestResult {
+    let seeds: Vec<u64> = (0..SEEDS).collect();
+    let runs = train_seeds(&PpoConfig::default(), &seeds, 2, |_, _| {})?;
+    let (mut first_500, mut reached_450, mut fell_to, mut ends) = (vec![], vec![], vec![], vec![]);
+    let mut fell = 0;
+    for run in &runs {
+        let returns = &run.summary.returns;
+        let smooth = smoothed_returns(returns);
+        let first = returns
+            .iter()
+            .position(|&r| r >= 500.0)
+            .ok_or("a seed never reached 500")?;
+        first_500.push(first + 1);
+        let at_450 = smooth
+            .iter()
+            .position(|&m| m >= 450.0)
+            .ok_or("a seed never reached 450")?;
+        reached_450.push(at_450 + 1);
+        let lowest_after = smooth[first..]
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        if lowest_after < 450.0 {
+            fell += 1;
+            fell_to.push(lowest_after);
+        }
+        ends.push(run.summary.mean_last(50));
+    }
+    let range = |v: &[usize]| (v.iter().min().copied(), v.iter().max().copied());
+    let (lo, hi) = range(&first_500);
+    let (lo450, hi450) = range(&reached_450);
+    let low = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+    let high = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let file = "lessons/12-training/lesson.md";
+    says(
+        TRAINING,
+        file,
+        &format!(
+            "between episodes {} and {}, but its moving average first reached 450 only between episodes {} and {}",
+            lo.unwrap_or(0),
+            hi.unwrap_or(0),
+            lo450.unwrap_or(0),
+            hi450.unwrap_or(0)
+        ),
+    );
+    says(
+        TRAINING,
+        file,
+        &format!(
+            "{fell} of the {SEEDS} seeds later fell back, to between {:.0} and {:.0}",
+            low(&fell_to),
+            high(&fell_to)
+        ),
+    );
+    says(
+        TRAINING,
+        file,
+        &format!(
+            "a mean return of {:.1} to {:.1} over their last 50 episodes",
+            low(&ends),
+            high(&ends)
+        ),
+    );
     Ok(())
 }
