@@ -38,7 +38,7 @@ pub use agent::{Agent, Losses, Transitions};
 pub use config::PpoConfig;
 pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
 pub use moving_average::moving_average;
-pub use trace::{EpochTrace, UpdateTrace};
+pub use trace::{EarlyStop, EpochTrace, UpdateTrace};
 pub use train::{EpisodeReport, TrainSummary, Trainer, train};
 
 use crate::env::EnvError;

@@ -64,3 +64,70 @@ fn the_opt_in_switches_run() -> TestResult {
     assert_eq!(summary.returns.len(), 5);
     Ok(())
 }
+
+/// `target_kl` (Spinning Up's early stop): a tiny target ends every update after its first
+/// epoch (whose approx_kl is 0) and records where; a target never reached changes nothing.
+#[test]
+fn target_kl_stops_the_epochs_and_says_where() -> TestResult {
+    let run = |target_kl| -> Result<Vec<_>, Box<dyn std::error::Error>> {
+        let config = PpoConfig {
+            num_episodes: 6,
+            target_kl,
+            ..PpoConfig::default()
+        };
+        Ok(Trainer::new(config, 1)?.collect::<Result<Vec<_>, _>>()?)
+    };
+    let tight = run(Some(1e-9))?;
+    for r in &tight {
+        assert_eq!(r.trace.epochs_run(), 1, "episode {}", r.episode);
+        let stop = r.trace.early_stop.ok_or("no early stop recorded")?;
+        assert_eq!(stop.epoch, 2);
+        assert!(f64::from(stop.approx_kl) > 1.5e-9);
+    }
+    let off = run(None)?;
+    let never = run(Some(1e9))?;
+    for (a, b) in off.iter().zip(&never) {
+        assert_eq!(a.trace, b.trace, "episode {}", a.episode);
+        assert_eq!(a.trace.epochs_run(), 10);
+        assert!(a.trace.early_stop.is_none());
+    }
+    Ok(())
+}
+
+/// The critic's explained variance, 1 − Var[y − V(s)] / Var[y], from the trace's own
+/// columns; it climbs as the critic learns.
+#[test]
+fn explained_variance_is_computed_from_the_targets_and_values() -> TestResult {
+    let config = PpoConfig {
+        num_episodes: 60,
+        ..PpoConfig::default()
+    };
+    let reports: Vec<_> = Trainer::new(config, 0)?.collect::<Result<_, _>>()?;
+    let var = |xs: &[f64]| {
+        let m = xs.iter().sum::<f64>() / xs.len() as f64;
+        xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / xs.len() as f64
+    };
+    let mut ev = Vec::new();
+    for r in &reports {
+        let y: Vec<f64> = r.trace.td_target.iter().map(|&v| f64::from(v)).collect();
+        let resid: Vec<f64> = r
+            .trace
+            .td_target
+            .iter()
+            .zip(&r.trace.values)
+            .map(|(&a, &b)| f64::from(a) - f64::from(b))
+            .collect();
+        let want = 1.0 - var(&resid) / var(&y);
+        let got = r.trace.explained_variance.ok_or("no explained variance")?;
+        assert!((f64::from(got) - want).abs() < 1e-5, "{got} vs {want}");
+        ev.push(f64::from(got));
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    assert!(
+        mean(&ev[40..]) > mean(&ev[..10]),
+        "the critic explains more late ({}) than early ({})",
+        mean(&ev[40..]),
+        mean(&ev[..10])
+    );
+    Ok(())
+}

@@ -82,6 +82,9 @@ pub struct TrainArgs {
     /// Clip each network's gradient norm to this value (off in the seed).
     #[arg(long, allow_hyphen_values = true)]
     pub max_grad_norm: Option<f64>,
+    /// Stop an update's epochs once approx_kl exceeds 1.5 × this (Spinning Up); off in the seed.
+    #[arg(long, allow_hyphen_values = true)]
+    pub target_kl: Option<f64>,
 }
 
 impl TrainArgs {
@@ -102,6 +105,7 @@ impl TrainArgs {
             normalize_advantage: self.normalize_advantage,
             entropy_coef: self.entropy_coef,
             max_grad_norm: self.max_grad_norm,
+            target_kl: self.target_kl,
         }
     }
 }

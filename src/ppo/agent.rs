@@ -39,7 +39,7 @@ use candle_core::{DType, Device, Tensor, Var};
 use super::adam::Adam;
 use super::advantage::{compute_advantage, normalize_advantage};
 use super::model::{ActorSnapshot, Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
-use super::trace::{EpochTrace, UpdateTrace};
+use super::trace::{EarlyStop, EpochTrace, UpdateTrace};
 use super::{ACTION_DIM, PpoConfig, PpoError, STATE_DIM};
 use crate::env::seeding::NumpyRng;
 
@@ -434,7 +434,10 @@ impl Agent {
             advantage: advantage_vec,
             old_log_probs: to_vec(&old_log_probs)?,
             epochs: Vec::with_capacity(cfg.epochs),
+            early_stop: None,
+            explained_variance: None,
         };
+        trace.explained_variance = explained_variance(&trace.td_target, &trace.values);
         check_finite("td_target", &trace.td_target)?;
         check_finite("advantage", &trace.advantage)?;
         check_finite("old_log_probs", &trace.old_log_probs)?;
@@ -449,23 +452,46 @@ impl Agent {
             losses,
         };
         // ANCHOR: epochs
-        for _ in 0..self.config.epochs {
-            let epoch = self.epoch(&batch)?;
-            trace.epochs.push(epoch);
+        for k in 0..self.config.epochs {
+            match self.epoch(&batch)? {
+                Epoch::Stepped(epoch) => trace.epochs.push(epoch),
+                Epoch::Stopped { approx_kl } => {
+                    trace.early_stop = Some(EarlyStop {
+                        epoch: k + 1,
+                        approx_kl,
+                    });
+                    break;
+                }
+            }
         }
         // ANCHOR_END: epochs
         self.acting = ActorSnapshot::of(&self.actor)?;
         Ok(trace)
     }
 
-    /// One pass over the batch: both losses, then one Adam step of each network.
-    fn epoch(&mut self, b: &EpochInputs<'_>) -> Result<EpochTrace, PpoError> {
+    /// One pass over the batch: both losses, then one Adam step of each network; or, with
+    /// `target_kl`, no step when the policy has already moved too far.
+    fn epoch(&mut self, b: &EpochInputs<'_>) -> Result<Epoch, PpoError> {
         let eps = self.config.eps;
         let probs = self.actor.forward(b.states)?;
         let log_probs = probs.gather(b.actions, 1)?.log()?;
         // ANCHOR: ratio
         let ratio = (&log_probs - b.old_log_probs)?.exp()?;
         // ANCHOR_END: ratio
+        let ratio_vec = to_vec(&ratio)?;
+        let log_probs_vec = to_vec(&log_probs)?;
+        let approx_kl = mean(
+            ratio_vec
+                .iter()
+                .zip(&log_probs_vec)
+                .zip(b.old_log_probs_vec)
+                .map(|((r, lp), old)| (r - 1.0) - (lp - old)),
+        );
+        if let Some(target) = self.config.target_kl
+            && f64::from(approx_kl) > 1.5 * target
+        {
+            return Ok(Epoch::Stopped { approx_kl });
+        }
         // ANCHOR: surrogate
         let surr1 = (&ratio * b.advantage)?;
         let surr2 = (ratio.clamp(1.0 - eps, 1.0 + eps)? * b.advantage)?;
@@ -506,20 +532,12 @@ impl Agent {
             }
         };
 
-        let ratio_vec = to_vec(&ratio)?;
-        let log_probs_vec = to_vec(&log_probs)?;
         let record = EpochTrace {
             clipped: ratio_vec
                 .iter()
                 .map(|r| (r - 1.0).abs() > eps as f32)
                 .collect(),
-            approx_kl: mean(
-                ratio_vec
-                    .iter()
-                    .zip(&log_probs_vec)
-                    .zip(b.old_log_probs_vec)
-                    .map(|((r, lp), old)| (r - 1.0) - (lp - old)),
-            ),
+            approx_kl,
             clip_fraction: 0.0,
             actor_loss: actor_loss.to_scalar::<f32>()?,
             critic_loss: critic_loss.to_scalar::<f32>()?,
@@ -549,8 +567,36 @@ impl Agent {
         self.critic_optimizer
             .step(&critic_loss.backward()?, max_norm)?;
         // ANCHOR_END: backprop
-        Ok(record)
+        Ok(Epoch::Stepped(record))
     }
+}
+
+/// What one epoch did.
+enum Epoch {
+    /// Computed both losses and stepped both networks.
+    Stepped(EpochTrace),
+    /// `target_kl`: the policy had moved too far, so no step (the update ends).
+    Stopped {
+        /// The `approx_kl` that was too large.
+        approx_kl: f32,
+    },
+}
+
+/// `1 − Var[y − v] / Var[y]` (population variances, as `np.var`), `None` when `y` does not
+/// vary.
+fn explained_variance(y: &[f32], v: &[f32]) -> Option<f32> {
+    let var = |xs: &[f64]| {
+        let m = xs.iter().sum::<f64>() / xs.len() as f64;
+        xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / xs.len() as f64
+    };
+    let ys: Vec<f64> = y.iter().map(|&x| f64::from(x)).collect();
+    let residual: Vec<f64> = y
+        .iter()
+        .zip(v)
+        .map(|(&a, &b)| f64::from(a) - f64::from(b))
+        .collect();
+    let var_y = var(&ys);
+    (!ys.is_empty() && var_y > 0.0).then(|| (1.0 - var(&residual) / var_y) as f32)
 }
 
 /// Asks glibc's allocator to keep freed memory instead of returning it to the OS at once.

@@ -2,7 +2,7 @@
 //!
 //! The seed has no tricks beyond the clipped surrogate and GAE. CleanRL-style extras
 //! (bootstrapping on truncation, advantage normalisation, an entropy bonus, gradient
-//! clipping) are opt-in switches, all off by default, so the default run is the seed's.
+//! clipping, early stopping at a target KL) are opt-in switches, all off by default, so the default run is the seed's.
 
 use serde::{Deserialize, Serialize};
 
@@ -40,6 +40,11 @@ pub struct PpoConfig {
     pub entropy_coef: f64,
     /// Clip each network's gradient to this global L2 norm before Adam; `None` is off (the seed).
     pub max_grad_norm: Option<f64>,
+    /// Stop an update's epochs early once the policy has moved too far, as Spinning Up does:
+    /// before each epoch's step, if `approx_kl > 1.5 · target_kl` the update ends there (both
+    /// networks; Spinning Up keeps training its value function). `None` is off (the seed).
+    #[serde(default)]
+    pub target_kl: Option<f64>,
 }
 
 // ANCHOR: hyper
@@ -60,6 +65,7 @@ impl Default for PpoConfig {
             normalize_advantage: false,
             entropy_coef: 0.0,
             max_grad_norm: None,
+            target_kl: None,
         }
     }
 }
@@ -117,6 +123,11 @@ impl PpoConfig {
             && !(norm.is_finite() && norm > 0.0)
         {
             return bad("max_grad_norm", norm.to_string(), "a finite number > 0");
+        }
+        if let Some(kl) = self.target_kl
+            && !(kl.is_finite() && kl > 0.0)
+        {
+            return bad("target_kl", kl.to_string(), "a finite number > 0");
         }
         Ok(())
     }

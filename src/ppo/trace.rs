@@ -8,7 +8,8 @@
 //! values = V(s), next_values = V(s') (N)
 //! td_target, td_delta, advantage, old_log_probs (N)
 //! per epoch: log_probs, ratio, surr1, surr2, clipped (N); actor_loss, critic_loss, approx_kl,
-//!            clip_fraction (scalars)
+//!            clip_fraction, entropy (scalars)
+//! per update: explained_variance, early_stop (scalars)
 //! ```
 
 use serde::Serialize;
@@ -39,8 +40,25 @@ pub struct UpdateTrace {
     pub advantage: Vec<f32>,
     /// `log π_old(a_t|s_t)` before the first epoch, held fixed.
     pub old_log_probs: Vec<f32>,
-    /// One entry per epoch, in order.
+    /// One entry per epoch that ran, in order: all `epochs` of them, or fewer when
+    /// `target_kl` stopped the update ([`Self::early_stop`]).
     pub epochs: Vec<EpochTrace>,
+    /// Where `target_kl` stopped the update, `None` if every epoch ran.
+    pub early_stop: Option<EarlyStop>,
+    /// How much of the TD target's variance the critic explains before the update,
+    /// `1 − Var[td_target − V(s)] / Var[td_target]` (CleanRL's `explained_variance`): 1 is a
+    /// perfect critic, 0 one no better than a constant, below 0 worse. `None` when the
+    /// targets do not vary.
+    pub explained_variance: Option<f32>,
+}
+
+/// An update that `target_kl` ended before its last epoch.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EarlyStop {
+    /// The epoch (from 1) that did not take its step.
+    pub epoch: usize,
+    /// Its `approx_kl`, above `1.5 · target_kl`.
+    pub approx_kl: f32,
 }
 
 /// One pass over the batch: values before that epoch's optimizer step.
@@ -79,6 +97,12 @@ impl UpdateTrace {
     #[must_use]
     pub fn is_empty(&self) -> bool {
         self.actions.is_empty()
+    }
+
+    /// The number of epochs that took their optimizer step.
+    #[must_use]
+    pub fn epochs_run(&self) -> usize {
+        self.epochs.len()
     }
 
     /// The last epoch, whose losses summarise the update.
