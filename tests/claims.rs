@@ -3,7 +3,7 @@
 //! PPO or to the text that makes a claim false fails.
 
 use ppo_tutor::plot::smoothed_returns;
-use ppo_tutor::ppo::seeds::train_seeds;
+use ppo_tutor::ppo::seeds::{SeedRun, mean_std, train_seeds};
 use ppo_tutor::ppo::{PpoConfig, Trainer, UpdateTrace};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
@@ -195,15 +195,86 @@ fn min_picks_surr2_only_where_the_advantage_favours_the_move() -> TestResult {
     Ok(())
 }
 
+/// The seed's settings over seeds 0–4, 500 episodes each, trained once for every test that
+/// needs them.
+fn default_runs() -> Result<&'static [SeedRun], String> {
+    static RUNS: std::sync::OnceLock<Result<Vec<SeedRun>, String>> = std::sync::OnceLock::new();
+    RUNS.get_or_init(|| five_seeds(&PpoConfig::default()))
+        .as_deref()
+        .map_err(Clone::clone)
+}
+
+fn five_seeds(config: &PpoConfig) -> Result<Vec<SeedRun>, String> {
+    let seeds: Vec<u64> = (0..SEEDS).collect();
+    train_seeds(config, &seeds, 2, |_, _| {}).map_err(|e| e.to_string())
+}
+
+/// Episodes with a return below 250 after each run's first 500, over all runs.
+fn late_falls(runs: &[SeedRun]) -> usize {
+    runs.iter()
+        .map(|r| {
+            let returns = &r.summary.returns;
+            let first = returns
+                .iter()
+                .position(|&x| x >= 500.0)
+                .unwrap_or(returns.len());
+            returns[first..].iter().filter(|&&x| x < 250.0).count()
+        })
+        .sum()
+}
+
+/// Lesson 13: over seeds 0–4, neither the entropy bonus nor gradient-norm clipping helps the
+/// seed's update on CartPole.
+#[test]
+fn the_beyond_lesson_states_what_the_switches_do_over_five_seeds() -> TestResult {
+    let entropy = five_seeds(&PpoConfig {
+        entropy_coef: 0.01,
+        ..PpoConfig::default()
+    })?;
+    let clipped = five_seeds(&PpoConfig {
+        max_grad_norm: Some(0.5),
+        ..PpoConfig::default()
+    })?;
+    let runs = [default_runs()?, &entropy[..], &clipped[..]];
+    let summary: Vec<String> = runs
+        .iter()
+        .map(|r| {
+            let ends: Vec<f64> = r.iter().map(|s| s.summary.mean_last(50)).collect();
+            let (m, s) = mean_std(&ends);
+            format!("{m:.1} ± {s:.1}")
+        })
+        .collect();
+    let lesson = include_str!("../lessons/13-beyond-the-seed/lesson.md");
+    let file = "lessons/13-beyond-the-seed/lesson.md";
+    says(
+        lesson,
+        file,
+        &format!(
+            "{} with neither, {} with the entropy bonus and {} with gradient clipping",
+            summary[0], summary[1], summary[2]
+        ),
+    );
+    says(
+        lesson,
+        file,
+        &format!(
+            "the late falls remain: {}, {} and {} episodes below 250",
+            late_falls(runs[0]),
+            late_falls(runs[1]),
+            late_falls(runs[2])
+        ),
+    );
+    Ok(())
+}
+
 /// Lesson 12: how fast five seeds learn, and their falls after first reaching 500 (the
 /// seed's settings, seeds 0–4, 500 episodes each).
 #[test]
 fn the_training_lesson_states_what_five_seeds_show() -> TestResult {
-    let seeds: Vec<u64> = (0..SEEDS).collect();
-    let runs = train_seeds(&PpoConfig::default(), &seeds, 2, |_, _| {})?;
+    let runs = default_runs()?;
     let (mut first_500, mut reached_450, mut fell_to, mut ends) = (vec![], vec![], vec![], vec![]);
     let mut fell = 0;
-    for run in &runs {
+    for run in runs {
         let returns = &run.summary.returns;
         let smooth = smoothed_returns(returns);
         let first = returns
@@ -260,6 +331,73 @@ fn the_training_lesson_states_what_five_seeds_show() -> TestResult {
             low(&ends),
             high(&ends)
         ),
+    );
+    Ok(())
+}
+
+/// Lesson 5: a loop that ends episodes on `terminated` alone runs past CartPole-v1's time
+/// limit with a policy that balances, so its return exceeds 500 (the notebook's policy).
+#[test]
+fn ignoring_truncation_lets_a_return_exceed_500() -> TestResult {
+    use ppo_tutor::env::{CartPole, EnvId};
+    let balance = |o: [f32; 4]| usize::from(0.05 * o[0] + 0.1 * o[1] + o[2] + 0.5 * o[3] > 0.0);
+    for seed in 0..SEEDS {
+        let mut env = CartPole::new(EnvId::CartPoleV1);
+        let mut obs = env.reset(Some(seed));
+        let (mut steps, mut truncated_at) = (0, None);
+        while steps < 2000 {
+            let step = env.step(balance(obs))?;
+            steps += 1;
+            obs = step.obs;
+            if step.truncated && truncated_at.is_none() {
+                truncated_at = Some(steps);
+            }
+            if step.terminated {
+                break;
+            }
+        }
+        assert_eq!(
+            truncated_at,
+            Some(500),
+            "seed {seed}: Gymnasium truncates at 500"
+        );
+        assert!(steps > 500, "seed {seed}: the loop stopped at {steps}");
+    }
+    let lesson = include_str!("../lessons/05-cartpole/lesson.md");
+    says(
+        lesson,
+        "lessons/05-cartpole/lesson.md",
+        "its return exceeds 500",
+    );
+    Ok(())
+}
+
+/// Lesson 13: the policy's entropy starts near ln 2 (even odds) and falls as it grows surer
+/// (seeds 0–4, the first and the last 50 of the first 150 updates).
+#[test]
+fn the_entropy_starts_at_even_odds_and_falls() -> TestResult {
+    for seed in 0..SEEDS {
+        let config = PpoConfig {
+            num_episodes: EPISODES,
+            ..PpoConfig::default()
+        };
+        let first_epochs: Vec<f32> = Trainer::new(config, seed)?
+            .map(|r| r.map(|r| r.trace.epochs[0].entropy))
+            .collect::<Result<_, _>>()?;
+        let start = first_epochs[0];
+        assert!(
+            (f64::from(start) - std::f64::consts::LN_2).abs() < 0.03,
+            "seed {seed}: entropy {start} at the start"
+        );
+        let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
+        let (early, late) = (mean(&first_epochs[..50]), mean(&first_epochs[100..]));
+        assert!(late < early, "seed {seed}: {late} late vs {early} early");
+    }
+    let lesson = include_str!("../lessons/13-beyond-the-seed/lesson.md");
+    says(
+        lesson,
+        "lessons/13-beyond-the-seed/lesson.md",
+        "it starts near 0.69",
     );
     Ok(())
 }

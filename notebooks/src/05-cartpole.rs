@@ -50,6 +50,31 @@ use ppo_tutor::env::cartpole::{THETA_THRESHOLD_RADIANS, X_THRESHOLD};
 println!("terminated: |x| > {X_THRESHOLD} or |θ| > {THETA_THRESHOLD_RADIANS:.4} rad (12°)");
 println!("truncated: the time limit, {} steps on CartPole-v1", EnvId::CartPoleV1.max_episode_steps());
 
+// %%
+// The opposite pitfall: `done = terminated` alone. This hand-made policy pushes the cart
+// toward where the pole is falling, which keeps it up; a loop that waits for `terminated`
+// runs past the time limit (stopped here at 2000 steps).
+fn balance(obs: [f32; 4]) -> usize {
+    usize::from(0.05 * obs[0] + 0.1 * obs[1] + obs[2] + 0.5 * obs[3] > 0.0)
+}
+let mut env = CartPole::new(EnvId::CartPoleV1);
+let mut obs = env.reset(Some(0));
+let mut episode_return = 0.0;
+let mut truncated_at: Option<usize> = None;
+for t in 1..=2000 {
+    let step = env.step(balance(obs))?;
+    episode_return += step.reward;
+    obs = step.obs;
+    if step.truncated && truncated_at.is_none() {
+        truncated_at = Some(t);
+    }
+    if step.terminated {
+        break;
+    }
+}
+println!("truncated first at step {truncated_at:?}; the loop ran on to a return of {episode_return}");
+assert!(episode_return > 500.0);
+
 // %% step: CartPole-v0 and CartPole-v1
 for id in EnvId::ALL {
     println!("{}: truncated at {} steps", id.as_str(), id.max_episode_steps());

@@ -28,11 +28,17 @@ pub enum Field {
     NormalizeAdvantage,
     /// CartPole-v1 or v0.
     Env,
+    /// The entropy bonus: off (the seed) or CleanRL's 0.01.
+    EntropyCoef,
+    /// Gradient-norm clipping: off (the seed) or CleanRL's 0.5.
+    MaxGradNorm,
+    /// Early stop at a target KL: off (the seed) or 0.01 (Spinning Up's default).
+    TargetKl,
 }
 
 impl Field {
     /// Every field, in display order.
-    pub const ALL: [Self; 9] = [
+    pub const ALL: [Self; 12] = [
         Self::Eps,
         Self::Gamma,
         Self::Lmbda,
@@ -42,6 +48,9 @@ impl Field {
         Self::BootstrapOnTruncation,
         Self::NormalizeAdvantage,
         Self::Env,
+        Self::EntropyCoef,
+        Self::MaxGradNorm,
+        Self::TargetKl,
     ];
 
     /// The setting's name, as in [`PpoConfig`] (and the `--flag` of `ppo-tutor train`).
@@ -57,6 +66,9 @@ impl Field {
             Self::BootstrapOnTruncation => "bootstrap_on_truncation",
             Self::NormalizeAdvantage => "normalize_advantage",
             Self::Env => "env",
+            Self::EntropyCoef => "entropy_coef",
+            Self::MaxGradNorm => "max_grad_norm",
+            Self::TargetKl => "target_kl",
         }
     }
 
@@ -140,6 +152,9 @@ impl Sandbox {
             Field::BootstrapOnTruncation => c.bootstrap_on_truncation.to_string(),
             Field::NormalizeAdvantage => c.normalize_advantage.to_string(),
             Field::Env => c.env_id.to_string(),
+            Field::EntropyCoef => c.entropy_coef.to_string(),
+            Field::MaxGradNorm => c.max_grad_norm.map_or("off".into(), |v| v.to_string()),
+            Field::TargetKl => c.target_kl.map_or("off".into(), |v| v.to_string()),
         }
     }
 
@@ -173,6 +188,24 @@ impl Sandbox {
                     EnvId::CartPoleV0 => EnvId::CartPoleV1,
                 };
             }
+            // The three switches toggle between off and the value their source uses.
+            Field::EntropyCoef => {
+                c.entropy_coef = if c.entropy_coef > 0.0 { 0.0 } else { 0.01 };
+            }
+            Field::MaxGradNorm => {
+                c.max_grad_norm = if c.max_grad_norm.is_some() {
+                    None
+                } else {
+                    Some(0.5)
+                };
+            }
+            Field::TargetKl => {
+                c.target_kl = if c.target_kl.is_some() {
+                    None
+                } else {
+                    Some(0.01)
+                };
+            }
         }
     }
 }
@@ -199,7 +232,10 @@ mod tests {
                 "seed",
                 "bootstrap_on_truncation",
                 "normalize_advantage",
-                "env"
+                "env",
+                "entropy_coef",
+                "max_grad_norm",
+                "target_kl"
             ]
         );
         assert!(Field::ALL.iter().enumerate().all(|(i, f)| f.index() == i));
@@ -213,7 +249,7 @@ mod tests {
         for _ in 0..20 {
             s.update(Action::Down);
         }
-        assert_eq!(s.selected, Field::Env);
+        assert_eq!(s.selected, Field::TargetKl);
     }
 
     #[test]

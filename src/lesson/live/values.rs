@@ -141,6 +141,45 @@ pub const LIVE: &[LiveValue] = &[
         view: |n, s| epoch_series(n, s, |e| e.clip_fraction),
     },
     LiveValue {
+        name: "ratio_min",
+        view: |n, s| {
+            epoch_series(n, s, |e| {
+                e.ratio.iter().copied().fold(f32::INFINITY, f32::min)
+            })
+        },
+    },
+    LiveValue {
+        name: "ratio_max",
+        view: |n, s| {
+            epoch_series(n, s, |e| {
+                e.ratio.iter().copied().fold(f32::NEG_INFINITY, f32::max)
+            })
+        },
+    },
+    LiveValue {
+        name: "entropy",
+        view: |n, s| epoch_series(n, s, |e| e.entropy),
+    },
+    LiveValue {
+        name: "epochs_run",
+        view: |n, s| {
+            let t = trace(s)?;
+            Some(TensorView::new(
+                n,
+                vec![1],
+                "int64",
+                vec![t.epochs_run() as f64],
+            ))
+        },
+    },
+    LiveValue {
+        name: "explained_variance",
+        view: |n, s| {
+            let ev = trace(s)?.explained_variance.map_or(f64::NAN, f64::from);
+            Some(TensorView::new(n, vec![1], "float32", vec![ev]))
+        },
+    },
+    LiveValue {
         name: "returns",
         view: |n, s| curve(n, &s.returns),
     },

@@ -87,7 +87,11 @@ pub fn lines(
             }
         }
         out.push(Line::from(header));
-        let budget = height.saturating_sub(out.len() + others.len().min(6));
+        let mut budget = height.saturating_sub(out.len() + others.len().min(6));
+        if n > budget {
+            // The "rows a–b of n" line below takes a row too.
+            budget = budget.saturating_sub(1);
+        }
         let start = scroll.min(n.saturating_sub(1));
         for row in start..n.min(start + budget.max(1)) {
             let mut spans = vec![Span::styled(format!("{row:>4}"), theme.dim())];
