@@ -428,10 +428,15 @@ fn registered(lesson: &Lesson, file: &str) -> Result<Vec<&'static dyn Exercise>,
         .collect()
 }
 
-/// Whether `ex` is written in the lesson's shared starter (plain Rust, built with `rustc`);
-/// the others (on candle, built with cargo) have a starter and a cell of their own.
-fn shares_the_starter(ex: &dyn Exercise) -> bool {
-    ex.meta().backend == Backend::Rustc
+/// `exercises` split into those written in the lesson's shared starter (plain Rust, built
+/// with `rustc`) and those with a starter and cells of their own (on candle, built with
+/// cargo), each in course order.
+fn by_starter(
+    exercises: Vec<&'static dyn Exercise>,
+) -> (Vec<&'static dyn Exercise>, Vec<&'static dyn Exercise>) {
+    exercises
+        .into_iter()
+        .partition(|e| e.meta().backend == Backend::Rustc)
 }
 
 /// The markdown cell before the own cell of `ex` (built with cargo, on candle): its
@@ -459,7 +464,7 @@ fn exercise_cells(lesson: &Lesson, file: &str, root: &Path) -> Result<Vec<Cell>,
             file: file.to_string(),
         });
     };
-    let exercises = registered(lesson, file)?;
+    let (shared, own) = by_starter(registered(lesson, file)?);
     let list: Vec<String> = ex.names().iter().map(|n| format!("`{n}`")).collect();
     let mut md = format!("## Exercise: {}\n\n", list.join(" and "));
     md.push_str(
@@ -476,8 +481,6 @@ fn exercise_cells(lesson: &Lesson, file: &str, root: &Path) -> Result<Vec<Cell>,
         md.push_str("\n</details>\n");
     }
     let dir = format!("lessons/{}", folder(lesson));
-    let (shared, own): (Vec<&dyn Exercise>, Vec<&dyn Exercise>) =
-        exercises.into_iter().partition(|e| shares_the_starter(*e));
     let mut cells = vec![Cell::Markdown(md)];
     if let Some(first) = shared.first() {
         let starter = read(root, &format!("{dir}/{}", first.meta().starter))?;
@@ -504,9 +507,7 @@ fn exercise_cells(lesson: &Lesson, file: &str, root: &Path) -> Result<Vec<Cell>,
 pub fn solution_cells(root: &Path, lesson: &Lesson) -> Result<Vec<String>, BuildError> {
     let dir = format!("lessons/{}", folder(lesson));
     let file = format!("notebooks/src/{}.rs", folder(lesson));
-    let exercises = registered(lesson, &file)?;
-    let (shared, own): (Vec<&dyn Exercise>, Vec<&dyn Exercise>) =
-        exercises.into_iter().partition(|e| shares_the_starter(*e));
+    let (shared, own) = by_starter(registered(lesson, &file)?);
     let mut cells = Vec::new();
     if let Some(first) = shared.first() {
         let solution = read(root, &format!("{dir}/{}", first.meta().solution))?;

@@ -12,7 +12,7 @@
 //! ```
 
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use super::PpoError;
 use super::config::PpoConfig;
@@ -43,21 +43,18 @@ pub struct SeedError {
 /// as it finishes (from the worker threads).
 ///
 /// # Errors
-/// The first [`SeedError`]: invalid settings, or a run that diverged.
+/// The first [`SeedError`]: invalid settings (reported by each seed's trainer), or a run
+/// that diverged.
 pub fn train_seeds(
     config: &PpoConfig,
     seeds: &[u64],
     threads: usize,
     on_episode: impl Fn(u64, &EpisodeReport) + Sync,
 ) -> Result<Vec<SeedRun>, SeedError> {
-    config.validate().map_err(|source| SeedError {
-        seed: seeds.first().copied().unwrap_or_default(),
-        source,
-    })?;
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<SeedRun, SeedError>>>> =
         Mutex::new(seeds.iter().map(|_| None).collect());
-    let failed = std::sync::atomic::AtomicBool::new(false);
+    let failed = AtomicBool::new(false);
     let work = || {
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);

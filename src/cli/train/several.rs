@@ -79,7 +79,7 @@ pub(super) fn run(args: &TrainArgs, config: &PpoConfig, seeds: &[u64]) -> anyhow
         }
     }
     if let Some(path) = &args.json {
-        let value = seeds_json(config, &runs, &smoothed, &band, wall_s);
+        let value = seeds_json(config, &runs, &smoothed, &band, (mean, std), wall_s);
         std::fs::write(path, format!("{value}\n"))
             .with_context(|| format!("writing {}", path.display()))?;
     }
@@ -114,10 +114,9 @@ fn seeds_json(
     runs: &[SeedRun],
     smoothed: &[Vec<f64>],
     band: &Band,
+    (mean, std): (f64, f64),
     wall_s: f64,
 ) -> serde_json::Value {
-    let finals: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(LAST)).collect();
-    let (mean, std) = mean_std(&finals);
     json!({
         "episodes": config.num_episodes,
         "seeds": runs.iter().map(|r| r.seed).collect::<Vec<_>>(),
