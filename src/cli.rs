@@ -13,6 +13,7 @@ pub mod args;
 pub mod cartpole;
 pub mod dev;
 pub mod grade;
+pub mod lab;
 pub mod lessons;
 pub mod play;
 pub mod replay;
@@ -39,6 +40,8 @@ pub enum Command {
     Show(lessons::ShowArgs),
     /// Train the seed's PPO on CartPole-v1: progress bars, a summary and the return curve.
     Train(train::TrainArgs),
+    /// Run a clip-lab experiment: one knob changed, every setting over several seeds.
+    Lab(lab::LabArgs),
     /// Watch a saved agent (`train --save`) balance the pole in the terminal.
     Play(play::PlayArgs),
     /// Re-run recorded PyTorch updates (ppo_update_pytorch.json schema) and print ours.
@@ -156,6 +159,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Lessons) => lessons::list(),
         Some(Command::Show(args)) => lessons::show(&args),
         Some(Command::Train(args)) => train::run(&args),
+        Some(Command::Lab(args)) => lab::run(&args),
         Some(Command::Play(args)) => play::run(&args),
         Some(Command::Replay(args)) => replay::run(&args),
         Some(Command::Grade(args)) => grade::run(&args),

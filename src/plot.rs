@@ -12,8 +12,11 @@
 pub mod file;
 pub mod terminal;
 
-pub use file::{PlotError, clip_chart_svg, return_plot_svg, save_band_plot, save_return_plot};
-pub use terminal::{ascii_band_plot, ascii_return_plot};
+pub use file::{
+    PlotError, clip_chart_svg, lab_plot_svg, return_plot_svg, save_band_plot, save_lab_plot,
+    save_return_plot,
+};
+pub use terminal::{ascii_band_plot, ascii_return_plot, ascii_versus_plot};
 
 /// `L^CLIP(r)` for advantage `a`: `min(r·a, clip(r, 1−ε, 1+ε)·a)`, one row of the seed's
 /// `torch.min(surr1, surr2)`.

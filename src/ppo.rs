@@ -9,9 +9,11 @@
 //! - [`advantage`]: GAE, `compute_advantage` in f32 as numpy runs it.
 //! - [`agent`]: [`Agent`] with `take_action` and `update`, which returns an [`UpdateTrace`].
 //! - [`trace`]: the recorded intermediates every face displays.
+//! - [`gradient`]: the policy gradient and PPO's surrogate have one gradient at θ_old, computed.
 //! - [`train`](mod@train): `train_on_policy_agent` as a step-by-step [`Trainer`].
 //! - [`moving_average`](mod@moving_average): `rl_utils.moving_average`, for the return curve.
 //! - [`seeds`]: one configuration over several seeds in parallel, and the band of their curves.
+//! - [`lab`]: the clip lab's experiments, one knob changed at a time over several seeds.
 //! - [`checkpoint`]: saving and loading an agent as safetensors with PyTorch's names.
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
 //!
@@ -24,6 +26,8 @@ pub mod advantage;
 pub mod agent;
 pub mod checkpoint;
 pub mod config;
+pub mod gradient;
+pub mod lab;
 pub mod model;
 pub mod moving_average;
 pub mod ops;
@@ -35,7 +39,8 @@ pub mod train;
 pub use adam::Adam;
 pub use advantage::{compute_advantage, normalize_advantage};
 pub use agent::{Agent, Losses, Transitions};
-pub use config::PpoConfig;
+pub use config::{Algorithm, PpoConfig};
+pub use gradient::{SurrogateGradients, surrogate_gradients};
 pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
 pub use moving_average::moving_average;
 pub use trace::{EarlyStop, EpochTrace, UpdateTrace};

@@ -290,3 +290,98 @@ fn play_names_a_tensor_of_the_wrong_shape() -> TestResult {
 fn path(p: &std::path::Path) -> Result<&str, &'static str> {
     p.to_str().ok_or("non-UTF-8 temp path")
 }
+
+/// `ppo-tutor lab`: the list, a short experiment whose base arm is the plain run of each
+/// seed, its JSON and figure, and a wrong name.
+#[test]
+fn lab_runs_an_experiment_over_seeds_and_refuses_an_unknown_one() -> TestResult {
+    let out = ppo_tutor(&["lab"])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let list = String::from_utf8(out.stdout)?;
+    for name in ["eps", "epochs", "actor-lr", "target-kl", "reinforce"] {
+        assert!(
+            list.contains(&format!("  {name} ")),
+            "{name} missing: {list}"
+        );
+    }
+    let out = ppo_tutor(&["lab", "clip"])?;
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("choose one of eps, epochs"),
+        "{}",
+        stderr(&out)
+    );
+
+    let dir = tempfile::tempdir()?;
+    let json = dir.path().join("lab.json");
+    let plot = dir.path().join("lab.svg");
+    let out = ppo_tutor(&[
+        "lab",
+        "reinforce",
+        "--episodes",
+        "8",
+        "--seeds",
+        "0-1",
+        "--json",
+        path(&json)?,
+        "--plot",
+        path(&plot)?,
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8(out.stdout)?;
+    assert!(
+        stdout.contains("2 settings x 2 seeds, 8 episodes each"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("REINFORCE + baseline") && stdout.contains("against PPO"),
+        "{stdout}"
+    );
+    let lab: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+    let arms = lab["arms"].as_array().ok_or("no arms")?;
+    assert_eq!(arms.len(), 2);
+    assert_eq!(arms[1]["config"]["algorithm"], "reinforce");
+    // The base arm's seed 1 is `train --seed 1` with the same episodes.
+    let single = dir.path().join("one.json");
+    let out = ppo_tutor(&[
+        "train",
+        "--episodes",
+        "8",
+        "--seed",
+        "1",
+        "-q",
+        "--json",
+        path(&single)?,
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let one: Value = serde_json::from_str(&std::fs::read_to_string(&single)?)?;
+    assert_eq!(arms[0]["returns"][1], one["returns"]);
+    assert!(std::fs::read_to_string(&plot)?.contains("lab reinforce: 2 seeds"));
+    Ok(())
+}
+
+/// `--algorithm reinforce` takes one step per episode, `--no-clip` keeps ten, and both are
+/// recorded in the run's configuration.
+#[test]
+fn train_switches_to_reinforce_or_drops_the_clip() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    for (flag, key, value) in [
+        (
+            &["--algorithm", "reinforce"][..],
+            "algorithm",
+            Value::from("reinforce"),
+        ),
+        (&["--no-clip"][..], "no_clip", Value::from(true)),
+    ] {
+        let json = dir.path().join(format!("{key}.json"));
+        let mut args = vec!["train", "--episodes", "4", "-q", "--json", path(&json)?];
+        args.extend_from_slice(flag);
+        let out = ppo_tutor(&args)?;
+        assert!(out.status.success(), "{}", stderr(&out));
+        let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+        assert_eq!(run["config"][key], value, "{run}");
+    }
+    let out = ppo_tutor(&["train", "--algorithm", "a2c"])?;
+    assert_eq!(out.status.code(), Some(2));
+    Ok(())
+}

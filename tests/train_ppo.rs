@@ -131,3 +131,81 @@ fn explained_variance_is_computed_from_the_targets_and_values() -> TestResult {
     );
     Ok(())
 }
+
+/// `algorithm = reinforce`: one step per episode; the advantage is GAE with λ = 1, which is
+/// G_t − V(s_t) with G_t the discounted return-to-go of the episode, and the λ-return (what
+/// the critic is fitted to) is G_t itself.
+#[test]
+fn reinforce_takes_one_step_on_the_return_to_go() -> TestResult {
+    use ppo_tutor::lesson::live::values::return_to_go;
+    use ppo_tutor::ppo::{Algorithm, compute_advantage};
+    let config = PpoConfig {
+        num_episodes: 8,
+        algorithm: Algorithm::Reinforce,
+        ..PpoConfig::default()
+    };
+    let reports: Vec<_> = Trainer::new(config.clone(), 3)?.collect::<Result<_, _>>()?;
+    for r in &reports {
+        let t = &r.trace;
+        assert_eq!(t.epochs_run(), 1, "one gradient step per episode");
+        assert_eq!(
+            t.advantage,
+            compute_advantage(config.gamma, 1.0, &t.td_delta)
+        );
+        let g = return_to_go(&t.rewards, &t.dones, config.gamma);
+        for (lr, g) in t.lambda_return.iter().zip(&g) {
+            assert!(
+                (f64::from(*lr) - g).abs() < 1e-3 * g.max(1.0),
+                "{lr} vs G_t {g}"
+            );
+        }
+        let e = &t.epochs[0];
+        assert!(e.ratio.iter().all(|&x| x == 1.0), "a single epoch at θ_old");
+    }
+    // The same seed under PPO differs from the first update on.
+    let ppo: Vec<_> = Trainer::new(
+        PpoConfig {
+            num_episodes: 2,
+            ..PpoConfig::default()
+        },
+        3,
+    )?
+    .collect::<Result<_, _>>()?;
+    assert_eq!(ppo[0].trace.epochs_run(), 10);
+    assert_ne!(ppo[1].trace.values, reports[1].trace.values);
+    Ok(())
+}
+
+/// `no_clip`: every epoch's actor loss is −mean(ratio · Â), whatever the ratios do; with the
+/// clip, rows outside the band make the two differ.
+#[test]
+fn no_clip_minimises_the_plain_surrogate() -> TestResult {
+    let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
+    let run = |no_clip| -> Result<Vec<_>, Box<dyn std::error::Error>> {
+        let config = PpoConfig {
+            num_episodes: 30,
+            no_clip,
+            ..PpoConfig::default()
+        };
+        Ok(Trainer::new(config, 0)?.collect::<Result<Vec<_>, _>>()?)
+    };
+    for r in run(true)? {
+        for e in &r.trace.epochs {
+            assert!(
+                (e.actor_loss + mean(&e.surr1)).abs() < 1e-5,
+                "{} vs {}",
+                e.actor_loss,
+                mean(&e.surr1)
+            );
+        }
+    }
+    let differs = run(false)?
+        .iter()
+        .flat_map(|r| r.trace.epochs.iter())
+        .any(|e| (e.actor_loss + mean(&e.surr1)).abs() > 1e-5);
+    assert!(
+        differs,
+        "with the clip, some epoch's loss is not the plain surrogate"
+    );
+    Ok(())
+}

@@ -57,7 +57,7 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
         l.steps.len(),
         s.title
     );
-    let _ = writeln!(out, "{}\n", s.body);
+    let _ = writeln!(out, "{}\n", crate::lesson::details::fold(&s.body, true));
     if !s.python.is_empty() {
         let _ = writeln!(out, "## The seed (PyTorch)\n{}\n", s.python);
     }

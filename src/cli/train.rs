@@ -15,7 +15,7 @@ use super::args::{SeedList, parse_env, parse_seed, parse_seeds};
 use crate::env::EnvId;
 use crate::plot::{ascii_return_plot, save_return_plot, smoothed_returns};
 use crate::ppo::train::mean_last;
-use crate::ppo::{EpisodeReport, PpoConfig, PpoError, TrainSummary, train};
+use crate::ppo::{Algorithm, EpisodeReport, PpoConfig, PpoError, TrainSummary, train};
 
 /// Arguments of `ppo-tutor train`; defaults are the seed's.
 #[derive(Debug, Args)]
@@ -85,6 +85,31 @@ pub struct TrainArgs {
     /// Stop an update's epochs once approx_kl exceeds 1.5 × this (Spinning Up); off in the seed.
     #[arg(long, allow_hyphen_values = true)]
     pub target_kl: Option<f64>,
+    /// Drop the clip: the actor loss is −mean(ratio·Â) (the clip-lab experiment); off in the seed.
+    #[arg(long)]
+    pub no_clip: bool,
+    /// The update rule: ppo (the seed) or reinforce (REINFORCE with a baseline: one step per
+    /// episode on log π·(G_t − V(s_t)), no ratio, no clip).
+    #[arg(long, value_enum, default_value = "ppo")]
+    pub algorithm: AlgorithmArg,
+}
+
+/// `--algorithm` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum AlgorithmArg {
+    /// The seed's PPO.
+    Ppo,
+    /// REINFORCE with the critic as baseline.
+    Reinforce,
+}
+
+impl From<AlgorithmArg> for Algorithm {
+    fn from(a: AlgorithmArg) -> Self {
+        match a {
+            AlgorithmArg::Ppo => Self::Ppo,
+            AlgorithmArg::Reinforce => Self::Reinforce,
+        }
+    }
 }
 
 impl TrainArgs {
@@ -106,6 +131,8 @@ impl TrainArgs {
             entropy_coef: self.entropy_coef,
             max_grad_norm: self.max_grad_norm,
             target_kl: self.target_kl,
+            no_clip: self.no_clip,
+            algorithm: self.algorithm.into(),
         }
     }
 }

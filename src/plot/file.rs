@@ -69,6 +69,34 @@ pub fn save_band_plot(
     save(path, title, Figure::Band { band, seeds })
 }
 
+/// Writes a lab experiment to `path` (`.png` or `.svg`, as [`save_return_plot`]): each
+/// arm's mean curve over its min–max band, in its own colour, base arm first.
+///
+/// # Errors
+/// As [`save_return_plot`].
+pub fn save_lab_plot(
+    path: &Path,
+    title: &str,
+    arms: &[(&str, &Band)],
+    seeds: usize,
+) -> Result<(), PlotError> {
+    save(path, title, Figure::Arms { arms, seeds })
+}
+
+/// The figure of [`save_lab_plot`] as an SVG document in memory (800x480), for notebooks.
+///
+/// # Errors
+/// [`PlotError::Draw`] if plotters fails.
+pub fn lab_plot_svg(
+    title: &str,
+    arms: &[(&str, &Band)],
+    seeds: usize,
+) -> Result<String, PlotError> {
+    svg_string((800, 480), |root| {
+        draw(root, title, Figure::Arms { arms, seeds })
+    })
+}
+
 /// What a return figure shows.
 #[derive(Clone, Copy)]
 enum Figure<'a> {
@@ -79,6 +107,11 @@ enum Figure<'a> {
     },
     /// Several seeds: the mean of their curves over the min–max band.
     Band { band: &'a Band, seeds: usize },
+    /// Several settings, each over several seeds: a band and a mean per setting.
+    Arms {
+        arms: &'a [(&'a str, &'a Band)],
+        seeds: usize,
+    },
 }
 
 fn save(path: &Path, title: &str, figure: Figure<'_>) -> Result<(), PlotError> {
@@ -227,6 +260,12 @@ fn draw<DB: DrawingBackend>(
             band.mean.len(),
             band.high.iter().copied().fold(1.0, f64::max),
         ),
+        Figure::Arms { arms, .. } => (
+            arms.iter().map(|(_, b)| b.mean.len()).max().unwrap_or(0),
+            arms.iter()
+                .flat_map(|(_, b)| b.high.iter().copied())
+                .fold(1.0, f64::max),
+        ),
     };
     let x_max = len.saturating_sub(1).max(1) as f64;
     let y_max = highest * 1.05;
@@ -281,6 +320,23 @@ fn draw<DB: DrawingBackend>(
                 .draw_series(LineSeries::new(points(&band.mean), blue.stroke_width(2)))?
                 .label("mean over seeds")
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], blue));
+        }
+        Figure::Arms { arms, seeds } => {
+            // matplotlib's first four colours: blue is the base arm.
+            let colours = [blue, orange, RGBColor(44, 160, 44), RGBColor(214, 39, 40)];
+            for (k, (label, band)) in arms.iter().enumerate() {
+                let colour = colours[k % colours.len()];
+                let mut outline = points(&band.high);
+                outline.extend(points(&band.low).into_iter().rev());
+                chart.draw_series(std::iter::once(Polygon::new(
+                    outline,
+                    colour.mix(0.15).filled(),
+                )))?;
+                chart
+                    .draw_series(LineSeries::new(points(&band.mean), colour.stroke_width(2)))?
+                    .label(format!("{label} (mean of {seeds} seeds, band min–max)"))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+            }
         }
     }
     chart

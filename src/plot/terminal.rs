@@ -56,6 +56,38 @@ pub fn ascii_band_plot(band: &Band, seeds: usize, width: usize, height: usize) -
     ))
 }
 
+/// Draws one arm of an experiment against the base arm on the same axes: the arm's band
+/// (`:`), its mean (`*`) and the base arm's mean (`o`, drawn last so it stays visible).
+#[must_use]
+pub fn ascii_versus_plot(
+    arm: (&str, &Band),
+    base: (&str, &Band),
+    seeds: usize,
+    width: usize,
+    height: usize,
+) -> Vec<String> {
+    let n = arm.1.mean.len().max(base.1.mean.len());
+    let mut grid = Grid::new(
+        arm.1.high.iter().chain(&base.1.mean).copied(),
+        n,
+        width,
+        height,
+    );
+    for (i, (&lo, &hi)) in arm.1.low.iter().zip(&arm.1.high).enumerate() {
+        grid.fill(i, lo, hi, ':');
+    }
+    for (i, &v) in arm.1.mean.iter().enumerate() {
+        grid.put(i, v, '*');
+    }
+    for (i, &v) in base.1.mean.iter().enumerate() {
+        grid.put(i, v, 'o');
+    }
+    grid.lines(&format!(
+        "{} (* mean, : lowest to highest of {seeds} seeds) against {} (o mean)",
+        arm.0, base.0
+    ))
+}
+
 /// A character grid with a y axis from 0 to a round maximum and `n` episodes across.
 struct Grid {
     cells: Vec<Vec<char>>,

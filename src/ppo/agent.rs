@@ -40,7 +40,7 @@ use super::adam::Adam;
 use super::advantage::{compute_advantage, normalize_advantage};
 use super::model::{ActorSnapshot, Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
 use super::trace::{EarlyStop, EpochTrace, UpdateTrace};
-use super::{ACTION_DIM, PpoConfig, PpoError, STATE_DIM};
+use super::{ACTION_DIM, Algorithm, PpoConfig, PpoError, STATE_DIM};
 use crate::env::seeding::NumpyRng;
 
 // ANCHOR: transition_dict
@@ -407,7 +407,24 @@ impl Agent {
         let td_delta = (&td_target - &values)?;
         // ANCHOR_END: td_delta
         let td_delta_vec = to_vec(&td_delta)?;
-        let mut advantage_vec = compute_advantage(cfg.gamma, cfg.lmbda, &td_delta_vec);
+        let values_vec = to_vec(&values)?;
+        // ANCHOR: reinforce_targets
+        let reinforce = cfg.algorithm == Algorithm::Reinforce;
+        // REINFORCE: λ = 1 sums the whole rest of the episode, Â_t = G_t − V(s_t)
+        let lmbda = if reinforce { 1.0 } else { cfg.lmbda };
+        let mut advantage_vec = compute_advantage(cfg.gamma, lmbda, &td_delta_vec);
+        // the λ-return Â_t + V(s_t): G_t itself when λ = 1
+        let lambda_return: Vec<f32> = advantage_vec
+            .iter()
+            .zip(&values_vec)
+            .map(|(a, v)| a + v)
+            .collect();
+        let critic_target = if reinforce {
+            column(lambda_return.clone())? // fit V(s_t) to the Monte-Carlo return
+        } else {
+            td_target.detach() // the seed: the one-step TD target
+        };
+        // ANCHOR_END: reinforce_targets
         if cfg.normalize_advantage {
             advantage_vec = normalize_advantage(&advantage_vec);
         }
@@ -427,11 +444,12 @@ impl Agent {
             rewards: batch.rewards.clone(),
             next_states: batch.next_states.clone(),
             dones: done_flags.clone(),
-            values: to_vec(&values)?,
+            values: values_vec,
             next_values: to_vec(&next_values)?,
             td_target: to_vec(&td_target)?,
             td_delta: td_delta_vec,
             advantage: advantage_vec,
+            lambda_return,
             old_log_probs: to_vec(&old_log_probs)?,
             epochs: Vec::with_capacity(cfg.epochs),
             early_stop: None,
@@ -448,11 +466,12 @@ impl Agent {
             advantage: &advantage,
             old_log_probs: &old_log_probs,
             old_log_probs_vec: &trace.old_log_probs,
-            td_target: &td_target.detach(),
+            critic_target: &critic_target,
             losses,
         };
+        let epochs = if reinforce { 1 } else { self.config.epochs };
         // ANCHOR: epochs
-        for k in 0..self.config.epochs {
+        for k in 0..epochs {
             match self.epoch(&batch)? {
                 Epoch::Stepped(epoch) => trace.epochs.push(epoch),
                 Epoch::Stopped { approx_kl } => {
@@ -500,13 +519,18 @@ impl Agent {
         let log_probs_all = probs.clamp(f32::MIN_POSITIVE, 1.0)?.log()?;
         let entropy = (&probs * log_probs_all)?.sum(1)?.neg()?.mean_all()?;
         // ANCHOR: actor_loss
-        let mut actor_loss = surr1.minimum(&surr2)?.neg()?.mean_all()?;
+        let objective = match (self.config.algorithm, self.config.no_clip) {
+            (Algorithm::Ppo, false) => surr1.minimum(&surr2)?, // the seed
+            (Algorithm::Ppo, true) => surr1.clone(),           // no clip: ratio · Â
+            (Algorithm::Reinforce, _) => (&log_probs * b.advantage)?, // log π · Â
+        };
+        let mut actor_loss = objective.neg()?.mean_all()?;
         if self.config.entropy_coef > 0.0 {
             actor_loss = (actor_loss - (&entropy * self.config.entropy_coef)?)?;
         }
         // ANCHOR_END: actor_loss
         // ANCHOR: critic_loss
-        let critic_loss = (self.critic.forward(b.states)? - b.td_target)?
+        let critic_loss = (self.critic.forward(b.states)? - b.critic_target)?
             .sqr()?
             .mean_all()?;
         // ANCHOR_END: critic_loss
@@ -520,7 +544,7 @@ impl Agent {
                     b.old_log_probs,
                     b.advantage,
                     &values,
-                    b.td_target,
+                    b.critic_target,
                     eps,
                 )?;
                 let actor_loss = if self.config.entropy_coef > 0.0 {
@@ -618,7 +642,8 @@ struct EpochInputs<'a> {
     advantage: &'a Tensor,
     old_log_probs: &'a Tensor,
     old_log_probs_vec: &'a [f32],
-    td_target: &'a Tensor,
+    /// What the critic is fitted to: the TD target (PPO) or the return (REINFORCE).
+    critic_target: &'a Tensor,
     /// A learner's losses in place of the built-in ones ([`Agent::update_with`]).
     losses: Option<&'a Losses<'a>>,
 }

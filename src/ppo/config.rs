@@ -3,6 +3,8 @@
 //! The seed has no tricks beyond the clipped surrogate and GAE. CleanRL-style extras
 //! (bootstrapping on truncation, advantage normalisation, an entropy bonus, gradient
 //! clipping, early stopping at a target KL) are opt-in switches, all off by default, so the default run is the seed's.
+//! So are the two switches the lessons compare PPO against: no clip at all, and plain
+//! REINFORCE with a baseline.
 
 use serde::{Deserialize, Serialize};
 
@@ -45,6 +47,37 @@ pub struct PpoConfig {
     /// networks; Spinning Up keeps training its value function). `None` is off (the seed).
     #[serde(default)]
     pub target_kl: Option<f64>,
+    /// Drop the clip: the actor loss is `−mean(ratio · Â)`, the unclipped surrogate, for
+    /// every epoch (off in the seed). `eps` is then unused.
+    #[serde(default)]
+    pub no_clip: bool,
+    /// The update rule: the seed's PPO, or REINFORCE with a baseline for comparison.
+    #[serde(default)]
+    pub algorithm: Algorithm,
+}
+
+/// Which update rule [`crate::ppo::Agent::update`] applies to each episode.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Algorithm {
+    /// The seed's PPO: `epochs` clipped-surrogate steps on each episode.
+    #[default]
+    Ppo,
+    /// REINFORCE with the critic as baseline: one step per episode on
+    /// `−mean(log π(a|s) · (G_t − V(s_t)))`, the critic fitted to the Monte-Carlo return
+    /// `G_t`. No ratio, no clip; `epochs`, `eps`, `lmbda` and `target_kl` are unused.
+    Reinforce,
+}
+
+impl Algorithm {
+    /// The name used on the command line and in JSON (`ppo`, `reinforce`).
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Ppo => "ppo",
+            Self::Reinforce => "reinforce",
+        }
+    }
 }
 
 // ANCHOR: hyper
@@ -66,6 +99,8 @@ impl Default for PpoConfig {
             entropy_coef: 0.0,
             max_grad_norm: None,
             target_kl: None,
+            no_clip: false,
+            algorithm: Algorithm::Ppo,
         }
     }
 }

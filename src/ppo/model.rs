@@ -107,6 +107,18 @@ impl Linear {
     pub fn vars(&self) -> [&Var; 2] {
         [&self.weight, &self.bias]
     }
+
+    /// An independent layer holding the same values now (a clone shares the variables, so
+    /// an optimizer step on the original would change it too).
+    ///
+    /// # Errors
+    /// Only if candle cannot allocate the tensors.
+    pub fn frozen_copy(&self) -> candle_core::Result<Self> {
+        Ok(Self {
+            weight: Var::from_tensor(&self.weight.as_tensor().copy()?)?,
+            bias: Var::from_tensor(&self.bias.as_tensor().copy()?)?,
+        })
+    }
 }
 
 // ANCHOR: policy_net
@@ -133,6 +145,17 @@ impl PolicyNet {
         let fc1 = Linear::pytorch_init(state_dim, hidden_dim, rng)?;
         let fc2 = Linear::pytorch_init(hidden_dim, action_dim, rng)?;
         Ok(Self { fc1, fc2 })
+    }
+
+    /// An independent copy of the actor as it is now (see [`Linear::frozen_copy`]).
+    ///
+    /// # Errors
+    /// Only if candle cannot allocate the tensors.
+    pub fn frozen_copy(&self) -> candle_core::Result<Self> {
+        Ok(Self {
+            fc1: self.fc1.frozen_copy()?,
+            fc2: self.fc2.frozen_copy()?,
+        })
     }
 
     /// `states (N, state_dim)` → `probs (N, action_dim)`.

@@ -51,18 +51,36 @@ pub fn train_seeds(
     threads: usize,
     on_episode: impl Fn(u64, &EpisodeReport) + Sync,
 ) -> Result<Vec<SeedRun>, SeedError> {
+    let jobs: Vec<(&PpoConfig, u64)> = seeds.iter().map(|&s| (config, s)).collect();
+    train_jobs(&jobs, threads, |i, report| on_episode(jobs[i].1, report))
+}
+
+/// Trains each `(config, seed)` of `jobs`, on up to `threads` threads at once, and returns
+/// the runs in the order of `jobs`. `on_episode` gets the job's index and every episode.
+///
+/// # Errors
+/// As [`train_seeds`].
+pub fn train_jobs(
+    jobs: &[(&PpoConfig, u64)],
+    threads: usize,
+    on_episode: impl Fn(usize, &EpisodeReport) + Sync,
+) -> Result<Vec<SeedRun>, SeedError> {
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<SeedRun, SeedError>>>> =
-        Mutex::new(seeds.iter().map(|_| None).collect());
+        Mutex::new(jobs.iter().map(|_| None).collect());
     let failed = AtomicBool::new(false);
     let work = || {
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(&seed) = seeds.get(i) else { break };
+            let Some(&(config, seed)) = jobs.get(i) else {
+                break;
+            };
             if failed.load(Ordering::Relaxed) {
                 break;
             }
-            let run = one_seed(config, seed, &on_episode);
+            let run = one_seed(config, seed, &|report: &EpisodeReport| {
+                on_episode(i, report)
+            });
             if run.is_err() {
                 failed.store(true, Ordering::Relaxed);
             }
@@ -72,14 +90,14 @@ pub fn train_seeds(
         }
     };
     std::thread::scope(|scope| {
-        for _ in 0..threads.clamp(1, seeds.len().max(1)) {
+        for _ in 0..threads.clamp(1, jobs.len().max(1)) {
             scope.spawn(work);
         }
     });
     let slots = results
         .into_inner()
         .unwrap_or_else(|poisoned| poisoned.into_inner());
-    let mut runs = Vec::with_capacity(seeds.len());
+    let mut runs = Vec::with_capacity(jobs.len());
     for slot in slots {
         match slot {
             Some(run) => runs.push(run?),
@@ -93,12 +111,12 @@ pub fn train_seeds(
 fn one_seed(
     config: &PpoConfig,
     seed: u64,
-    on_episode: &(impl Fn(u64, &EpisodeReport) + Sync),
+    on_episode: &dyn Fn(&EpisodeReport),
 ) -> Result<SeedRun, SeedError> {
     let fail = |source| SeedError { seed, source };
     let mut trainer = Trainer::new(config.clone(), seed).map_err(fail)?;
     while let Some(report) = trainer.next_episode().map_err(fail)? {
-        on_episode(seed, &report);
+        on_episode(&report);
     }
     Ok(SeedRun {
         seed,
@@ -107,7 +125,7 @@ fn one_seed(
 }
 
 /// Curves over seeds, episode by episode: their mean, and the lowest and highest value.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
 pub struct Band {
     /// The mean over seeds.
     pub mean: Vec<f64>,

@@ -6,7 +6,7 @@
 //! ```text
 //! states, next_states (N, 4)      actions, rewards, dones (N)
 //! values = V(s), next_values = V(s') (N)
-//! td_target, td_delta, advantage, old_log_probs (N)
+//! td_target, td_delta, advantage, lambda_return, old_log_probs (N)
 //! per epoch: log_probs, ratio, surr1, surr2, clipped (N); actor_loss, critic_loss, approx_kl,
 //!            clip_fraction, entropy (scalars)
 //! per update: explained_variance, early_stop (scalars)
@@ -38,6 +38,10 @@ pub struct UpdateTrace {
     pub td_delta: Vec<f32>,
     /// GAE of `td_delta`, as the epochs used it (normalised if the switch is on).
     pub advantage: Vec<f32>,
+    /// The λ-return `Â_t + V(s_t)` (before any normalisation of `Â`): what CleanRL fits the
+    /// critic to, where the seed uses `td_target`. With λ = 1 (REINFORCE) it is the
+    /// discounted return `G_t`.
+    pub lambda_return: Vec<f32>,
     /// `log π_old(a_t|s_t)` before the first epoch, held fixed.
     pub old_log_probs: Vec<f32>,
     /// One entry per epoch that ran, in order: all `epochs` of them, or fewer when

@@ -1,0 +1,161 @@
+//! `ppo-tutor lab [EXPERIMENT]`: the clip lab from the command line. Each experiment changes
+//! one of PPO's knobs, trains every setting over the same seeds on every core, and prints
+//! each setting's final score over the seeds, what its updates did, and its curve against
+//! the seed's settings.
+
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::Context;
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::args::{SeedList, parse_seeds};
+use crate::plot::{ascii_versus_plot, save_lab_plot};
+use crate::ppo::PpoConfig;
+use crate::ppo::lab::{self, Experiment};
+
+/// Arguments of `ppo-tutor lab`.
+#[derive(Debug, Args)]
+pub struct LabArgs {
+    /// The experiment: eps, epochs, actor-lr, target-kl or reinforce (omit to list them).
+    #[arg(value_parser = parse_experiment)]
+    pub experiment: Option<Experiment>,
+    /// The seeds every setting runs: numbers and ranges, e.g. 0-4 or 0,3,7.
+    #[arg(long, default_value = "0-4", value_parser = parse_seeds, value_name = "LIST")]
+    pub seeds: SeedList,
+    /// Episodes per run.
+    #[arg(long, default_value_t = 500)]
+    pub episodes: usize,
+    /// Write every run's returns, the bands and the statistics as JSON.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Draw the settings' bands to FILE.png or FILE.svg.
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+    /// Print only the table (no progress bar, no plot).
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+fn parse_experiment(s: &str) -> Result<Experiment, String> {
+    Experiment::from_name(s).ok_or_else(|| {
+        let names: Vec<&str> = Experiment::ALL.iter().map(|e| e.name()).collect();
+        format!(
+            "unknown experiment '{s}': choose one of {}",
+            names.join(", ")
+        )
+    })
+}
+
+/// Runs `ppo-tutor lab`.
+///
+/// # Errors
+/// A run that diverged, or an output file that could not be written.
+pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
+    let mut out = std::io::stdout().lock();
+    let Some(experiment) = args.experiment else {
+        writeln!(
+            out,
+            "The clip lab's experiments (run one with ppo-tutor lab NAME):"
+        )?;
+        for e in Experiment::ALL {
+            let arms: Vec<String> = e
+                .arms(&PpoConfig::default())
+                .into_iter()
+                .map(|a| a.label)
+                .collect();
+            writeln!(
+                out,
+                "  {:<10} {}  [{}]",
+                e.name(),
+                e.question(),
+                arms.join(" | ")
+            )?;
+        }
+        return Ok(ExitCode::SUCCESS);
+    };
+    if args.episodes == 0 {
+        eprintln!("error: invalid --episodes 0: expected at least 1 (see --help)");
+        return Ok(ExitCode::from(super::EXIT_USAGE));
+    }
+    let base = PpoConfig {
+        num_episodes: args.episodes,
+        ..PpoConfig::default()
+    };
+    let seeds = &args.seeds.0;
+    let runs = experiment.arms(&base).len() * seeds.len();
+    let threads = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .min(runs);
+    let bar = progress(args.quiet, runs * args.episodes);
+    let started = Instant::now();
+    let result = lab::run(experiment, &base, seeds, threads, |done, _| {
+        if let Some(bar) = &bar {
+            bar.set_position(done as u64);
+        }
+    })
+    .context("the experiment stopped")?;
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    let wall_s = started.elapsed().as_secs_f64();
+    writeln!(
+        out,
+        "lab {}: {}\n{} settings x {} seeds, {} episodes each, {threads} runs at a time, {wall_s:.1} s\n",
+        experiment.name(),
+        experiment.question(),
+        result.arms.len(),
+        seeds.len(),
+        args.episodes
+    )?;
+    for line in result.table() {
+        writeln!(out, "{line}")?;
+    }
+    if !args.quiet {
+        let width = crossterm::terminal::size().map_or(80, |(w, _)| usize::from(w));
+        if let Some((base_arm, others)) = result.arms.split_first() {
+            for arm in others {
+                writeln!(out)?;
+                for line in ascii_versus_plot(
+                    (&arm.label, &arm.band),
+                    (&base_arm.label, &base_arm.band),
+                    seeds.len(),
+                    width.clamp(30, 120) - 8,
+                    12,
+                ) {
+                    writeln!(out, "{line}")?;
+                }
+            }
+        }
+    }
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string(&result).context("encoding the results")?;
+        std::fs::write(path, format!("{text}\n"))
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    if let Some(path) = &args.plot {
+        let arms: Vec<(&str, &crate::ppo::seeds::Band)> = result
+            .arms
+            .iter()
+            .map(|a| (a.label.as_str(), &a.band))
+            .collect();
+        let title = format!("lab {}: {} seeds", experiment.name(), seeds.len());
+        save_lab_plot(path, &title, &arms, seeds.len())?;
+        writeln!(out, "drew the settings' bands to {}", path.display())?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn progress(quiet: bool, total: usize) -> Option<ProgressBar> {
+    if quiet || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let style = ProgressStyle::with_template(
+        "lab: {percent:>3}%|{bar:30}| {pos}/{len} episodes [{elapsed}<{eta}]",
+    )
+    .unwrap_or_else(|_| ProgressStyle::default_bar());
+    Some(ProgressBar::new(total as u64).with_style(style.progress_chars("█▉▊▋▌▍▎▏ ")))
+}
