@@ -11,11 +11,13 @@
 //!
 //! - [`loader`]: parsing and validation ([`Course::embedded`]).
 //! - [`anchor`]: Rust code pulled from `src/` by `// ANCHOR: name` markers.
+//! - [`details`]: collapsible `<details>` blocks inside a step.
 //! - [`live`]: the live training [`Session`] and the [`Snapshot`] of named values it keeps
 //!   up to date, episode by episode, for every face.
 //! - [`progress`]: where the learner is, saved atomically.
 
 pub mod anchor;
+pub mod details;
 pub mod live;
 pub mod loader;
 pub mod progress;
@@ -54,6 +56,8 @@ pub struct Step {
     pub show: Vec<String>,
     /// The explanation, in markdown.
     pub body: String,
+    /// The clip-lab experiment this step runs (shown by the `lab` view), if any.
+    pub lab: Option<crate::ppo::lab::Experiment>,
 }
 
 /// The exercise attached to a lesson, as the tutor presents it (from `exercise.toml`).
@@ -79,4 +83,4 @@ impl Exercise {
 }
 
 /// Views a step can show instead of a tensor.
-pub const VIEWS: [&str; 3] = ["plot", "cartpole", "clip_chart"];
+pub const VIEWS: [&str; 4] = ["plot", "cartpole", "clip_chart", "lab"];

@@ -31,6 +31,7 @@ use std::fmt::Write as _;
 use crate::grade::{CheckStatus, Report};
 use crate::lesson::{Mark, Session, Snapshot, TensorView};
 use crate::plot::{PlotError, return_plot_svg};
+use crate::ppo::lab::{Experiment, LabResult};
 use crate::ppo::{EpochTrace, PpoConfig};
 
 /// Rows of a tensor shown before the table is cut (the rest is summarised).
@@ -306,6 +307,60 @@ impl Snapshot {
 pub fn snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::Result<Snapshot> {
     hint_candle_threads();
     Ok(Session::run(config, seed, episodes)?)
+}
+
+/// Runs the clip-lab experiment called `name` (`eps`, `epochs`, `actor-lr`, `target-kl`,
+/// `reinforce`: see [`crate::ppo::lab::Experiment`]) with the seed's settings, `episodes`
+/// per run, once per seed of `seeds`, on every core: what `ppo-tutor lab NAME` and the
+/// terminal app's `x` run. Shown in a notebook as its table and its figure.
+///
+/// # Errors
+/// An unknown name, or a run that stopped.
+pub fn lab(name: &str, seeds: &[u64], episodes: usize) -> anyhow::Result<LabResult> {
+    hint_candle_threads();
+    let experiment = Experiment::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Experiment::ALL.iter().map(|e| e.name()).collect();
+        anyhow::anyhow!(
+            "unknown experiment '{name}': choose one of {}",
+            names.join(", ")
+        )
+    })?;
+    let base = PpoConfig {
+        num_episodes: episodes,
+        ..PpoConfig::default()
+    };
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    Ok(crate::ppo::lab::run(
+        experiment,
+        &base,
+        seeds,
+        threads,
+        |_, _| {},
+    )?)
+}
+
+impl LabResult {
+    /// The settings' bands and means in one figure.
+    ///
+    /// # Errors
+    /// [`PlotError::Draw`] if plotters fails.
+    pub fn plot(&self) -> Result<Svg, PlotError> {
+        let arms: Vec<(&str, &crate::ppo::seeds::Band)> = self
+            .arms
+            .iter()
+            .map(|a| (a.label.as_str(), &a.band))
+            .collect();
+        let title = format!("lab {}: {} seeds", self.experiment.name(), self.seeds.len());
+        crate::plot::lab_plot_svg(&title, &arms, self.seeds.len()).map(Svg)
+    }
+
+    /// evcxr's display hook: the table, then the figure.
+    pub fn evcxr_display(&self) {
+        emit("text/plain", &self.table().join("\n"));
+        if let Ok(svg) = self.plot() {
+            emit("image/svg+xml", svg.as_str());
+        }
+    }
 }
 
 /// Once per kernel, when `RAYON_NUM_THREADS` is unset: says how to make training twice as

@@ -25,8 +25,10 @@ use anyhow::Context;
 use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, MouseEventKind};
 
 use crate::lesson::{Course, Progress};
+use crate::ppo::lab::{self, Experiment};
 use app::{App, WARNING};
 use keys::Action;
+use widgets::lab::LabState;
 use worker::{Command, WorkerEvent};
 
 /// What the event loop reacts to.
@@ -40,6 +42,8 @@ pub enum Event {
     Worker(WorkerEvent),
     /// A grading started with `g` finished.
     Graded(Vec<app::Graded>),
+    /// A clip-lab experiment started with `x` progressed or ended.
+    Lab(Experiment, LabState),
 }
 
 /// Frames per second of the cart-pole animation.
@@ -104,6 +108,9 @@ fn event_loop(
         if let Some(names) = app.exercise.request.take() {
             spawn_grader(names, tx.clone());
         }
+        if let Some((experiment, base)) = app.lab_request.take() {
+            spawn_lab(experiment, base, tx.clone());
+        }
         if app.quit {
             return Ok(());
         }
@@ -116,6 +123,7 @@ pub fn handle(app: &mut App, event: Event) {
         Event::Tick => app.tick(),
         Event::Worker(w) => app.on_worker(w),
         Event::Graded(graded) => app.on_graded(graded),
+        Event::Lab(experiment, state) => app.on_lab(experiment, state),
         Event::Input(event::Event::Key(key)) => {
             let overlay = app.overlay != app::Overlay::None && app.overlay != app::Overlay::Help;
             let sandbox = app.overlay == app::Overlay::Sandbox;
@@ -130,6 +138,30 @@ pub fn handle(app: &mut App, event: Event) {
         },
         Event::Input(_) => {}
     }
+}
+
+/// Runs a clip-lab experiment on a background thread (its runs on every core), sending its
+/// progress about a hundred times and then its result.
+fn spawn_lab(experiment: Experiment, base: crate::ppo::PpoConfig, tx: Sender<Event>) {
+    std::thread::spawn(move || {
+        let threads = std::thread::available_parallelism().map_or(1, usize::from);
+        let result = lab::run(
+            experiment,
+            &base,
+            &app::LAB_SEEDS,
+            threads,
+            |done, total| {
+                if done % (total / 100).max(1) == 0 {
+                    let _ = tx.send(Event::Lab(experiment, LabState::Running { done, total }));
+                }
+            },
+        );
+        let state = match result {
+            Ok(r) => LabState::Done(Box::new(r)),
+            Err(e) => LabState::Failed(e.to_string()),
+        };
+        let _ = tx.send(Event::Lab(experiment, state));
+    });
 }
 
 /// Grades `names` on a background thread (compiling can take seconds) and sends the result.

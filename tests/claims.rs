@@ -3,13 +3,14 @@
 //! PPO or to the text that makes a claim false fails.
 
 use ppo_tutor::plot::smoothed_returns;
+use ppo_tutor::ppo::lab::{self, ArmResult, Experiment, LabResult};
 use ppo_tutor::ppo::seeds::{SeedRun, mean_std, train_seeds};
 use ppo_tutor::ppo::{PpoConfig, Trainer, UpdateTrace};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 const LOSSES: &str = include_str!("../lessons/11-losses/lesson.md");
-const TRAINING: &str = include_str!("../lessons/12-training/lesson.md");
+const TRAINING: &str = include_str!("../lessons/13-training/lesson.md");
 
 /// `text` with every run of whitespace one space (lessons wrap lines anywhere).
 fn flat(text: &str) -> String {
@@ -244,8 +245,8 @@ fn the_beyond_lesson_states_what_the_switches_do_over_five_seeds() -> TestResult
             format!("{m:.1} ± {s:.1}")
         })
         .collect();
-    let lesson = include_str!("../lessons/13-beyond-the-seed/lesson.md");
-    let file = "lessons/13-beyond-the-seed/lesson.md";
+    let lesson = include_str!("../lessons/15-beyond-the-seed/lesson.md");
+    let file = "lessons/15-beyond-the-seed/lesson.md";
     says(
         lesson,
         file,
@@ -302,7 +303,7 @@ fn the_training_lesson_states_what_five_seeds_show() -> TestResult {
     let (lo450, hi450) = range(&reached_450);
     let low = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
     let high = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let file = "lessons/12-training/lesson.md";
+    let file = "lessons/13-training/lesson.md";
     says(
         TRAINING,
         file,
@@ -363,10 +364,10 @@ fn ignoring_truncation_lets_a_return_exceed_500() -> TestResult {
         );
         assert!(steps > 500, "seed {seed}: the loop stopped at {steps}");
     }
-    let lesson = include_str!("../lessons/05-cartpole/lesson.md");
+    let lesson = include_str!("../lessons/02-cartpole/lesson.md");
     says(
         lesson,
-        "lessons/05-cartpole/lesson.md",
+        "lessons/02-cartpole/lesson.md",
         "its return exceeds 500",
     );
     Ok(())
@@ -393,11 +394,292 @@ fn the_entropy_starts_at_even_odds_and_falls() -> TestResult {
         let (early, late) = (mean(&first_epochs[..50]), mean(&first_epochs[100..]));
         assert!(late < early, "seed {seed}: {late} late vs {early} early");
     }
-    let lesson = include_str!("../lessons/13-beyond-the-seed/lesson.md");
+    let lesson = include_str!("../lessons/15-beyond-the-seed/lesson.md");
     says(
         lesson,
-        "lessons/13-beyond-the-seed/lesson.md",
+        "lessons/15-beyond-the-seed/lesson.md",
         "it starts near 0.69",
+    );
+    Ok(())
+}
+
+/// Every clip-lab experiment over seeds 0–4, 500 episodes each (the lab caches runs, so the
+/// base arm trains once for all five).
+fn lab_runs() -> Result<Vec<LabResult>, String> {
+    Experiment::ALL
+        .iter()
+        .map(|&e| {
+            lab::run(e, &PpoConfig::default(), &[0, 1, 2, 3, 4], 2, |_, _| {})
+                .map_err(|err| err.to_string())
+        })
+        .collect()
+}
+
+/// The first episode of each seed with a return of 500 (the run's length if none).
+fn first_500(arm: &ArmResult) -> Vec<usize> {
+    arm.returns
+        .iter()
+        .map(|r| r.iter().position(|&x| x >= 500.0).unwrap_or(r.len()))
+        .collect()
+}
+
+/// Lessons 4, 12 and 14 and the README: what every experiment of the clip lab shows.
+#[test]
+fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
+    let labs = lab_runs()?;
+    let get = |e: Experiment| labs.iter().find(|l| l.experiment == e).ok_or("missing lab");
+    let (eps, epochs, lr, kl, reinforce) = (
+        get(Experiment::Eps)?,
+        get(Experiment::Epochs)?,
+        get(Experiment::ActorLr)?,
+        get(Experiment::TargetKl)?,
+        get(Experiment::Reinforce)?,
+    );
+    let lab_file = "lessons/12-clip-lab/lesson.md";
+    let lab_text = include_str!("../lessons/12-clip-lab/lesson.md");
+    let pg_file = "lessons/04-policy-gradient/lesson.md";
+    let pg_text = include_str!("../lessons/04-policy-gradient/lesson.md");
+    let readme = include_str!("../README.md");
+    for l in [eps, epochs, lr, kl] {
+        for arm in &l.arms {
+            says(lab_text, lab_file, &arm.summary());
+        }
+    }
+    for arm in &reinforce.arms {
+        says(pg_text, pg_file, &arm.summary());
+    }
+    // The README's table: every changed setting, and the base once.
+    for arm in labs.iter().flat_map(|l| l.arms.iter()) {
+        let (m, s) = arm.final_mean_std();
+        let reach = arm
+            .first_reaching(400.0)
+            .map_or("never reaches 400".into(), |e| {
+                format!("reaches 400 at episode {e}")
+            });
+        says(
+            readme,
+            "README.md",
+            &format!(
+                "{m:.1} ± {s:.1}, worst seed {:.1}; {reach}",
+                arm.worst_final()
+            ),
+        );
+    }
+
+    // Experiment 1: the clip range.
+    let [base, narrow, none] = &eps.arms[..] else {
+        return Err("eps has three arms".into());
+    };
+    let (b, n, o) = (
+        base.mean_updates(),
+        narrow.mean_updates(),
+        none.mean_updates(),
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "clips {:.3} of the rows on average, against {:.3} with ε = 0.2",
+            n.clip_fraction, b.clip_fraction
+        ),
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "largest |r − 1| averages {:.3} against {:.3}, and approx_kl {:.4} against {:.4}",
+            o.max_ratio_deviation, b.max_ratio_deviation, o.approx_kl, b.approx_kl
+        ),
+    );
+    assert!(
+        first_500(narrow)
+            .iter()
+            .zip(first_500(base))
+            .all(|(n, b)| *n > b),
+        "ε = 0.05 reaches 500 later on every seed"
+    );
+    let top = |a: &ArmResult| a.final_mean_std();
+    assert!(
+        top(base).0 > top(narrow).0
+            && top(base).0 > top(none).0
+            && top(base).1 < top(narrow).1.min(top(none).1)
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!("all five seeds end at {:.1} or above", base.worst_final()),
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "the worst seed ends at {:.1} and {:.1}",
+            narrow.worst_final(),
+            none.worst_final()
+        ),
+    );
+
+    // Experiment 2: epochs.
+    let [ten, one, forty] = &epochs.arms[..] else {
+        return Err("epochs has three arms".into());
+    };
+    let (t, f) = (ten.mean_updates(), forty.mean_updates());
+    assert!(one.first_reaching(400.0).is_none() && top(one).0 < top(ten).0);
+    assert!(
+        forty.first_reaching(400.0) > ten.first_reaching(400.0)
+            && top(forty).0 < top(ten).0
+            && top(forty).1 > top(ten).1
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "approx_kl {:.4} against {:.4}, the largest |r − 1| {:.3} against {:.3}",
+            f.approx_kl, t.approx_kl, f.max_ratio_deviation, t.max_ratio_deviation
+        ),
+    );
+
+    // Experiment 3: actor_lr × 10.
+    let big = &lr.arms[1];
+    let u = big.mean_updates();
+    let best = big.finals.iter().copied().fold(0.0, f64::max);
+    assert!((best - 500.0).abs() < 1e-9, "one seed ends at 500");
+    says(
+        lab_text,
+        lab_file,
+        &format!("another at {:.1}", big.worst_final()),
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!("approx_kl is {:.4}, ten times the seed's", u.approx_kl),
+    );
+    let times = u.approx_kl / t.approx_kl;
+    assert!(
+        (8.0..12.0).contains(&times),
+        "ten times the seed's: {times}"
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "largest |r − 1| averages {:.3}, far outside",
+            u.max_ratio_deviation
+        ),
+    );
+
+    // Experiment 4: target_kl.
+    let (no_stop, stop) = (&kl.arms[1], &kl.arms[2]);
+    let s = stop.mean_updates();
+    says(
+        lab_text,
+        lab_file,
+        &format!("updates ran {:.1} on average", s.epochs_run),
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "approx_kl fell from {:.4} to {:.4}",
+            no_stop.mean_updates().approx_kl,
+            s.approx_kl
+        ),
+    );
+    assert!(top(stop).0 < top(no_stop).0 && top(stop).1 > top(no_stop).1);
+
+    // The closing summary.
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "({:.1} and {:.1} against {:.1})",
+            top(forty).0,
+            top(big).0,
+            top(none).0
+        ),
+    );
+    assert!(top(forty).0 < top(none).0 && top(big).0 < top(none).0);
+
+    // Lesson 4: when each algorithm first reaches 500.
+    let [ppo, rf] = &reinforce.arms[..] else {
+        return Err("reinforce has two arms".into());
+    };
+    let span = |a: &ArmResult| {
+        let f = first_500(a);
+        (
+            f.iter().copied().min().unwrap_or(0),
+            f.iter().copied().max().unwrap_or(0),
+        )
+    };
+    let ((rl, rh), (pl, ph)) = (span(rf), span(ppo));
+    says(
+        pg_text,
+        pg_file,
+        &format!("between episode {rl} and {rh} on the five seeds, PPO's between {pl} and {ph}"),
+    );
+
+    // Lesson 14's recap quotes the same runs.
+    let hp_file = "lessons/14-hyperparameters/lesson.md";
+    let hp = include_str!("../lessons/14-hyperparameters/lesson.md");
+    let ms = |a: &ArmResult| {
+        let (m, s) = a.final_mean_std();
+        format!("{m:.1} ± {s:.1}")
+    };
+    says(
+        hp,
+        hp_file,
+        &format!(
+            "five seeds at {} over their last 50 episodes, one of them at {:.1}, against {} at the seed's rate",
+            ms(big),
+            big.worst_final(),
+            ms(base)
+        ),
+    );
+    says(
+        hp,
+        hp_file,
+        &format!(
+            "1 epoch ended at {} and 40 epochs at {}, against {} for ten",
+            ms(one),
+            ms(forty),
+            ms(ten)
+        ),
+    );
+    says(
+        hp,
+        hp_file,
+        &format!(
+            "ε = 0.05 ended at {} and no clip at {}, against {} for 0.2",
+            ms(narrow),
+            ms(none),
+            ms(base)
+        ),
+    );
+    Ok(())
+}
+
+/// Lesson 4: on every episode of a live session, PPO's surrogate and REINFORCE's objective
+/// have the same gradient at θ_old, to float rounding.
+#[test]
+fn the_surrogate_gradient_is_the_policy_gradient_at_theta_old() -> TestResult {
+    let mut session = ppo_tutor::lesson::Session::new(PpoConfig::default(), 0)?;
+    for _ in 0..20 {
+        let snap = session.next_episode()?.ok_or("the run ended")?;
+        let g = snap.gradients.as_ref().ok_or("no gradients")?;
+        assert_eq!(g.surrogate.len(), 898);
+        assert!(g.max_abs() > 0.0);
+        assert!(
+            g.max_abs_diff() <= 1e-6 * g.max_abs(),
+            "episode {}: {} vs {}",
+            snap.episodes,
+            g.max_abs_diff(),
+            g.max_abs()
+        );
+    }
+    says(
+        include_str!("../lessons/04-policy-gradient/lesson.md"),
+        "lessons/04-policy-gradient/lesson.md",
+        "They agree to float rounding.",
     );
     Ok(())
 }

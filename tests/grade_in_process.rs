@@ -10,7 +10,7 @@ use ppo_tutor::grade::exercises::ppo_losses::{self, protocol::LossesFn};
 use ppo_tutor::grade::{self, CheckStatus, GradeOptions, Problem, Report, exercises, in_process};
 
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/06-episode-loop/solution.rs"]
+#[path = "../lessons/03-episode-loop/solution.rs"]
 mod sol06;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/07-td-target/solution.rs"]
@@ -31,7 +31,7 @@ mod sol11;
 #[path = "../lessons/11-losses/solution_candle.rs"]
 mod sol11_candle;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/12-training/solution.rs"]
+#[path = "../lessons/13-training/solution.rs"]
 mod sol12;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/11-losses/exercise_candle.rs"]

@@ -11,11 +11,34 @@ type TestResult = Result<(), Box<dyn std::error::Error>>;
 #[test]
 fn the_course_is_complete_and_consistent() -> TestResult {
     let course = Course::embedded()?;
-    assert_eq!(course.lessons.len(), 13, "the outline has 13 lessons");
+    assert_eq!(course.lessons.len(), 15, "the outline has 15 lessons");
     let orders: Vec<u32> = course.lessons.iter().map(|l| l.order).collect();
-    assert_eq!(orders, (1..=13).collect::<Vec<_>>());
-    let ids: BTreeSet<&str> = course.lessons.iter().map(|l| l.id.as_str()).collect();
-    assert_eq!(ids.len(), course.lessons.len(), "ids are unique");
+    assert_eq!(orders, (1..=15).collect::<Vec<_>>());
+    // A course's order: the environment and the loop before the networks, the derivation
+    // before the mechanics, the lab after them, the recap of settings near the end.
+    let ids: Vec<&str> = course.lessons.iter().map(|l| l.id.as_str()).collect();
+    assert_eq!(
+        ids,
+        [
+            "what-is-ppo",
+            "cartpole",
+            "episode-loop",
+            "policy-gradient",
+            "networks",
+            "adam",
+            "td-target",
+            "gae",
+            "ratio",
+            "clipping",
+            "losses",
+            "clip-lab",
+            "training",
+            "hyperparameters",
+            "beyond-the-seed"
+        ]
+    );
+    let unique: BTreeSet<&str> = ids.iter().copied().collect();
+    assert_eq!(unique.len(), course.lessons.len(), "ids are unique");
     for l in &course.lessons {
         assert!(
             !l.title.is_empty() && !l.summary.is_empty(),
@@ -100,6 +123,39 @@ fn a_broken_lesson_is_reported_with_its_folder_and_step() {
         .map(|e| e.to_string())
         .unwrap_or_default();
     assert!(err.contains("heading"), "{err}");
+}
+
+#[test]
+fn details_and_lab_steps_are_checked_where_they_are_written() {
+    use ppo_tutor::lesson::loader::parse_lesson;
+    let err_of = |text: &str| {
+        parse_lesson("02-x", text)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    };
+    let head = "+++\nid = \"x\"\ntitle = \"X\"\n[[steps]]\ntitle = \"A\"\n";
+    let unclosed = format!("{head}+++\n## A\nbody\n<details><summary>S</summary>\nmore\n");
+    let err = err_of(&unclosed);
+    assert!(
+        err.contains("lessons/02-x") && err.contains("step 1") && err.contains("not closed"),
+        "{err}"
+    );
+    let bad_lab = format!("{head}lab = \"clipping\"\nshow = [\"lab\"]\n+++\n## A\nbody\n");
+    let err = err_of(&bad_lab);
+    assert!(err.contains("lab experiment 'clipping'"), "{err}");
+    let lab_unshown = format!("{head}lab = \"eps\"\n+++\n## A\nbody\n");
+    assert!(err_of(&lab_unshown).contains("must show \"lab\""));
+    let shown_alone = format!("{head}show = [\"lab\"]\n+++\n## A\nbody\n");
+    assert!(err_of(&shown_alone).contains("must show \"lab\""));
+    let good = format!(
+        "{head}lab = \"eps\"\nshow = [\"lab\"]\n+++\n## A\nbody\n<details><summary>S</summary>\n\nmore\n\n</details>\n"
+    );
+    let lesson = parse_lesson("02-x", &good).map_err(|e| e.to_string());
+    assert_eq!(
+        lesson.map(|l| l.steps[0].lab.map(|e| e.name())),
+        Ok(Some("eps"))
+    );
 }
 
 #[test]

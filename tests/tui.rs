@@ -225,3 +225,95 @@ fn a_worker_that_cannot_start_says_why() -> TestResult {
     }
     Ok(())
 }
+
+/// Moves the app to the first step of lesson `id`.
+fn open(app: &mut App, id: &str) -> TestResult {
+    let index = app.course.index_of(id).ok_or("no such lesson")?;
+    app.update(Action::Lessons);
+    for _ in 0..index {
+        app.update(Action::Down);
+    }
+    app.update(Action::Enter);
+    assert_eq!(app.current_lesson().map(|l| l.id.as_str()), Some(id));
+    Ok(())
+}
+
+#[test]
+fn d_opens_and_folds_the_details() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "cartpole")?;
+    while !app
+        .current_step()
+        .is_some_and(|s| ppo_tutor::lesson::details::has_details(&s.body))
+    {
+        app.update(Action::Next);
+    }
+    let folded = screen(&app, 140, 45)?;
+    assert!(folded.contains("Details: The equations of motion") && folded.contains("(d opens)"));
+    assert!(!folded.contains("explicit Euler"), "folded text is hidden");
+    app.update(Action::Details);
+    let opened = screen(&app, 140, 45)?;
+    assert!(
+        opened.contains("explicit Euler") && opened.contains("(d folds)"),
+        "{opened}"
+    );
+    app.update(Action::Details);
+    assert_eq!(screen(&app, 140, 45)?, folded);
+    Ok(())
+}
+
+#[test]
+fn x_runs_the_step_s_experiment_and_the_panel_shows_its_result() -> TestResult {
+    use ppo_tutor::ppo::lab::{self, Experiment};
+    use ppo_tutor::tui::widgets::lab::LabState;
+    let mut app = app()?;
+    app.update(Action::RunLab);
+    assert!(
+        app.lab_request.is_none(),
+        "no experiment outside the lab steps"
+    );
+    assert!(app.status.contains("no experiment"), "{}", app.status);
+    open(&mut app, "clip-lab")?;
+    app.update(Action::Next); // Experiment 1: the clip range
+    let before = screen(&app, 140, 45)?;
+    assert!(before.contains("x runs the experiment"), "{before}");
+    app.update(Action::RunLab);
+    let (experiment, base) = app.lab_request.take().ok_or("x asked for no experiment")?;
+    assert_eq!((experiment, base.num_episodes), (Experiment::Eps, 500));
+    assert!(matches!(
+        app.labs.get(&experiment),
+        Some(LabState::Running { done: 0, .. })
+    ));
+    app.update(Action::RunLab);
+    assert!(
+        app.lab_request.is_none(),
+        "a running experiment is not started twice"
+    );
+    // What the event loop's thread sends back, from a short run.
+    let short = PpoConfig {
+        num_episodes: 12,
+        ..PpoConfig::default()
+    };
+    let result = lab::run(experiment, &short, &[0, 1], 2, |_, _| {})?;
+    app.on_lab(
+        experiment,
+        LabState::Running {
+            done: 30,
+            total: 72,
+        },
+    );
+    assert!(screen(&app, 140, 45)?.contains("running: 30/72 episodes"));
+    let table = result.table();
+    app.on_lab(experiment, LabState::Done(Box::new(result)));
+    let after = screen(&app, 140, 45)?;
+    for row in &table[1..] {
+        let label = row.split("  ").next().unwrap_or_default().trim();
+        assert!(after.contains(label), "{label} missing:\n{after}");
+    }
+    assert!(
+        after.contains("ε = 0.05 vs ε = 0.2") && after.contains("no clip vs ε = 0.2"),
+        "{after}"
+    );
+    assert!(app.status.contains("lab eps: done"));
+    Ok(())
+}

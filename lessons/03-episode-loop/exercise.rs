@@ -1,4 +1,4 @@
-//! Lesson 06 exercise: sample an action from the policy's probabilities.
+//! Lesson 03 exercise: sample an action from the policy's probabilities.
 //!
 //! Grade: `ppo-tutor grade sample_action` (or `g` in the tutor).
 //! Start over: `ppo-tutor reset sample_action`.

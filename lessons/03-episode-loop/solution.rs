@@ -1,4 +1,4 @@
-//! Reference solution for lesson 06: sampling an action as
+//! Reference solution for lesson 03: sampling an action as
 //! `torch.distributions.Categorical(probs).sample()` does, by the inverse CDF.
 
 /// The first action whose cumulative probability exceeds `u` (uniform in `[0, 1)`); the

@@ -1,4 +1,4 @@
-//! Lesson 12 exercise: smoothing the return curve like `rl_utils.moving_average`.
+//! Lesson 13 exercise: smoothing the return curve like `rl_utils.moving_average`.
 //!
 //! Grade: `ppo-tutor grade moving_average` (or `g` in the tutor).
 //! Start over: `ppo-tutor reset moving_average`.

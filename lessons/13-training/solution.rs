@@ -1,4 +1,4 @@
-//! Reference solution for lesson 12: `rl_utils.moving_average(a, window_size)` from the
+//! Reference solution for lesson 13: `rl_utils.moving_average(a, window_size)` from the
 //! seed, numpy's cumulative sums translated line by line.
 
 /// A centred mean over `window_size` (odd, at most `a.len() + 1`) values, with windows of

@@ -1,4 +1,4 @@
-//! Recipe for notebooks/05-cartpole.ipynb (see 01-what-is-ppo.rs for the format).
+//! Recipe for notebooks/02-cartpole.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
 use ppo_tutor::env::{CartPole, EnvId};

@@ -1,4 +1,4 @@
-//! Recipe for notebooks/06-episode-loop.ipynb (see 01-what-is-ppo.rs for the format).
+//! Recipe for notebooks/03-episode-loop.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
 use ppo_tutor::lesson::Snapshot;

@@ -35,4 +35,13 @@ println!("A_0 with λ = 0: {:.4}, λ = {}: {:.4}, λ = 1: {:.4}", lambda_0[0], c
 // %% step: Why the loop runs backwards
 // %% step: The numpy detour, in float32
 // %% step: Episode boundaries
+// %% step: Advantage plus value: the λ-return, a second critic target
+// check: lambda_return after 30 episodes
+// CleanRL's `returns = advantages + values`: the seed's GAE plus V(s_t).
+let lambda_return: Vec<f32> = advantage.iter().zip(&trace.values).map(|(a, v)| a + v).collect();
+let n = lambda_return.len();
+println!("last row: λ-return {:.4}, TD target {:.4}", lambda_return[n - 1], trace.td_target[n - 1]);
+println!("first row: λ-return {:.4}, TD target {:.4}", lambda_return[0], trace.td_target[0]);
+TensorView::column("lambda_return", &lambda_return)
+
 // %% exercise

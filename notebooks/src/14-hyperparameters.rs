@@ -1,4 +1,4 @@
-//! Recipe for notebooks/02-hyperparameters.ipynb (see 01-what-is-ppo.rs for the format).
+//! Recipe for notebooks/14-hyperparameters.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
 use ppo_tutor::lesson::Snapshot;

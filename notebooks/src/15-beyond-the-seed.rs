@@ -1,4 +1,4 @@
-//! Recipe for notebooks/13-beyond-the-seed.ipynb (see 01-what-is-ppo.rs for the format).
+//! Recipe for notebooks/15-beyond-the-seed.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
 use ppo_tutor::lesson::Snapshot;

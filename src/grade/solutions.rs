@@ -2,7 +2,7 @@
 //! (`lessons/NN-slug/solution.rs`), so what is shown is what grades.
 
 #[allow(clippy::needless_range_loop)]
-#[path = "../../lessons/06-episode-loop/solution.rs"]
+#[path = "../../lessons/03-episode-loop/solution.rs"]
 pub mod episode_loop;
 
 #[path = "../../lessons/07-td-target/solution.rs"]
@@ -25,5 +25,5 @@ pub mod losses;
 pub mod losses_candle;
 
 #[allow(clippy::needless_range_loop)]
-#[path = "../../lessons/12-training/solution.rs"]
+#[path = "../../lessons/13-training/solution.rs"]
 pub mod training;

@@ -17,7 +17,7 @@ pub mod values;
 pub use session::Session;
 pub use values::{LIVE, LiveValue, NAMES, is_known, lookup};
 
-use crate::ppo::{NamedWeights, PpoConfig, UpdateTrace};
+use crate::ppo::{NamedWeights, PpoConfig, SurrogateGradients, UpdateTrace};
 
 /// How an entry is highlighted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -168,6 +168,11 @@ pub struct Snapshot {
     pub weights: NamedWeights,
     /// The clip range ε in force (for marking clipped ratios).
     pub eps: f32,
+    /// The discount γ in force (for the return-to-go).
+    pub gamma: f64,
+    /// The latest batch's two policy gradients at θ_old, PPO's surrogate and REINFORCE's
+    /// `log π · Â` (the policy-gradient lesson shows them side by side).
+    pub gradients: Option<SurrogateGradients>,
 }
 
 impl Snapshot {
@@ -178,6 +183,7 @@ impl Snapshot {
         Self {
             hyper: hyper_table(config, seed),
             eps: config.eps as f32,
+            gamma: config.gamma,
             ..Self::default()
         }
     }
@@ -232,6 +238,8 @@ fn hyper_table(c: &PpoConfig, seed: u64) -> Vec<(String, String)> {
             "normalize_advantage".into(),
             c.normalize_advantage.to_string(),
         ),
+        ("no_clip".into(), c.no_clip.to_string()),
+        ("algorithm".into(), c.algorithm.as_str().into()),
     ]
 }
 

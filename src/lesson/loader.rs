@@ -39,7 +39,8 @@ pub enum LessonError {
         /// What is wrong, from the TOML parser or the format check.
         reason: String,
     },
-    /// The body's `## ` headings do not match the `[[steps]]` tables.
+    /// The body's `## ` headings do not match the `[[steps]]` tables, or a step's
+    /// `<details>` block is malformed.
     #[error("lessons/{dir}/lesson.md: step {index}: {reason}")]
     StepMismatch {
         /// The folder.
@@ -169,6 +170,8 @@ struct StepMeta {
     code: String,
     #[serde(default)]
     show: Vec<String>,
+    #[serde(default)]
+    lab: String,
 }
 
 /// The whole course, in order.
@@ -340,6 +343,13 @@ fn check_step(
             reason: format!("title '{}' but heading '## {heading}'", meta.title),
         });
     }
+    if let Err(e) = super::details::parts(&body) {
+        return Err(LessonError::StepMismatch {
+            dir: dir.into(),
+            index,
+            reason: e.to_string(),
+        });
+    }
     if !meta.code.is_empty() && anchor::find(&meta.code).is_none() {
         return Err(LessonError::UnknownReference {
             dir: dir.into(),
@@ -360,11 +370,34 @@ fn check_step(
             name: bad.clone(),
         });
     }
+    let lab = if meta.lab.is_empty() {
+        None
+    } else {
+        Some(
+            crate::ppo::lab::Experiment::from_name(&meta.lab).ok_or_else(|| {
+                LessonError::UnknownReference {
+                    dir: dir.into(),
+                    index,
+                    kind: "lab experiment",
+                    name: meta.lab.clone(),
+                }
+            })?,
+        )
+    };
+    if lab.is_some() != meta.show.iter().any(|s| s == "lab") {
+        return Err(LessonError::StepMismatch {
+            dir: dir.into(),
+            index,
+            reason: "a step with `lab = \"NAME\"` must show \"lab\", and only such a step may"
+                .into(),
+        });
+    }
     Ok(Step {
         title: meta.title,
         python: meta.python.trim().to_string(),
         code: meta.code,
         show: meta.show,
         body,
+        lab,
     })
 }

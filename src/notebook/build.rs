@@ -382,6 +382,17 @@ fn show_cells(lesson: &Lesson, k: usize) -> Vec<Cell> {
             )),
             "cartpole" => cells.push(Cell::Code("snap.cartpole()".to_string())),
             "clip_chart" => cells.push(Cell::Code("snap.clip_chart()".to_string())),
+            "lab" => {
+                if let Some(e) = step.lab {
+                    cells.push(Cell::Code(format!(
+                        "// The experiment the terminal app runs with x (`ppo-tutor lab {name}`):\n\
+                         // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.\n\
+                         let lab = ppo_tutor::notebook::lab({name:?}, &[0, 1, 2, 3, 4], LAB_EPISODES)?;\n\
+                         lab",
+                        name = e.name()
+                    )));
+                }
+            }
             _ => {}
         }
     }
@@ -536,6 +547,7 @@ mod tests {
             code: String::new(),
             show: show.iter().map(|s| (*s).to_string()).collect(),
             body: format!("About {title}."),
+            lab: None,
         }
     }
 

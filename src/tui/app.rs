@@ -1,13 +1,16 @@
 //! The app's state and its one `update`: every key and worker event goes through here.
 
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use crate::grade::Report;
 use crate::lesson::{Course, Lesson, Progress, Snapshot, Step};
 use crate::ppo::PpoConfig;
+use crate::ppo::lab::Experiment;
 
 use super::keys::Action;
 use super::sandbox::{Outcome, Sandbox};
+use super::widgets::lab::LabState;
 use super::worker::{Command, WorkerEvent};
 
 /// Prefix of a status message that episode updates must not overwrite.
@@ -98,6 +101,8 @@ pub struct App {
     pub step: usize,
     /// Scroll offset of the explanation.
     pub text_scroll: u16,
+    /// Whether the explanation shows its details blocks opened (`d`).
+    pub details_open: bool,
     /// Scroll offset of the live tensors.
     pub tensor_scroll: usize,
     /// The open overlay.
@@ -129,7 +134,14 @@ pub struct App {
     pub outbox: Vec<Command>,
     /// The open lesson's exercise.
     pub exercise: ExerciseState,
+    /// The clip-lab experiments started in this session, by experiment.
+    pub labs: BTreeMap<Experiment, LabState>,
+    /// An experiment to start, taken by the event loop (which runs it off the UI thread).
+    pub lab_request: Option<(Experiment, PpoConfig)>,
 }
+
+/// Seeds every clip-lab experiment runs in the app (as `ppo-tutor lab`'s default).
+pub const LAB_SEEDS: [u64; 5] = [0, 1, 2, 3, 4];
 
 impl App {
     /// A new app at the saved position (or the first step).
@@ -145,6 +157,7 @@ impl App {
             lesson,
             step,
             text_scroll: 0,
+            details_open: false,
             tensor_scroll: 0,
             overlay: Overlay::None,
             train: TrainState::Paused,
@@ -160,6 +173,8 @@ impl App {
             quit: false,
             outbox: Vec::new(),
             exercise: ExerciseState::default(),
+            labs: BTreeMap::new(),
+            lab_request: None,
         }
     }
 
@@ -207,6 +222,7 @@ impl App {
             Action::Prev => self.prev_step(),
             Action::ScrollDown => self.text_scroll = self.text_scroll.saturating_add(1),
             Action::ScrollUp => self.text_scroll = self.text_scroll.saturating_sub(1),
+            Action::Details => self.details_open = !self.details_open,
             Action::TensorDown => self.tensor_scroll = self.tensor_scroll.saturating_add(5),
             Action::TensorUp => self.tensor_scroll = self.tensor_scroll.saturating_sub(5),
             Action::Lessons => self.overlay = Overlay::Lessons(self.lesson),
@@ -226,6 +242,7 @@ impl App {
             Action::ResetAgent => self.reset_agent(self.config.clone(), self.seed, false),
             Action::Grade => self.request_grade(),
             Action::Hint => self.reveal_hint(),
+            Action::RunLab => self.request_lab(),
             Action::Back
             | Action::Enter
             | Action::Up
@@ -300,6 +317,42 @@ impl App {
         } else {
             self.status = format!("all {total} hints are shown");
         }
+    }
+
+    /// Starts the current step's experiment (`x`), unless it is running or done.
+    fn request_lab(&mut self) {
+        let Some(experiment) = self.current_step().and_then(|s| s.lab) else {
+            self.status =
+                "this step has no experiment to run (the clip-lab lesson has them)".into();
+            return;
+        };
+        if matches!(
+            self.labs.get(&experiment),
+            Some(LabState::Running { .. } | LabState::Done(_))
+        ) {
+            self.status = format!("lab {}: already started in this session", experiment.name());
+            return;
+        }
+        // The seed's settings, with the episode count of the current run.
+        let base = PpoConfig {
+            num_episodes: self.config.num_episodes,
+            ..PpoConfig::default()
+        };
+        let total = experiment.arms(&base).len() * LAB_SEEDS.len() * base.num_episodes;
+        self.labs
+            .insert(experiment, LabState::Running { done: 0, total });
+        self.lab_request = Some((experiment, base));
+        self.status = format!("lab {}: running on every core", experiment.name());
+    }
+
+    /// Applies an experiment's progress or its end.
+    pub fn on_lab(&mut self, experiment: Experiment, state: LabState) {
+        match &state {
+            LabState::Done(_) => self.status = format!("lab {}: done", experiment.name()),
+            LabState::Failed(m) => self.status = format!("{WARNING}lab {}: {m}", experiment.name()),
+            LabState::Running { .. } => {}
+        }
+        self.labs.insert(experiment, state);
     }
 
     /// Applies a finished grading: shows it, and records passed exercises in the progress.

@@ -45,16 +45,22 @@ pub enum Action {
     Grade,
     /// Reveal the exercise's next hint (h).
     Hint,
+    /// Open or fold the steps' details blocks (d).
+    Details,
+    /// Run the step's clip-lab experiment (x).
+    RunLab,
     /// Leave the app.
     Quit,
 }
 
 /// The help overlay's lines: key, what it does.
-pub const HELP: [(&str, &str); 18] = [
+pub const HELP: [(&str, &str); 20] = [
     ("→ / n", "next step"),
     ("← / p", "previous step"),
     ("j / k, wheel", "scroll the explanation"),
     ("J / K", "scroll the live tensors"),
+    ("d", "open / fold the details (▸) in the explanation"),
+    ("x", "run the step's experiment (clip lab, 5 seeds)"),
     ("l", "lesson list (↑↓ choose, Enter open)"),
     ("t", "train / pause (runs on a worker thread)"),
     ("e", "train one episode"),
@@ -105,6 +111,8 @@ pub fn map(key: KeyEvent, overlay_open: bool, sandbox_open: bool) -> Option<Acti
         KeyCode::Char('r') => Action::ResetAgent,
         KeyCode::Char('g') => Action::Grade,
         KeyCode::Char('h') => Action::Hint,
+        KeyCode::Char('d') => Action::Details,
+        KeyCode::Char('x') => Action::RunLab,
         _ => return None,
     };
     Some(action)

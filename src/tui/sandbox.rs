@@ -2,7 +2,7 @@
 //! highlighted field. Enter retrains with the copy; nothing changes before that.
 
 use crate::env::EnvId;
-use crate::ppo::PpoConfig;
+use crate::ppo::{Algorithm, PpoConfig};
 
 use super::keys::Action;
 
@@ -34,11 +34,17 @@ pub enum Field {
     MaxGradNorm,
     /// Early stop at a target KL: off (the seed) or 0.01 (Spinning Up's default).
     TargetKl,
+    /// Passes over each batch: 1, 2, 3, 5, 10 (the seed), 20 or 40.
+    Epochs,
+    /// The clip on (the seed) or off.
+    NoClip,
+    /// PPO (the seed) or REINFORCE with a baseline.
+    Algorithm,
 }
 
 impl Field {
     /// Every field, in display order.
-    pub const ALL: [Self; 12] = [
+    pub const ALL: [Self; 15] = [
         Self::Eps,
         Self::Gamma,
         Self::Lmbda,
@@ -51,6 +57,9 @@ impl Field {
         Self::EntropyCoef,
         Self::MaxGradNorm,
         Self::TargetKl,
+        Self::Epochs,
+        Self::NoClip,
+        Self::Algorithm,
     ];
 
     /// The setting's name, as in [`PpoConfig`] (and the `--flag` of `ppo-tutor train`).
@@ -69,6 +78,9 @@ impl Field {
             Self::EntropyCoef => "entropy_coef",
             Self::MaxGradNorm => "max_grad_norm",
             Self::TargetKl => "target_kl",
+            Self::Epochs => "epochs",
+            Self::NoClip => "no_clip",
+            Self::Algorithm => "algorithm",
         }
     }
 
@@ -155,6 +167,9 @@ impl Sandbox {
             Field::EntropyCoef => c.entropy_coef.to_string(),
             Field::MaxGradNorm => c.max_grad_norm.map_or("off".into(), |v| v.to_string()),
             Field::TargetKl => c.target_kl.map_or("off".into(), |v| v.to_string()),
+            Field::Epochs => c.epochs.to_string(),
+            Field::NoClip => c.no_clip.to_string(),
+            Field::Algorithm => c.algorithm.as_str().into(),
         }
     }
 
@@ -206,6 +221,23 @@ impl Sandbox {
                     Some(0.01)
                 };
             }
+            Field::Epochs => {
+                const LADDER: [usize; 7] = [1, 2, 3, 5, 10, 20, 40];
+                let at = LADDER.iter().position(|&e| e >= c.epochs).unwrap_or(4);
+                let to = if up {
+                    (at + 1).min(LADDER.len() - 1)
+                } else {
+                    at.saturating_sub(1)
+                };
+                c.epochs = LADDER[to];
+            }
+            Field::NoClip => c.no_clip = !c.no_clip,
+            Field::Algorithm => {
+                c.algorithm = match c.algorithm {
+                    Algorithm::Ppo => Algorithm::Reinforce,
+                    Algorithm::Reinforce => Algorithm::Ppo,
+                };
+            }
         }
     }
 }
@@ -235,7 +267,10 @@ mod tests {
                 "env",
                 "entropy_coef",
                 "max_grad_norm",
-                "target_kl"
+                "target_kl",
+                "epochs",
+                "no_clip",
+                "algorithm"
             ]
         );
         assert!(Field::ALL.iter().enumerate().all(|(i, f)| f.index() == i));
@@ -249,7 +284,7 @@ mod tests {
         for _ in 0..20 {
             s.update(Action::Down);
         }
-        assert_eq!(s.selected, Field::TargetKl);
+        assert_eq!(s.selected, Field::Algorithm);
     }
 
     #[test]

@@ -9,8 +9,11 @@ use super::app::{App, Overlay, TrainState};
 use super::keys::HELP;
 use super::sandbox::Field;
 use super::theme::Theme;
-use super::widgets::{cartpole::CartPoleView, clip::ClipChart, plot::ReturnPlot, tensors, text};
+use super::widgets::{
+    cartpole::CartPoleView, clip::ClipChart, lab::LabPanel, plot::ReturnPlot, tensors, text,
+};
 use crate::lesson::{TensorView, VIEWS};
+use crate::ppo::PpoConfig;
 
 /// The smallest terminal the layout fits.
 pub const MIN_SIZE: (u16, u16) = (80, 24);
@@ -103,7 +106,8 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     };
     let [left, right] =
         Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(area);
-    Paragraph::new(text::markdown(&step.body, theme))
+    let body = crate::lesson::details::fold(&step.body, app.details_open);
+    Paragraph::new(text::markdown(&body, theme))
         .block(panel(&step.title, theme))
         .wrap(Wrap { trim: false })
         .scroll((app.text_scroll, 0))
@@ -225,6 +229,29 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
                 obs,
                 block: panel(&title, theme),
                 color: theme.color,
+            }
+            .render(area, buf);
+        }
+        "lab" => {
+            let Some(experiment) = app.current_step().and_then(|s| s.lab) else {
+                return;
+            };
+            let base = PpoConfig {
+                num_episodes: app.config.num_episodes,
+                ..PpoConfig::default()
+            };
+            LabPanel {
+                experiment,
+                arms: experiment
+                    .arms(&base)
+                    .into_iter()
+                    .map(|a| a.label)
+                    .collect(),
+                seeds: crate::tui::app::LAB_SEEDS.len(),
+                episodes: base.num_episodes,
+                state: app.labs.get(&experiment),
+                block: panel(&format!("clip lab: {}", experiment.name()), theme),
+                theme,
             }
             .render(area, buf);
         }

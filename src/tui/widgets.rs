@@ -2,6 +2,7 @@
 
 pub mod cartpole;
 pub mod clip;
+pub mod lab;
 pub mod plot;
 pub mod tensors;
 pub mod text;

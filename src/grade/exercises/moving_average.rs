@@ -1,4 +1,4 @@
-//! `moving_average` (lesson 12): the seed's centred moving average of the returns. Its signature, reference, typical mistakes
+//! `moving_average` (lesson 13): the seed's centred moving average of the returns. Its signature, reference, typical mistakes
 //! and cases; the hints that name the mistakes are in the lesson's `exercise.toml`.
 
 use crate::grade::plain::*;
@@ -11,7 +11,7 @@ const MA_FIXTURE: &str = include_str!("../../../tests/fixtures/moving_average.js
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "moving_average",
-    lesson: "12-training",
+    lesson: "13-training",
     params: &[("a", Kind::F64s), ("window_size", Kind::Usize)],
     output: OutKind::F64s,
     tolerance: F64_TOL,

@@ -1,4 +1,4 @@
-//! `sample_action` (lesson 6): sampling an action from the policy's probabilities with one uniform number. Its signature, reference, typical mistakes
+//! `sample_action` (lesson 3): sampling an action from the policy's probabilities with one uniform number. Its signature, reference, typical mistakes
 //! and cases; the hints that name the mistakes are in the lesson's `exercise.toml`.
 
 use crate::grade::plain::*;
@@ -8,7 +8,7 @@ use crate::grade::value::{Arg, Kind, OutKind, Output};
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "sample_action",
-    lesson: "06-episode-loop",
+    lesson: "03-episode-loop",
     params: &[("probs", Kind::F32s), ("u", Kind::F32)],
     output: OutKind::Usize,
     tolerance: F32_TOL,

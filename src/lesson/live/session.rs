@@ -17,7 +17,7 @@
 
 use super::Snapshot;
 use crate::ppo::model::ActorSnapshot;
-use crate::ppo::{PpoConfig, PpoError, Trainer, moving_average};
+use crate::ppo::{PpoConfig, PpoError, Trainer, moving_average, surrogate_gradients};
 
 /// The window of the return curve's moving average, as in the seed's plot.
 const MOVING_AVERAGE_WINDOW: usize = 9;
@@ -70,6 +70,8 @@ impl Session {
         // The policy the episode is played with, before the episode's update changes it:
         // its probabilities are the ones the actions were sampled from (`old_log_probs`).
         let played_with = ActorSnapshot::of(self.trainer.agent().actor())?;
+        // θ_old as candle variables, for the two policy gradients of the batch it played.
+        let theta_old = self.trainer.agent().actor().frozen_copy()?;
         let Some(report) = self.trainer.next_episode()? else {
             return Ok(None);
         };
@@ -80,6 +82,12 @@ impl Session {
         s.probs = probs_over(&played_with, &report.trace.states);
         s.terminated = report.terminated;
         s.truncated = report.truncated;
+        s.gradients = Some(surrogate_gradients(
+            &theta_old,
+            &report.trace.states,
+            &report.trace.actions,
+            &report.trace.advantage,
+        )?);
         s.trace = Some(report.trace);
         s.weights = self.trainer.agent().weights()?;
         Ok(Some(&self.snapshot))

@@ -101,6 +101,22 @@ pub const LIVE: &[LiveValue] = &[
         view: |n, s| Some(signed(TensorView::column(n, &trace(s)?.advantage))),
     },
     LiveValue {
+        name: "return_to_go",
+        view: |n, s| {
+            let t = trace(s)?;
+            Some(TensorView::new(
+                n,
+                vec![t.rewards.len(), 1],
+                "float32",
+                return_to_go(&t.rewards, &t.dones, s.gamma),
+            ))
+        },
+    },
+    LiveValue {
+        name: "lambda_return",
+        view: |n, s| Some(TensorView::column(n, &trace(s)?.lambda_return)),
+    },
+    LiveValue {
         name: "old_log_probs",
         view: |n, s| Some(TensorView::column(n, &trace(s)?.old_log_probs)),
     },
@@ -177,6 +193,30 @@ pub const LIVE: &[LiveValue] = &[
         view: |n, s| {
             let ev = trace(s)?.explained_variance.map_or(f64::NAN, f64::from);
             Some(TensorView::new(n, vec![1], "float32", vec![ev]))
+        },
+    },
+    LiveValue {
+        name: "grad_surrogate",
+        view: |n, s| gradient(n, s, |g| &g.surrogate),
+    },
+    LiveValue {
+        name: "grad_log_prob",
+        view: |n, s| gradient(n, s, |g| &g.log_prob),
+    },
+    LiveValue {
+        name: "grad_max_diff",
+        view: |n, s| {
+            let g = s.gradients.as_ref()?;
+            let mut t = TensorView::new(n, vec![2], "float32", vec![]);
+            for (label, v) in [
+                ("max |surrogate − log π| =", g.max_abs_diff()),
+                ("max |log π gradient|    =", g.max_abs()),
+            ] {
+                t.labels.push(format!("{label} {v:.3e}"));
+                t.values.push(f64::from(v));
+                t.marks.push(Mark::Plain);
+            }
+            Some(t)
         },
     },
     LiveValue {
@@ -297,6 +337,37 @@ fn clip_marks(clipped: &[bool]) -> Vec<Mark> {
         .collect()
 }
 
+/// `G_t = r_t + γ·G_{t+1}·(1 − done_t)`, from the last step back: the discounted reward
+/// still to come in the episode, REINFORCE's weight on `∇log π(a_t|s_t)`.
+#[must_use]
+pub fn return_to_go(rewards: &[f32], dones: &[bool], gamma: f64) -> Vec<f64> {
+    let mut out = vec![0.0; rewards.len()];
+    let mut next = 0.0;
+    for t in (0..rewards.len()).rev() {
+        let carry = if dones.get(t).copied().unwrap_or(false) {
+            0.0
+        } else {
+            next
+        };
+        next = f64::from(rewards[t]) + gamma * carry;
+        out[t] = next;
+    }
+    out
+}
+
+/// One of the two policy gradients, a row per actor parameter in PyTorch's order
+/// (`fc1.weight` rows 0–511, `fc1.bias`, `fc2.weight`, `fc2.bias` last, for width 128).
+fn gradient(
+    name: &'static str,
+    s: &Snapshot,
+    pick: impl Fn(&crate::ppo::SurrogateGradients) -> &Vec<f32>,
+) -> Option<TensorView> {
+    Some(signed(TensorView::column(
+        name,
+        pick(s.gradients.as_ref()?),
+    )))
+}
+
 /// A float64 curve over episodes, `None` before the first episode.
 fn curve(name: &'static str, values: &[f64]) -> Option<TensorView> {
     (!values.is_empty())
@@ -343,6 +414,12 @@ mod tests {
         assert!(NAMES.iter().all(|n| is_known(n)));
         assert!(!is_known("td_targets"));
         assert!(!is_known("plot"), "views are not live values");
+    }
+
+    #[test]
+    fn the_return_to_go_discounts_and_restarts_at_done() {
+        let g = return_to_go(&[1.0, 1.0, 1.0, 1.0], &[false, true, false, false], 0.5);
+        assert_eq!(g, [1.5, 1.0, 1.5, 1.0]);
     }
 
     #[test]

@@ -87,7 +87,18 @@ pub fn lines(
             }
         }
         out.push(Line::from(header));
-        let mut budget = height.saturating_sub(out.len() + others.len().min(6));
+        // Rows the other values take below the table: one each, or a title and its labels.
+        let below: usize = others
+            .iter()
+            .map(|t| {
+                if t.labels.is_empty() {
+                    1
+                } else {
+                    1 + t.labels.len()
+                }
+            })
+            .sum();
+        let mut budget = height.saturating_sub(out.len() + below.min(8));
         if n > budget {
             // The "rows a–b of n" line below takes a row too.
             budget = budget.saturating_sub(1);

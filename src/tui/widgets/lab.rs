@@ -1,0 +1,200 @@
+//! A clip-lab experiment in the app: what it will run, its progress, then its table and one
+//! chart per changed setting (its band and mean against the base setting's mean).
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget, Wrap};
+
+use crate::ppo::lab::{ArmResult, Experiment, LabResult};
+use crate::tui::theme::Theme;
+
+/// Where an experiment stands in this app session.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LabState {
+    /// Running: episodes finished over all runs, and the total.
+    Running {
+        /// Episodes finished.
+        done: usize,
+        /// Episodes in all.
+        total: usize,
+    },
+    /// Finished.
+    Done(Box<LabResult>),
+    /// Stopped with this message.
+    Failed(String),
+}
+
+/// The panel of one experiment.
+pub struct LabPanel<'a> {
+    /// Which experiment the step runs.
+    pub experiment: Experiment,
+    /// Its settings' labels, base first (shown before it runs).
+    pub arms: Vec<String>,
+    /// Seeds and episodes per run.
+    pub seeds: usize,
+    /// Episodes per run.
+    pub episodes: usize,
+    /// Its state, `None` before the learner starts it.
+    pub state: Option<&'a LabState>,
+    /// The surrounding block.
+    pub block: Block<'a>,
+    /// Styles.
+    pub theme: Theme,
+}
+
+impl Widget for LabPanel<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let inner = self.block.inner(area);
+        self.block.clone().render(area, buf);
+        let t = self.theme;
+        let head = Line::styled(self.experiment.question().to_string(), t.title());
+        match self.state {
+            None | Some(LabState::Running { .. } | LabState::Failed(_)) => {
+                let mut lines = vec![head, Line::raw("")];
+                lines.push(Line::raw(format!(
+                    "Settings: {}. Each runs {} seeds x {} episodes, on every core.",
+                    self.arms.join(" | "),
+                    self.seeds,
+                    self.episodes
+                )));
+                lines.push(Line::raw(""));
+                lines.push(match self.state {
+                    Some(LabState::Running { done, total }) => Line::styled(
+                        format!(
+                            "running: {done}/{total} episodes ({:.0}%); you can keep reading",
+                            100.0 * *done as f64 / (*total).max(1) as f64
+                        ),
+                        t.key(),
+                    ),
+                    Some(LabState::Failed(m)) => {
+                        Line::styled(format!("stopped: {m}"), t.negative())
+                    }
+                    _ => Line::from(vec![
+                        Span::styled(" x ", t.key()),
+                        Span::raw("runs the experiment (or: ppo-tutor lab "),
+                        Span::raw(self.experiment.name()),
+                        Span::raw(")"),
+                    ]),
+                });
+                Paragraph::new(lines)
+                    .wrap(Wrap { trim: false })
+                    .render(inner, buf);
+            }
+            Some(LabState::Done(result)) => {
+                let table = result.table();
+                let rows = table.len() as u16 + 1;
+                let [top, charts] =
+                    Layout::vertical([Constraint::Length(rows), Constraint::Min(0)]).areas(inner);
+                let mut lines: Vec<Line> = table
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, l)| {
+                        if i == 0 {
+                            Line::styled(l, t.dim())
+                        } else {
+                            Line::raw(l)
+                        }
+                    })
+                    .collect();
+                lines.push(Line::styled(
+                    format!(
+                        "{} seeds, {} episodes; charts: band and mean of each setting (o: the first)",
+                        result.seeds.len(),
+                        result.episodes
+                    ),
+                    t.dim(),
+                ));
+                Paragraph::new(lines).render(top, buf);
+                if let Some((base, others)) = result.arms.split_first() {
+                    let n = others.len().max(1) as u32;
+                    let areas = Layout::horizontal(vec![Constraint::Ratio(1, n); others.len()])
+                        .split(charts);
+                    for (arm, a) in others.iter().zip(areas.iter()) {
+                        versus(arm, base, result.episodes, t, *a, buf);
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn points(values: &[f64]) -> Vec<(f64, f64)> {
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (i as f64, v))
+        .collect()
+}
+
+/// One changed setting against the base: its band (two dim lines), its mean, the base mean.
+fn versus(
+    arm: &ArmResult,
+    base: &ArmResult,
+    episodes: usize,
+    t: Theme,
+    area: Rect,
+    buf: &mut Buffer,
+) {
+    let (low, high, mean, base_mean) = (
+        points(&arm.band.low),
+        points(&arm.band.high),
+        points(&arm.band.mean),
+        points(&base.band.mean),
+    );
+    let top = arm
+        .band
+        .high
+        .iter()
+        .chain(&base.band.mean)
+        .copied()
+        .fold(10.0, f64::max);
+    let datasets = vec![
+        Dataset::default()
+            .marker(super::marker())
+            .graph_type(GraphType::Line)
+            .style(t.dim())
+            .data(&low),
+        Dataset::default()
+            .marker(super::marker())
+            .graph_type(GraphType::Line)
+            .style(t.dim())
+            .data(&high),
+        Dataset::default()
+            .name(base.label.clone())
+            .marker(super::marker())
+            .graph_type(GraphType::Line)
+            .style(t.previous())
+            .data(&base_mean),
+        Dataset::default()
+            .name(arm.label.clone())
+            .marker(super::marker())
+            .graph_type(GraphType::Line)
+            .style(t.average())
+            .data(&mean),
+    ];
+    let x_top = episodes.max(10) as f64;
+    Chart::new(datasets)
+        .block(
+            Block::bordered()
+                .border_style(t.border())
+                .title(Span::styled(
+                    format!(" {} vs {} ", arm.label, base.label),
+                    t.title(),
+                )),
+        )
+        .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
+        .x_axis(
+            Axis::default()
+                .bounds([0.0, x_top])
+                .labels([Span::raw("0"), Span::raw(format!("{x_top:.0}"))])
+                .style(t.dim()),
+        )
+        .y_axis(
+            Axis::default()
+                .bounds([0.0, top])
+                .labels([Span::raw("0"), Span::raw(format!("{top:.0}"))])
+                .style(t.dim()),
+        )
+        .render(area, buf);
+}
