@@ -317,3 +317,17 @@ fn x_runs_the_step_s_experiment_and_the_panel_shows_its_result() -> TestResult {
     assert!(app.status.contains("lab eps: done"));
     Ok(())
 }
+
+/// Saved progress names lessons by id, so a state file written before the course was
+/// reordered (hyper-parameters was lesson 2, now 14) still opens the same lesson and step.
+#[test]
+fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
+    let old: Progress = serde_json::from_str(
+        r#"{"lesson":"hyperparameters","step":2,"lessons_done":["what-is-ppo"],"exercises_done":["td_target"]}"#,
+    )?;
+    let app = App::new(Course::embedded()?, old, None);
+    let lesson = app.current_lesson().ok_or("no lesson")?;
+    assert_eq!((lesson.id.as_str(), lesson.order, app.step), ("hyperparameters", 14, 2));
+    assert!(app.progress.lessons_done.contains("what-is-ppo"));
+    Ok(())
+}

@@ -28,7 +28,8 @@ fn return_to_go(rewards: &[f32], dones: &[bool], gamma: f64) -> Vec<f64> {
     g
 }
 let g: Vec<f64> = return_to_go(&trace.rewards, &trace.dones, config.gamma);
-TensorView::new("return_to_go", vec![g.len(), 1], "float32", g.clone())
+let g32: Vec<f32> = g.iter().map(|&x| x as f32).collect();
+TensorView::column("return_to_go", &g32)
 
 // %% step: A baseline removes variance, not truth
 // The weights REINFORCE puts on ∇log π, without and with the critic as baseline.

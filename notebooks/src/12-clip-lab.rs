@@ -4,7 +4,7 @@
 // %%
 use ppo_tutor::lesson::Snapshot;
 use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{PpoConfig, UpdateTrace};
+use ppo_tutor::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
@@ -25,7 +25,7 @@ println!("explained variance before the update: {:?}", trace.explained_variance)
 // %% step: Experiment 3: a ten times larger actor step
 // %% step: Experiment 4: stopping early at a target KL
 // %% step: What the clip promises, and what it does not
-let last = &trace.epochs[trace.epochs.len() - 1];
+let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();
 let eps = config.eps as f32;
 let outside = last.ratio.iter().filter(|r| (**r - 1.0).abs() > eps).count();
 let marked = last.clipped.iter().filter(|c| **c).count();

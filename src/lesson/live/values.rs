@@ -104,12 +104,11 @@ pub const LIVE: &[LiveValue] = &[
         name: "return_to_go",
         view: |n, s| {
             let t = trace(s)?;
-            Some(TensorView::new(
-                n,
-                vec![t.rewards.len(), 1],
-                "float32",
-                return_to_go(&t.rewards, &t.dones, s.gamma),
-            ))
+            let g: Vec<f32> = return_to_go(&t.rewards, &t.dones, s.gamma)
+                .into_iter()
+                .map(|x| x as f32)
+                .collect();
+            Some(TensorView::column(n, &g))
         },
     },
     LiveValue {
