@@ -327,7 +327,10 @@ fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
     )?;
     let app = App::new(Course::embedded()?, old, None);
     let lesson = app.current_lesson().ok_or("no lesson")?;
-    assert_eq!((lesson.id.as_str(), lesson.order, app.step), ("hyperparameters", 14, 2));
+    assert_eq!(
+        (lesson.id.as_str(), lesson.order, app.step),
+        ("hyperparameters", 14, 2)
+    );
     assert!(app.progress.lessons_done.contains("what-is-ppo"));
     Ok(())
 }
