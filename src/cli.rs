@@ -55,6 +55,28 @@ pub enum Command {
     Dev(dev::DevArgs),
 }
 
+/// One progress bar over many runs' episodes (`train --seeds`, `lab`), labelled `prefix`;
+/// `None` when `quiet` or stderr is not a terminal.
+pub(crate) fn episodes_bar(
+    quiet: bool,
+    total: usize,
+    prefix: &'static str,
+) -> Option<indicatif::ProgressBar> {
+    use std::io::IsTerminal;
+    if quiet || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let style = indicatif::ProgressStyle::with_template(
+        "{prefix}: {percent:>3}%|{bar:30}| {pos}/{len} episodes [{elapsed}<{eta}]",
+    )
+    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+    Some(
+        indicatif::ProgressBar::new(total as u64)
+            .with_style(style.progress_chars("█▉▊▋▌▍▎▏ "))
+            .with_prefix(prefix),
+    )
+}
+
 /// Exit code for bad command-line input (as clap uses).
 pub const EXIT_USAGE: u8 = 2;
 

@@ -12,6 +12,7 @@
 pub mod file;
 pub mod terminal;
 
+pub use crate::ppo::moving_average::{SMOOTHING_WINDOW, smoothed_returns};
 pub use file::{
     PlotError, clip_chart_svg, lab_plot_svg, return_plot_svg, save_band_plot, save_lab_plot,
     save_return_plot,
@@ -23,22 +24,6 @@ pub use terminal::{ascii_band_plot, ascii_return_plot, ascii_versus_plot};
 #[must_use]
 pub fn l_clip(r: f64, a: f64, eps: f64) -> f64 {
     (r * a).min(r.clamp(1.0 - eps, 1.0 + eps) * a)
-}
-
-/// The seed's `moving_average(return_list, 9)`.
-pub const SMOOTHING_WINDOW: usize = 9;
-
-/// The moving average the seed plots, with the window shrunk (to the largest odd size that
-/// fits) for runs shorter than 8 episodes.
-#[must_use]
-pub fn smoothed_returns(returns: &[f64]) -> Vec<f64> {
-    let fits = (returns.len() + 1) | 1;
-    let window = SMOOTHING_WINDOW.min(if fits > returns.len() + 1 {
-        fits - 2
-    } else {
-        fits
-    });
-    crate::ppo::moving_average(returns, window.max(1)).unwrap_or_else(|_| returns.to_vec())
 }
 
 #[cfg(test)]

@@ -58,7 +58,8 @@ println!(
 let grads: SurrogateGradients = snap.gradients.clone().expect("computed after every episode");
 println!("{:<18} {:>14} {:>14}", "parameter", "∇ mean(r·Â)", "∇ mean(log π·Â)");
 for i in [640, 641, 642, 896, 897] {
-    println!("{:<18} {:>14.6e} {:>14.6e}", grads.labels[i], grads.surrogate[i], grads.log_prob[i]);
+    let name = grads.label(i).unwrap_or_default();
+    println!("{name:<18} {:>14.6e} {:>14.6e}", grads.surrogate[i], grads.log_prob[i]);
 }
 println!("largest difference {:.3e}; largest gradient {:.3e}", grads.max_abs_diff(), grads.max_abs());
 TensorView::column("grad_surrogate", &grads.surrogate)

@@ -3,14 +3,13 @@
 //! each setting's final score over the seeds, what its updates did, and its curve against
 //! the seed's settings.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::Context;
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
 
 use super::args::{SeedList, parse_seeds};
 use crate::plot::{ascii_versus_plot, save_lab_plot};
@@ -90,7 +89,7 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
     let threads = std::thread::available_parallelism()
         .map_or(1, usize::from)
         .min(runs);
-    let bar = progress(args.quiet, runs * args.episodes);
+    let bar = super::episodes_bar(args.quiet, runs * args.episodes, "lab");
     let started = Instant::now();
     let result = lab::run(experiment, &base, seeds, threads, |done, _| {
         if let Some(bar) = &bar {
@@ -147,15 +146,4 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
         writeln!(out, "drew the settings' bands to {}", path.display())?;
     }
     Ok(ExitCode::SUCCESS)
-}
-
-fn progress(quiet: bool, total: usize) -> Option<ProgressBar> {
-    if quiet || !std::io::stderr().is_terminal() {
-        return None;
-    }
-    let style = ProgressStyle::with_template(
-        "lab: {percent:>3}%|{bar:30}| {pos}/{len} episodes [{elapsed}<{eta}]",
-    )
-    .unwrap_or_else(|_| ProgressStyle::default_bar());
-    Some(ProgressBar::new(total as u64).with_style(style.progress_chars("█▉▊▋▌▍▎▏ ")))
 }

@@ -20,8 +20,8 @@ pub struct SurrogateGradients {
     pub surrogate: Vec<f32>,
     /// `∇θ mean(log π_θ(a_t|s_t) · Â_t)` at the same `θ`.
     pub log_prob: Vec<f32>,
-    /// The parameter each entry belongs to, e.g. `fc2.weight[1,127]`.
-    pub labels: Vec<String>,
+    /// The actor's parameters in that order, by name and shape (`fc1.weight`, `[128, 4]`).
+    pub shapes: Vec<(&'static str, Vec<usize>)>,
 }
 
 impl SurrogateGradients {
@@ -33,6 +33,24 @@ impl SurrogateGradients {
             .zip(&self.log_prob)
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f32::max)
+    }
+
+    /// The parameter entry `i` belongs to, e.g. `fc2.weight[1,127]` (`None` past the end).
+    #[must_use]
+    pub fn label(&self, i: usize) -> Option<String> {
+        let mut start = 0;
+        for (name, shape) in &self.shapes {
+            let len: usize = shape.iter().product();
+            if i < start + len {
+                let k = i - start;
+                return Some(match shape[..] {
+                    [_, cols] => format!("{name}[{},{}]", k / cols, k % cols),
+                    _ => format!("{name}[{k}]"),
+                });
+            }
+            start += len;
+        }
+        None
     }
 
     /// The largest `|log_prob|` entry, the scale the difference is measured against.
@@ -93,29 +111,13 @@ pub fn surrogate_gradients(
     Ok(SurrogateGradients {
         surrogate: grads_of(&surrogate)?,
         log_prob: grads_of(&policy_gradient)?,
-        labels: labels(actor),
+        shapes: vec![
+            ("fc1.weight", actor.fc1.weight.dims().to_vec()),
+            ("fc1.bias", actor.fc1.bias.dims().to_vec()),
+            ("fc2.weight", actor.fc2.weight.dims().to_vec()),
+            ("fc2.bias", actor.fc2.bias.dims().to_vec()),
+        ],
     })
-}
-
-/// `fc1.weight[i,j]`, ... for every actor parameter, in [`SurrogateGradients`]' order.
-fn labels(actor: &PolicyNet) -> Vec<String> {
-    let mut out = Vec::new();
-    for (layer, l) in [("fc1", &actor.fc1), ("fc2", &actor.fc2)] {
-        let w = l.weight.dims();
-        let (rows, cols) = (
-            w.first().copied().unwrap_or(0),
-            w.get(1).copied().unwrap_or(0),
-        );
-        for i in 0..rows {
-            for j in 0..cols {
-                out.push(format!("{layer}.weight[{i},{j}]"));
-            }
-        }
-        for i in 0..l.bias.dims().first().copied().unwrap_or(0) {
-            out.push(format!("{layer}.bias[{i}]"));
-        }
-    }
-    out
 }
 
 #[cfg(test)]
@@ -141,8 +143,11 @@ mod tests {
         let (s, a, adv) = batch();
         let g = surrogate_gradients(&actor, &s, &a, &adv)?;
         assert_eq!(g.surrogate.len(), 16 * 4 + 16 + 2 * 16 + 2);
-        assert_eq!(g.labels.len(), g.surrogate.len());
-        assert_eq!(g.labels.last().map(String::as_str), Some("fc2.bias[1]"));
+        let last = g.surrogate.len() - 1;
+        assert_eq!(g.label(last).as_deref(), Some("fc2.bias[1]"));
+        assert_eq!(g.label(16 * 4).as_deref(), Some("fc1.bias[0]"));
+        assert_eq!(g.label(16 * 5 + 17).as_deref(), Some("fc2.weight[1,1]"));
+        assert_eq!(g.label(last + 1), None);
         assert!(g.max_abs() > 1e-3, "the batch must move the policy");
         assert!(
             g.max_abs_diff() <= 1e-6 * g.max_abs(),

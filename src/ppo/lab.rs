@@ -24,11 +24,10 @@ use std::sync::{Mutex, OnceLock};
 use serde::Serialize;
 
 use super::config::{Algorithm, PpoConfig};
+use super::moving_average::smoothed_returns;
 use super::seeds::{Band, SeedError, mean_std, train_jobs};
 use super::train::{EpisodeReport, mean_last};
 
-/// The window of the smoothed curves (the seed's `moving_average(return_list, 9)`).
-const WINDOW: usize = 9;
 /// The returns each seed's final score averages.
 pub const LAST: usize = 50;
 
@@ -368,10 +367,7 @@ pub fn run(
                 .iter()
                 .map(|r| r.returns.clone())
                 .collect();
-            let smoothed: Vec<Vec<f64>> = returns
-                .iter()
-                .map(|r| super::moving_average(r, WINDOW.min(odd_fit(r.len()))).unwrap_or_default())
-                .collect();
+            let smoothed: Vec<Vec<f64>> = returns.iter().map(|r| smoothed_returns(r)).collect();
             ArmResult {
                 label: arm.label,
                 config: arm.config,
@@ -406,17 +402,6 @@ fn cache() -> &'static Mutex<HashMap<String, Finished>> {
 /// A run's identity: every setting and the seed.
 fn run_key(config: &PpoConfig, seed: u64) -> String {
     format!("{seed}:{config:?}")
-}
-
-/// The largest odd window that fits `n` values (at least 1).
-fn odd_fit(n: usize) -> usize {
-    if n == 0 {
-        1
-    } else if n % 2 == 1 {
-        n
-    } else {
-        n - 1
-    }
 }
 
 #[cfg(test)]

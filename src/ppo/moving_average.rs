@@ -63,6 +63,22 @@ pub fn moving_average(a: &[f64], window: usize) -> Result<Vec<f64>, PpoError> {
 }
 // ANCHOR_END: moving_average
 
+/// The seed's `moving_average(return_list, 9)`.
+pub const SMOOTHING_WINDOW: usize = 9;
+
+/// The moving average the seed plots, with the window shrunk (to the largest odd size that
+/// fits) for runs shorter than 8 episodes.
+#[must_use]
+pub fn smoothed_returns(returns: &[f64]) -> Vec<f64> {
+    let fits = (returns.len() + 1) | 1;
+    let window = SMOOTHING_WINDOW.min(if fits > returns.len() + 1 {
+        fits - 2
+    } else {
+        fits
+    });
+    moving_average(returns, window.max(1)).unwrap_or_else(|_| returns.to_vec())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

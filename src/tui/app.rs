@@ -319,6 +319,16 @@ impl App {
         }
     }
 
+    /// What the clip-lab experiments start from in the app: the seed's settings, with the
+    /// episode count of the current run.
+    #[must_use]
+    pub fn lab_base(&self) -> PpoConfig {
+        PpoConfig {
+            num_episodes: self.config.num_episodes,
+            ..PpoConfig::default()
+        }
+    }
+
     /// Starts the current step's experiment (`x`), unless it is running or done.
     fn request_lab(&mut self) {
         let Some(experiment) = self.current_step().and_then(|s| s.lab) else {
@@ -333,11 +343,7 @@ impl App {
             self.status = format!("lab {}: already started in this session", experiment.name());
             return;
         }
-        // The seed's settings, with the episode count of the current run.
-        let base = PpoConfig {
-            num_episodes: self.config.num_episodes,
-            ..PpoConfig::default()
-        };
+        let base = self.lab_base();
         let total = experiment.arms(&base).len() * LAB_SEEDS.len() * base.num_episodes;
         self.labs
             .insert(experiment, LabState::Running { done: 0, total });

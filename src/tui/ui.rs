@@ -13,7 +13,6 @@ use super::widgets::{
     cartpole::CartPoleView, clip::ClipChart, lab::LabPanel, plot::ReturnPlot, tensors, text,
 };
 use crate::lesson::{TensorView, VIEWS};
-use crate::ppo::PpoConfig;
 
 /// The smallest terminal the layout fits.
 pub const MIN_SIZE: (u16, u16) = (80, 24);
@@ -236,10 +235,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             let Some(experiment) = app.current_step().and_then(|s| s.lab) else {
                 return;
             };
-            let base = PpoConfig {
-                num_episodes: app.config.num_episodes,
-                ..PpoConfig::default()
-            };
+            let base = app.lab_base();
             LabPanel {
                 experiment,
                 arms: experiment

@@ -2,12 +2,11 @@
 //! core, summarised as each seed's mean of the last 50 returns, their mean ± std, and the
 //! mean curve over the band the seeds span.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::Context;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 
 use super::{TrainArgs, peak_rss_mb};
@@ -26,7 +25,8 @@ pub(super) fn run(args: &TrainArgs, config: &PpoConfig, seeds: &[u64]) -> anyhow
     let threads = std::thread::available_parallelism()
         .map_or(1, usize::from)
         .min(seeds.len());
-    let bar = progress(args.quiet, seeds.len() * config.num_episodes);
+    let bar =
+        super::super::episodes_bar(args.quiet, seeds.len() * config.num_episodes, "all seeds");
     let started = Instant::now();
     let runs = train_seeds(config, seeds, threads, |seed, report| {
         if let Some(bar) = &bar {
@@ -89,22 +89,6 @@ pub(super) fn run(args: &TrainArgs, config: &PpoConfig, seeds: &[u64]) -> anyhow
         writeln!(out, "drew the seeds' curves to {}", path.display())?;
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// One bar over every episode of every seed, on a terminal and unless `quiet`.
-fn progress(quiet: bool, total: usize) -> Option<ProgressBar> {
-    if quiet || !std::io::stderr().is_terminal() {
-        return None;
-    }
-    let style = ProgressStyle::with_template(
-        "{prefix}: {percent:>3}%|{bar:30}| {pos}/{len} episodes [{elapsed}<{eta}]",
-    )
-    .unwrap_or_else(|_| ProgressStyle::default_bar());
-    Some(
-        ProgressBar::new(total as u64)
-            .with_style(style.progress_chars("█▉▊▋▌▍▎▏ "))
-            .with_prefix("all seeds"),
-    )
 }
 
 /// The `--json` document of a several-seed run: every seed's returns and moving average,

@@ -6,6 +6,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget, Wrap};
 
+use super::plot::points;
 use crate::ppo::lab::{ArmResult, Experiment, LabResult};
 use crate::tui::theme::Theme;
 
@@ -117,14 +118,6 @@ impl Widget for LabPanel<'_> {
             }
         }
     }
-}
-
-fn points(values: &[f64]) -> Vec<(f64, f64)> {
-    values
-        .iter()
-        .enumerate()
-        .map(|(i, &v)| (i as f64, v))
-        .collect()
 }
 
 /// One changed setting against the base: its band (two dim lines), its mean, the base mean.

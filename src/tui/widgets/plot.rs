@@ -24,7 +24,8 @@ pub struct ReturnPlot<'a> {
     pub theme: Theme,
 }
 
-fn points(values: &[f64]) -> Vec<(f64, f64)> {
+/// `(episode, value)` pairs for a chart.
+pub(super) fn points(values: &[f64]) -> Vec<(f64, f64)> {
     values
         .iter()
         .enumerate()
