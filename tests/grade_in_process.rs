@@ -33,6 +33,13 @@ mod sol11_candle;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/13-training/solution.rs"]
 mod sol12;
+
+#[path = "../lessons/12-clip-lab/solution.rs"]
+mod sol_clip_lab;
+
+#[allow(clippy::needless_range_loop)]
+#[path = "../lessons/15-beyond-the-seed/solution.rs"]
+mod sol15;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/11-losses/exercise_candle.rs"]
 mod starter11_candle;
@@ -54,14 +61,26 @@ mod w_actor_loss;
 #[path = "wrong_answers/compute_advantage/forwards.rs"]
 mod w_advantage;
 #[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/approx_kl/naive_estimator.rs"]
+mod w_approx_kl;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/clip_fraction/bounds_not_distance.rs"]
+mod w_clip_fraction;
+#[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "wrong_answers/critic_loss/root_mean_square.rs"]
 mod w_critic_loss;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/gae_rollout/resets_only_on_termination.rs"]
+mod w_gae_rollout;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "wrong_answers/log_prob_of_actions/no_log.rs"]
 mod w_log_prob;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "wrong_answers/moving_average/no_edges.rs"]
 mod w_moving_average;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/normalize_advantage/biased_std.rs"]
+mod w_normalize_advantage;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "wrong_answers/ratio/no_exp.rs"]
 mod w_ratio;
@@ -74,6 +93,12 @@ mod w_td_delta;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "wrong_answers/td_target/missing_done_mask.rs"]
 mod w_td_target;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/td_target_truncation/stops_at_truncation.rs"]
+mod w_td_target_truncation;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/zero_gradient_rows/sides_swapped.rs"]
+mod w_zero_gradient_rows;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -89,6 +114,12 @@ fn every_reference_solution_passes_in_place() {
         in_process::actor_loss(sol10::actor_loss),
         in_process::critic_loss(sol11::critic_loss),
         in_process::moving_average(sol12::moving_average),
+        in_process::zero_gradient_rows(sol10::zero_gradient_rows),
+        in_process::approx_kl(sol_clip_lab::approx_kl),
+        in_process::clip_fraction(sol_clip_lab::clip_fraction),
+        in_process::td_target_truncation(sol15::td_target_truncation),
+        in_process::gae_rollout(sol15::gae_rollout),
+        in_process::normalize_advantage(sol15::normalize_advantage),
     ];
     for r in &reports {
         assert!(r.passed(), "{}", r.render());
@@ -171,6 +202,36 @@ fn wrong_answers_get_the_same_diagnosis_and_messages_as_from_a_file() -> TestRes
         "moving_average",
         "no_edges",
         &in_process::moving_average(w_moving_average::moving_average),
+    )?;
+    compare(
+        "zero_gradient_rows",
+        "sides_swapped",
+        &in_process::zero_gradient_rows(w_zero_gradient_rows::zero_gradient_rows),
+    )?;
+    compare(
+        "approx_kl",
+        "naive_estimator",
+        &in_process::approx_kl(w_approx_kl::approx_kl),
+    )?;
+    compare(
+        "clip_fraction",
+        "bounds_not_distance",
+        &in_process::clip_fraction(w_clip_fraction::clip_fraction),
+    )?;
+    compare(
+        "td_target_truncation",
+        "stops_at_truncation",
+        &in_process::td_target_truncation(w_td_target_truncation::td_target_truncation),
+    )?;
+    compare(
+        "gae_rollout",
+        "resets_only_on_termination",
+        &in_process::gae_rollout(w_gae_rollout::gae_rollout),
+    )?;
+    compare(
+        "normalize_advantage",
+        "biased_std",
+        &in_process::normalize_advantage(w_normalize_advantage::normalize_advantage),
     )?;
     Ok(())
 }

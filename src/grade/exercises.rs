@@ -31,7 +31,13 @@ registry! {
     log_prob_of_actions,
     ratio,
     actor_loss,
+    zero_gradient_rows,
     critic_loss,
     ppo_losses,
+    approx_kl,
+    clip_fraction,
     moving_average,
+    td_target_truncation,
+    gae_rollout,
+    normalize_advantage,
 }

@@ -224,6 +224,10 @@ trait Enc { fn enc(&self) -> String; }
 impl Enc for f32 { fn enc(&self) -> String { format!("{:?}", self) } }
 impl Enc for f64 { fn enc(&self) -> String { format!("{:?}", self) } }
 impl Enc for usize { fn enc(&self) -> String { self.to_string() } }
+impl Enc for bool { fn enc(&self) -> String { u8::from(*self).to_string() } }
+impl<A: Enc, B: Enc> Enc for (A, B) {
+    fn enc(&self) -> String { format!("{} {}", self.0.enc(), self.1.enc()) }
+}
 impl<T: Enc> Enc for Vec<T> {
     fn enc(&self) -> String {
         let mut s = self.len().to_string();

@@ -27,3 +27,10 @@ pub mod losses_candle;
 #[allow(clippy::needless_range_loop)]
 #[path = "../../lessons/13-training/solution.rs"]
 pub mod training;
+
+#[path = "../../lessons/12-clip-lab/solution.rs"]
+pub mod clip_lab;
+
+#[allow(clippy::needless_range_loop)]
+#[path = "../../lessons/15-beyond-the-seed/solution.rs"]
+pub mod beyond;

@@ -127,6 +127,10 @@ pub enum OutKind {
     F32s,
     /// `Vec<f64>`.
     F64s,
+    /// `Vec<bool>`.
+    Bools,
+    /// `(Vec<f32>, Vec<f32>)`.
+    F32sPair,
 }
 
 impl OutKind {
@@ -138,29 +142,33 @@ impl OutKind {
             Self::Usize => "usize",
             Self::F32s => "Vec<f32>",
             Self::F64s => "Vec<f64>",
+            Self::Bools => "Vec<bool>",
+            Self::F32sPair => "(Vec<f32>, Vec<f32>)",
         }
     }
 
     /// Parses the harness's `ok ...` payload.
     #[must_use]
     pub fn parse(self, text: &str) -> Option<Output> {
+        fn list<'a, T: std::str::FromStr>(
+            tokens: &mut impl Iterator<Item = &'a str>,
+        ) -> Option<Vec<T>> {
+            let n: usize = tokens.next()?.parse().ok()?;
+            (0..n).map(|_| tokens.next()?.parse().ok()).collect()
+        }
         let mut tokens = text.split_whitespace();
         let out = match self {
             Self::F32 => Output::F32(tokens.next()?.parse().ok()?),
             Self::Usize => Output::Usize(tokens.next()?.parse().ok()?),
-            Self::F32s => {
-                let n: usize = tokens.next()?.parse().ok()?;
-                let xs = (0..n)
-                    .map(|_| tokens.next()?.parse().ok())
-                    .collect::<Option<Vec<f32>>>()?;
-                Output::F32s(xs)
+            Self::F32s => Output::F32s(list(&mut tokens)?),
+            Self::F64s => Output::F64s(list(&mut tokens)?),
+            Self::Bools => {
+                let flags: Vec<u8> = list(&mut tokens)?;
+                Output::Bools(flags.into_iter().map(|f| f != 0).collect())
             }
-            Self::F64s => {
-                let n: usize = tokens.next()?.parse().ok()?;
-                let xs = (0..n)
-                    .map(|_| tokens.next()?.parse().ok())
-                    .collect::<Option<Vec<f64>>>()?;
-                Output::F64s(xs)
+            Self::F32sPair => {
+                let first = list(&mut tokens)?;
+                Output::F32sPair(first, list(&mut tokens)?)
             }
         };
         tokens.next().is_none().then_some(out)
@@ -178,6 +186,10 @@ pub enum Output {
     F32s(Vec<f32>),
     /// `Vec<f64>`.
     F64s(Vec<f64>),
+    /// `Vec<bool>`.
+    Bools(Vec<bool>),
+    /// `(Vec<f32>, Vec<f32>)`: two vectors, compared one after the other.
+    F32sPair(Vec<f32>, Vec<f32>),
 }
 
 /// How close a result must be to the reference: `|got - want| <= abs + rel * |want|`.
@@ -226,6 +238,20 @@ impl Output {
             (Self::Usize(g), Self::Usize(w)) => (g != w).then(String::new),
             (Self::F32s(g), Self::F32s(w)) => list(&widen(g), &widen(w)),
             (Self::F64s(g), Self::F64s(w)) => list(g, w),
+            (Self::Bools(g), Self::Bools(w)) => {
+                if g.len() != w.len() {
+                    return Some(format!("expected {} values, got {}", w.len(), g.len()));
+                }
+                g.iter()
+                    .zip(w)
+                    .position(|(g, w)| g != w)
+                    .map(|i| format!("first difference at [{i}]: expected {}, got {}", w[i], g[i]))
+            }
+            (Self::F32sPair(g0, g1), Self::F32sPair(w0, w1)) => list(&widen(g0), &widen(w0))
+                .map(|d| format!("in the first vector, {d}"))
+                .or_else(|| {
+                    list(&widen(g1), &widen(w1)).map(|d| format!("in the second vector, {d}"))
+                }),
             _ => Some("a result of another type".to_string()),
         }
     }
@@ -244,6 +270,12 @@ impl Output {
             Self::Usize(x) => x.to_string(),
             Self::F32s(xs) => show_list(xs, |x| format!("{x:?}")),
             Self::F64s(xs) => show_list(xs, |x| format!("{x:?}")),
+            Self::Bools(xs) => show_list(xs, ToString::to_string),
+            Self::F32sPair(a, b) => format!(
+                "({}, {})",
+                show_list(a, |x| format!("{x:?}")),
+                show_list(b, |x| format!("{x:?}"))
+            ),
         }
     }
 }
@@ -275,6 +307,11 @@ mod tests {
         assert_eq!(out, Some(Output::F32s(vec![0.1, f32::NEG_INFINITY])));
         assert_eq!(OutKind::F32s.parse("3 0.1"), None);
         assert_eq!(OutKind::Usize.parse("1 2"), None);
+        let pair = OutKind::F32sPair.parse("1 0.5 2 1 -1");
+        assert_eq!(pair, Some(Output::F32sPair(vec![0.5], vec![1.0, -1.0])));
+        assert_eq!(OutKind::F32sPair.parse("1 0.5"), None);
+        let flags = OutKind::Bools.parse("3 1 0 1");
+        assert_eq!(flags, Some(Output::Bools(vec![true, false, true])));
     }
 
     #[test]
@@ -290,6 +327,11 @@ mod tests {
         let diff = Output::F32s(vec![1.0]).differs(&want, tol);
         assert!(diff.is_some_and(|d| d.contains("expected 2 values, got 1")));
         assert!(!Output::F32(f32::NAN).matches(&Output::F32(1.0), tol));
+        let want = Output::F32sPair(vec![1.0], vec![2.0]);
+        let diff = Output::F32sPair(vec![1.0], vec![2.5]).differs(&want, tol);
+        assert!(diff.is_some_and(|d| d.starts_with("in the second vector")));
+        let diff = Output::Bools(vec![true, true]).differs(&Output::Bools(vec![true, false]), tol);
+        assert!(diff.is_some_and(|d| d.contains("[1]")));
     }
 
     #[test]

@@ -1,0 +1,17 @@
+pub fn td_target_truncation(
+    rewards: &[f32],
+    next_values: &[f32],
+    terminated: &[bool],
+    truncated: &[bool],
+    gamma: f32,
+) -> Vec<f32> {
+    let mut out = Vec::new();
+    for t in 0..rewards.len() {
+        if terminated[t] || truncated[t] {
+            out.push(rewards[t]);
+        } else {
+            out.push(rewards[t] + gamma * next_values[t]);
+        }
+    }
+    out
+}
