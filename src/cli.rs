@@ -48,6 +48,8 @@ pub enum Command {
     Replay(replay::ReplayArgs),
     /// Grade your solution of an exercise (or all): checks, first failing input, hints.
     Grade(grade::GradeArgs),
+    /// Regrade an exercise every time you save its file, then go on to the next one.
+    Watch(grade::WatchArgs),
     /// Restore an exercise's starter file (lessons/NN-slug/exercise.rs).
     Reset(grade::ResetArgs),
     /// Developer commands that regenerate the course's content (`dev notebooks`).
@@ -185,6 +187,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Play(args)) => play::run(&args),
         Some(Command::Replay(args)) => replay::run(&args),
         Some(Command::Grade(args)) => grade::run(&args),
+        Some(Command::Watch(args)) => grade::watch(&args),
         Some(Command::Reset(args)) => grade::reset(&args),
         Some(Command::Dev(args)) => dev::run(&args),
         None => {

@@ -17,6 +17,7 @@
 //!   learner.rs        answers from the learner's program or an in-process function
 //!   judge.rs          first failing case per check, diagnosis against the catalogue
 //!   prose.rs          hints from lessons/NN-slug/exercise.toml   (reports come up)
+//!   watch.rs          grading on save: a debounced file watcher
 //! ```
 //!
 //! Grading a file: its backend builds it inside a generated program (cached by content
@@ -54,6 +55,7 @@ pub mod report;
 pub mod solutions;
 pub mod spec;
 pub mod value;
+pub mod watch;
 
 use std::path::{Path, PathBuf};
 

@@ -9,6 +9,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::mpsc;
 use std::time::Duration;
 
 use ppo_tutor::grade::prose::Prose;
@@ -342,7 +343,8 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     assert_eq!(code, 0, "{text}");
     let (code, text) = ppo_tutor(d, &["grade"])?;
     assert_eq!(code, 1, "{text}");
-    assert!(text.contains("score: 2/10 exercises pass"), "{text}");
+    let score = format!("score: 2/{} exercises pass", grade::exercise_names().len());
+    assert!(text.contains(&score), "{text}");
     assert!(text.contains("not started (todo!() left)"), "{text}");
     let state = std::fs::read_to_string(d.join("state.json"))?;
     assert!(
@@ -422,8 +424,14 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     assert_eq!(app.overlay, Overlay::Exercise(0));
     assert_eq!(app.exercise.hints_shown, 1);
     let text = tutor_screen(&app)?;
+    let hints = app
+        .current_lesson()
+        .and_then(|l| l.exercise.as_ref())
+        .map_or(0, |e| e.hints.len());
+    let exercises = grade::exercise_names().len();
     assert!(
-        text.contains("Hints (1/3)") && text.contains("exercises done 0/10"),
+        text.contains(&format!("Hints (1/{hints})"))
+            && text.contains(&format!("exercises done 0/{exercises}")),
         "{text}"
     );
 
@@ -455,7 +463,13 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     assert!(app.progress.exercises_done.contains("td_delta"));
     let text = tutor_screen(&app)?;
     assert!(text.contains("The reference solution"), "{text}");
-    assert!(text.contains("exercises done 2/10"), "{text}");
+    assert!(
+        text.contains(&format!(
+            "exercises done 2/{}",
+            grade::exercise_names().len()
+        )),
+        "{text}"
+    );
 
     app.update(Action::Back);
     assert_eq!(app.overlay, Overlay::None);
@@ -655,4 +669,120 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
         "{text}"
     );
     Ok(())
+}
+
+/// `grade NAME --file F` exits 0 exactly when F passes: the reference solution does, the
+/// starter and a catalogued wrong answer do not.
+#[test]
+fn cli_grade_file_exits_zero_exactly_when_it_passes() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let d = dir.path();
+    for exercise in plain() {
+        let name = exercise.name();
+        let lesson = Path::new(ROOT).join("lessons").join(exercise.meta().lesson);
+        let wrong_dir = Path::new(ROOT).join("tests/wrong_answers").join(name);
+        let wrong = std::fs::read_dir(&wrong_dir)?
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .min()
+            .ok_or(format!("no wrong answer for {name}"))?;
+        for (file, want) in [
+            (lesson.join(exercise.meta().solution), 0),
+            (lesson.join(exercise.meta().starter), 1),
+            (wrong, 1),
+        ] {
+            let path = file.to_str().ok_or("path")?;
+            let (code, text) = ppo_tutor(d, &["grade", name, "--file", path])?;
+            assert_eq!(code, want, "{name} {path}: {text}");
+        }
+    }
+    Ok(())
+}
+
+/// Reads `child`'s stdout on a thread, line by line, into a channel.
+fn lines_of(
+    child: &mut std::process::Child,
+) -> Result<mpsc::Receiver<String>, Box<dyn std::error::Error>> {
+    use std::io::BufRead;
+    let stdout = child.stdout.take().ok_or("no stdout")?;
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(stdout)
+            .lines()
+            .map_while(Result::ok)
+        {
+            if tx.send(line).is_err() {
+                return;
+            }
+        }
+    });
+    Ok(rx)
+}
+
+/// Waits until a line containing `want` arrives; returns what was read.
+fn read_until(
+    rx: &mpsc::Receiver<String>,
+    want: &str,
+) -> Result<String, Box<dyn std::error::Error>> {
+    let mut seen = String::new();
+    let deadline = std::time::Instant::now() + Duration::from_secs(120);
+    while std::time::Instant::now() < deadline {
+        if let Ok(line) = rx.recv_timeout(Duration::from_millis(200)) {
+            seen.push_str(&line);
+            seen.push('\n');
+            if line.contains(want) {
+                return Ok(seen);
+            }
+        }
+    }
+    Err(format!("'{want}' never came; read:\n{seen}").into())
+}
+
+#[test]
+fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let d = dir.path();
+    let (code, text) = ppo_tutor(d, &["reset", "td_target"])?;
+    assert_eq!(code, 0, "{text}");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        .args(["watch", "td_target"])
+        .current_dir(d)
+        .env("PPO_TUTOR_STATE", d.join("state.json"))
+        .env("RAYON_NUM_THREADS", "1")
+        .env("NO_COLOR", "1")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()?;
+    let rx = lines_of(&mut child)?;
+    let result = (|| -> TestResult {
+        let first = read_until(&rx, "Watching")?;
+        assert!(first.contains("todo!()"), "{first}");
+        // A wrong answer, saved: graded without a key press, with its hint.
+        let file = d.join("lessons/07-td-target/exercise.rs");
+        std::fs::copy(
+            Path::new(ROOT).join("tests/wrong_answers/td_target/missing_gamma.rs"),
+            &file,
+        )?;
+        let graded = read_until(&rx, "Watching")?;
+        assert!(
+            graded.contains("discounted"),
+            "the mistake's hint: {graded}"
+        );
+        // The solution, saved: it passes and the next exercise is graded at once.
+        std::fs::copy(
+            Path::new(ROOT).join("lessons/07-td-target/solution.rs"),
+            &file,
+        )?;
+        let passed = read_until(&rx, "passes. Next:")?;
+        assert!(passed.contains("td_delta"), "{passed}");
+        let next = read_until(&rx, "passes. Next:")?;
+        assert!(
+            next.contains("✓ td_delta passes. Next: compute_advantage"),
+            "{next}"
+        );
+        Ok(())
+    })();
+    let _ = child.kill();
+    let _ = child.wait();
+    result
 }

@@ -25,6 +25,17 @@ pub struct GradeArgs {
     pub time_limit: u64,
 }
 
+/// Arguments of `ppo-tutor watch`.
+#[derive(Debug, Args)]
+pub struct WatchArgs {
+    /// The exercise to start with; by default the first one in course order that has not
+    /// passed yet.
+    pub exercise: Option<String>,
+    /// Seconds the learner's code may run on all cases of one exercise.
+    #[arg(long, default_value_t = 10, value_name = "SECS")]
+    pub time_limit: u64,
+}
+
 /// Arguments of `ppo-tutor reset`.
 #[derive(Debug, Args)]
 pub struct ResetArgs {
@@ -150,6 +161,115 @@ pub fn reset(args: &ResetArgs) -> anyhow::Result<ExitCode> {
         Ok(path) => {
             writeln!(std::io::stdout(), "restored the starter {}", path.display())?;
             Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+/// The first exercise at or after `from` in course order that has not passed yet.
+fn next_pending(from: usize, progress: &Progress) -> Option<usize> {
+    let all = grade::exercises();
+    (from..all.len()).find(|&i| !progress.exercises_done.contains(all[i].name()))
+}
+
+/// Grades an exercise every time its file is saved (debounced), and when it passes moves
+/// on to the next exercise that has not passed, until every one has. Ctrl-C stops.
+///
+/// # Errors
+/// Grading cannot happen at all (no rustc), or the exercise's folder cannot be watched.
+pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
+    use std::io::IsTerminal;
+    let opts = GradeOptions {
+        time_limit: Duration::from_secs(args.time_limit.max(1)),
+        ..GradeOptions::default()
+    };
+    let all = grade::exercises();
+    let (progress, _) = Progress::load(&Progress::default_path());
+    let start = match &args.exercise {
+        Some(name) => match all.iter().position(|e| e.name() == name) {
+            Some(i) => i,
+            None => {
+                let known = grade::exercise_names().join(", ");
+                return Ok(usage(&format!(
+                    "no exercise '{name}'; the exercises are: {known}"
+                )));
+            }
+        },
+        None => match next_pending(0, &progress) {
+            Some(i) => i,
+            None => {
+                println!(
+                    "Every exercise passes already: `ppo-tutor watch NAME` watches one anyway."
+                );
+                return Ok(ExitCode::SUCCESS);
+            }
+        },
+    };
+    let clear = std::io::stdout().is_terminal();
+    let (tx, rx) = std::sync::mpsc::channel();
+    let mut current = start;
+    // After a pass, the next exercise is graded at once, below the pass (not cleared).
+    let mut keep_screen = false;
+    loop {
+        let exercise = all[current];
+        let (name, path) = (exercise.name(), PathBuf::from(exercise.starter_path()));
+        if !path.exists() {
+            eprintln!(
+                "error: {} is missing: `ppo-tutor reset {name}` writes the starter there \
+                 (run ppo-tutor from the course folder)",
+                path.display()
+            );
+            return Ok(ExitCode::FAILURE);
+        }
+        let sender = tx.clone();
+        let _watcher = grade::watch::SaveWatcher::new(std::slice::from_ref(&path), move |_| {
+            let _ = sender.send(());
+        })?;
+        loop {
+            if clear && !keep_screen {
+                print!("\x1b[2J\x1b[H");
+            }
+            keep_screen = false;
+            note_first_build(name, &opts);
+            let passed = match grade::grade(name, None, &opts) {
+                Ok(report) => {
+                    print!("{}", report.render());
+                    report.passed().then_some(report)
+                }
+                Err(e) => {
+                    println!("error: {e}");
+                    None
+                }
+            };
+            if let Some(report) = passed {
+                record_pass(&report);
+                let (progress, _) = Progress::load(&Progress::default_path());
+                match next_pending(current + 1, &progress).or_else(|| next_pending(0, &progress)) {
+                    Some(next) => {
+                        println!(
+                            "\n✓ {name} passes. Next: {} in {}\n",
+                            all[next].name(),
+                            all[next].starter_path()
+                        );
+                        current = next;
+                    }
+                    None => {
+                        println!("\n✓ {name} passes, and so does every other exercise. Well done.");
+                        return Ok(ExitCode::SUCCESS);
+                    }
+                }
+                keep_screen = true;
+                break;
+            }
+            println!(
+                "\nWatching {} for saves: edit and save to regrade (Ctrl-C stops).",
+                path.display()
+            );
+            std::io::stdout().flush()?;
+            if rx.recv().is_err() {
+                return Ok(ExitCode::FAILURE);
+            }
+            // Saves that came in while grading are covered by the grading that follows.
+            while rx.try_recv().is_ok() {}
         }
     }
 }
