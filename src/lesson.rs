@@ -12,15 +12,18 @@
 //! - [`loader`]: parsing and validation ([`Course::embedded`]).
 //! - [`anchor`]: Rust code pulled from `src/` by `// ANCHOR: name` markers.
 //! - [`details`]: collapsible `<details>` blocks inside a step.
+//! - [`face`]: passages for one face only, `<app>` (the terminal) or `<notebook>`.
 //! - [`live`]: the live training [`Session`] and the [`Snapshot`] of named values it keeps
 //!   up to date, episode by episode, for every face.
 //! - [`progress`]: where the learner is, saved atomically.
 
 pub mod anchor;
 pub mod details;
+pub mod face;
 pub mod live;
 pub mod loader;
 pub mod progress;
+pub mod quiz;
 
 pub use live::{Mark, Session, Snapshot, TensorView};
 pub use loader::{Course, LessonError};
@@ -41,6 +44,9 @@ pub struct Lesson {
     pub steps: Vec<Step>,
     /// The exercise the learner writes in this lesson, if any.
     pub exercise: Option<Exercise>,
+    /// The check-your-understanding questions asked after the last step
+    /// (`quiz.toml`).
+    pub quiz: Vec<quiz::Question>,
 }
 
 /// One step of a lesson: an explanation, the code that runs, and live values.
@@ -54,10 +60,20 @@ pub struct Step {
     pub code: String,
     /// Live values and views shown beside the text (`td_target`, `plot`, ...).
     pub show: Vec<String>,
-    /// The explanation, in markdown.
+    /// The explanation, in markdown, with the passages of both faces: read it through
+    /// [`Step::text`].
     pub body: String,
     /// The clip-lab experiment this step runs (shown by the `lab` view), if any.
     pub lab: Option<crate::ppo::lab::Experiment>,
+}
+
+impl Step {
+    /// The explanation as `face` reads it: the `<app>` or `<notebook>` passages of that
+    /// face kept (without their tags), the other face's dropped (see [`face`]).
+    #[must_use]
+    pub fn text(&self, face: face::Face) -> String {
+        face::text(&self.body, face)
+    }
 }
 
 /// The exercise attached to a lesson, as the tutor presents it (from `exercise.toml`).

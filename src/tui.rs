@@ -24,6 +24,7 @@ use std::time::Duration;
 use anyhow::Context;
 use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, MouseEventKind};
 
+use crate::grade::watch::SaveWatcher;
 use crate::lesson::{Course, Progress};
 use crate::ppo::lab::{self, Experiment};
 use app::{App, WARNING};
@@ -44,6 +45,8 @@ pub enum Event {
     Graded(Vec<app::Graded>),
     /// A clip-lab experiment started with `x` progressed or ended.
     Lab(Experiment, LabState),
+    /// The open lesson's exercise file was saved.
+    Saved,
 }
 
 /// Frames per second of the cart-pole animation.
@@ -94,7 +97,9 @@ fn event_loop(
     rx: &mpsc::Receiver<Event>,
     (cmd_tx, tx): (&Sender<Command>, &Sender<Event>),
 ) -> anyhow::Result<()> {
+    let mut watcher: Option<SaveWatcher> = None;
     loop {
+        watch_exercise_files(app, &mut watcher, tx);
         terminal.draw(|f| f.render_widget(&ui::View { app, theme }, f.area()))?;
         let Ok(event) = rx.recv() else { return Ok(()) };
         handle(app, event);
@@ -124,10 +129,15 @@ pub fn handle(app: &mut App, event: Event) {
         Event::Worker(w) => app.on_worker(w),
         Event::Graded(graded) => app.on_graded(graded),
         Event::Lab(experiment, state) => app.on_lab(experiment, state),
+        Event::Saved => app.on_saved(),
         Event::Input(event::Event::Key(key)) => {
-            let overlay = app.overlay != app::Overlay::None && app.overlay != app::Overlay::Help;
-            let sandbox = app.overlay == app::Overlay::Sandbox;
-            if let Some(action) = keys::map(key, overlay, sandbox) {
+            let context = keys::Context {
+                overlay_open: app.overlay != app::Overlay::None
+                    && app.overlay != app::Overlay::Help,
+                sandbox_open: app.overlay == app::Overlay::Sandbox,
+                quiz_open: matches!(app.overlay, app::Overlay::Quiz(_)),
+            };
+            if let Some(action) = keys::map(key, context) {
                 app.update(action);
             }
         }
@@ -137,6 +147,34 @@ pub fn handle(app: &mut App, event: Event) {
             _ => {}
         },
         Event::Input(_) => {}
+    }
+}
+
+/// Keeps `watcher` on the open lesson's exercise files (those that exist under the current
+/// folder), so that a save regrades them; a folder that cannot be watched is said once.
+fn watch_exercise_files(app: &mut App, watcher: &mut Option<SaveWatcher>, tx: &Sender<Event>) {
+    let files: Vec<std::path::PathBuf> = app
+        .exercise_files()
+        .into_iter()
+        .filter(|f| f.exists())
+        .filter_map(|f| std::path::absolute(f).ok())
+        .collect();
+    if watcher
+        .as_ref()
+        .map_or(files.is_empty(), |w| w.files() == files.as_slice())
+    {
+        return;
+    }
+    *watcher = None;
+    if files.is_empty() {
+        return;
+    }
+    let sender = tx.clone();
+    match SaveWatcher::new(&files, move |_| {
+        let _ = sender.send(Event::Saved);
+    }) {
+        Ok(w) => *watcher = Some(w),
+        Err(e) => app.status = format!("{WARNING}{e}; g still grades"),
     }
 }
 

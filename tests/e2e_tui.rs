@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 
 use portable_pty::{CommandBuilder, PtySize, native_pty_system};
 use ppo_tutor::lesson::Course;
+use ppo_tutor::lesson::quiz::{QuestionKind, letter_of};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -96,6 +97,19 @@ fn walk_the_whole_course_in_a_real_terminal() -> TestResult {
                 text.contains(&short),
                 "step title {short:?} not on screen:\n{text}"
             );
+            key(b"\x1b[C")?; // →
+        }
+        // After the last step come the lesson's questions; the first lesson's first one is
+        // answered with its letter, the others skipped with →.
+        for (i, question) in lesson.quiz.iter().enumerate() {
+            let header = format!("question {}/{}", i + 1, lesson.quiz.len());
+            screen.wait_for(&header, 10)?;
+            if let (0, QuestionKind::Choice { answer, .. }) = (i, &question.kind)
+                && lesson.order == 1
+            {
+                key(letter_of(*answer).to_string().as_bytes())?;
+                screen.wait_for("✓ Right", 10)?;
+            }
             key(b"\x1b[C")?; // →
         }
     }

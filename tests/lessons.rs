@@ -159,6 +159,159 @@ fn details_and_lab_steps_are_checked_where_they_are_written() {
 }
 
 #[test]
+fn face_passages_are_checked_where_they_are_written() {
+    use ppo_tutor::lesson::loader::parse_lesson;
+    let err_of = |body: &str| {
+        let text = format!(
+            "+++\nid = \"x\"\ntitle = \"X\"\n[[steps]]\ntitle = \"A\"\n[[steps]]\ntitle = \"B\"\n+++\n## A\nfine\n## B\n{body}\n"
+        );
+        parse_lesson("03-x", &text)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    };
+    for (body, says) in [
+        ("Run it<app> with x.", "not closed"),
+        ("<notebook>\nRun the next cell.\n", "not closed"),
+        ("a <app>b <app>c</app></app>", "inside"),
+        ("a</notebook>", "closes no"),
+        ("<app>a</notebook>", "closes no"),
+        // A details block cut in two by a passage is malformed in one face.
+        (
+            "<app>\n<details><summary>S</summary>\n</app>\nx\n</details>",
+            "closes no block",
+        ),
+    ] {
+        let err = err_of(body);
+        assert!(
+            err.contains("lessons/03-x/lesson.md") && err.contains("step 2") && err.contains(says),
+            "{body:?}: {err}"
+        );
+    }
+    assert_eq!(
+        err_of("Run it<app> with `x`</app><notebook> below</notebook>."),
+        ""
+    );
+}
+
+/// What a step says in a notebook fits a notebook: nothing about panels, the sandbox, keys
+/// to press or text beside it; and the terminal's text says nothing about cells. A single
+/// character in backticks is a key, unless the step's seed Python names a variable so (the
+/// peer program's dict `d`).
+#[test]
+fn each_face_speaks_of_what_it_has() -> TestResult {
+    use ppo_tutor::lesson::face::Face;
+    let course = Course::embedded()?;
+    let mut problems = Vec::new();
+    for l in &course.lessons {
+        for (i, s) in l.steps.iter().enumerate() {
+            let at = format!("lessons/{:02}-{}/lesson.md, step {}", l.order, l.id, i + 1);
+            let notebook = s.text(Face::Notebook);
+            for word in app_only(&notebook, &s.python) {
+                problems.push(format!("{at}, notebook face: {word}"));
+            }
+            let terminal = s.text(Face::Terminal);
+            for word in words(&terminal) {
+                if ["notebook", "notebooks", "cell", "cells", "jupyter"].contains(&word.as_str()) {
+                    problems.push(format!("{at}, terminal face: '{word}'"));
+                }
+            }
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "wrap app-only text in <app>...</app> and give the notebook its own words in \
+         <notebook>...</notebook> (src/lesson/face.rs):\n{}",
+        problems.join("\n")
+    );
+    Ok(())
+}
+
+/// The lower-case words of `text` (letters and digits).
+fn words(text: &str) -> Vec<String> {
+    text.split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(str::to_lowercase)
+        .collect()
+}
+
+/// The app-only words and key instructions in `text`, a step's notebook face; `python` is
+/// the step's seed code, whose one-letter names may appear in backticks.
+fn app_only(text: &str, python: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for word in words(text) {
+        if [
+            "panel", "panels", "sandbox", "press", "presses", "pressed", "pressing",
+        ]
+        .contains(&word.as_str())
+        {
+            found.push(format!("'{word}'"));
+        }
+    }
+    let lower = text.to_lowercase();
+    for phrase in [
+        "beside this text",
+        "on screen",
+        "in the app",
+        "the app shows",
+        "the tutor shows",
+        "(enter)",
+        "(esc)",
+    ] {
+        if lower.contains(phrase) {
+            found.push(format!("'{phrase}'"));
+        }
+    }
+    let names: Vec<&str> = python
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .collect();
+    let chars: Vec<char> = text.chars().collect();
+    for w in chars.windows(3) {
+        // `x`: one character in backticks, not a name from the seed's code.
+        if w[0] == '`'
+            && w[2] == '`'
+            && w[1].is_ascii_graphic()
+            && w[1] != '`'
+            && !names.contains(&w[1].to_string().as_str())
+        {
+            found.push(format!("the key `{}`", w[1]));
+        }
+    }
+    for w in chars.windows(4) {
+        // " (s)": one key in parentheses after a space, as keys are written; a function's
+        // argument, V(s), has no space, and a symbol, gamma (γ), is not a key.
+        if w[0].is_whitespace() && w[1] == '(' && w[3] == ')' && w[2].is_ascii_graphic() {
+            found.push(format!("the key ({})", w[2]));
+        }
+    }
+    found
+}
+
+#[test]
+fn the_face_check_finds_app_only_words() {
+    assert!(
+        app_only(
+            "Run the next cell; V(s) and π(a|s) are fine, as is `d`.",
+            "d = {}"
+        )
+        .is_empty()
+    );
+    for (text, word) in [
+        ("The hyper panel shows it.", "'panel'"),
+        ("Open the Sandbox.", "'sandbox'"),
+        ("Press x here.", "'press'"),
+        ("The values beside this text.", "'beside this text'"),
+        ("Retrain (Enter) now.", "'(enter)'"),
+        ("Open it with `s`.", "the key `s`"),
+        ("Open the sandbox (s) now.", "the key (s)"),
+    ] {
+        assert!(app_only(text, "").contains(&word.to_string()), "{text}");
+    }
+    // The words around it are not the word.
+    assert!(app_only("Express it; compress it; the expanel; gamma (γ).", "").is_empty());
+}
+
+#[test]
 fn a_broken_exercise_file_is_reported_with_its_folder_and_key() {
     use ppo_tutor::lesson::loader::parse_exercises;
     let typo = "[[exercise]]\nname = \"f\"\nfallbak = \"a typo\"\n";
@@ -281,5 +434,58 @@ fn without_a_terminal_the_tutor_says_so_in_one_line() -> TestResult {
         err.contains("ppo-tutor lessons") && err.contains("ppo-tutor show"),
         "{err}"
     );
+    Ok(())
+}
+
+/// Every lesson ends with at least three questions, and every "predict the number" question
+/// can be answered by reasoning: its live value is the same, within the question's
+/// tolerance, in runs of three seeds after 3 and after 12 episodes.
+#[test]
+fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResult {
+    use ppo_tutor::lesson::Session;
+    use ppo_tutor::lesson::quiz::QuestionKind;
+    use ppo_tutor::ppo::PpoConfig;
+    let course = Course::embedded()?;
+    let mut snapshots = Vec::new();
+    for seed in [0, 1, 2] {
+        for episodes in [3, 12] {
+            snapshots.push(Session::run(PpoConfig::default(), seed, episodes)?);
+        }
+    }
+    let mut predictions = 0;
+    for lesson in &course.lessons {
+        assert!(
+            lesson.quiz.len() >= 3,
+            "{}: {} questions",
+            lesson.id,
+            lesson.quiz.len()
+        );
+        for (i, q) in lesson.quiz.iter().enumerate() {
+            let QuestionKind::Predict {
+                measure, tolerance, ..
+            } = &q.kind
+            else {
+                continue;
+            };
+            predictions += 1;
+            let values: Vec<f64> = snapshots
+                .iter()
+                .map(|s| (measure.value)(s).ok_or(format!("{}: no {}", lesson.id, measure.name)))
+                .collect::<Result<_, _>>()?;
+            let (lo, hi) = values
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(*v), h.max(*v))
+                });
+            assert!(
+                hi - lo <= *tolerance,
+                "{} question {}: {} varies over runs ({values:?}), more than ±{tolerance}",
+                lesson.id,
+                i + 1,
+                measure.name
+            );
+        }
+    }
+    assert!(predictions >= 6, "{predictions} predict questions");
     Ok(())
 }

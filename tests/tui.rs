@@ -51,6 +51,16 @@ fn every_step_of_every_lesson() -> TestResult {
         if i + 1 < total {
             app.update(Action::Next);
         }
+        // After a lesson's last step come its questions: the first one's screen, then on.
+        if let Overlay::Quiz(0) = app.overlay {
+            let lesson = app.current_lesson().ok_or("no lesson")?;
+            let name = format!("{:02}-{}-quiz", lesson.order, lesson.id);
+            let questions = lesson.quiz.len();
+            insta::assert_snapshot!(name, screen(&app, 140, 45)?);
+            for _ in 0..questions {
+                app.update(Action::Next);
+            }
+        }
     }
     assert_eq!(app.position(), (total, total));
     Ok(())
@@ -82,6 +92,14 @@ fn keys_move_through_the_course() -> TestResult {
     assert_eq!((app.lesson, app.step), (0, 1));
     let steps = app.course.lessons[0].steps.len();
     for _ in 1..steps {
+        app.update(Action::Next);
+    }
+    assert_eq!(
+        app.overlay,
+        Overlay::Quiz(0),
+        "→ at a lesson's end opens its quiz"
+    );
+    for _ in 0..app.course.lessons[0].quiz.len() {
         app.update(Action::Next);
     }
     assert_eq!(
@@ -230,6 +248,10 @@ fn a_worker_that_cannot_start_says_why() -> TestResult {
 fn open(app: &mut App, id: &str) -> TestResult {
     let index = app.course.index_of(id).ok_or("no such lesson")?;
     app.update(Action::Lessons);
+    // The list opens on the current lesson: go to the top first.
+    for _ in 0..app.course.lessons.len() {
+        app.update(Action::Up);
+    }
     for _ in 0..index {
         app.update(Action::Down);
     }
@@ -332,5 +354,123 @@ fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
         ("hyperparameters", 14, 2)
     );
     assert!(app.progress.lessons_done.contains("what-is-ppo"));
+    Ok(())
+}
+
+/// Opens the quiz of lesson `id` (→ past its last step).
+fn open_quiz(app: &mut App, id: &str) -> TestResult {
+    open(app, id)?;
+    let steps = app.current_lesson().map_or(0, |l| l.steps.len());
+    for _ in 0..steps {
+        app.update(Action::Next);
+    }
+    assert_eq!(app.overlay, Overlay::Quiz(0));
+    Ok(())
+}
+
+#[test]
+fn quiz_questions_are_answered_with_keys_and_counted() -> TestResult {
+    use ppo_tutor::lesson::quiz::QuestionKind;
+    let mut app = app()?;
+    let (_, _, total) = app.quiz_score();
+    assert!(
+        total >= 3 * app.course.lessons.len(),
+        "at least 3 questions per lesson"
+    );
+    let mut answered = 0;
+    for id in ["ratio", "clipping"] {
+        open_quiz(&mut app, id)?;
+        let questions = app.current_lesson().ok_or("no lesson")?.quiz.clone();
+        for (i, q) in questions.iter().enumerate() {
+            assert_eq!(app.overlay, Overlay::Quiz(i));
+            match &q.kind {
+                QuestionKind::Choice {
+                    answer, explain, ..
+                } => {
+                    let wrong = ppo_tutor::lesson::quiz::letter_of((answer + 1) % explain.len());
+                    app.update(Action::Type(wrong));
+                    let verdict = app.quiz.verdict.clone().ok_or("no verdict")?;
+                    assert!(verdict.answered && !verdict.right);
+                    assert!(
+                        verdict
+                            .text
+                            .contains(&explain[(answer + 1) % explain.len()])
+                    );
+                    let right = ppo_tutor::lesson::quiz::letter_of(*answer);
+                    app.update(Action::Type(right));
+                    assert!(app.quiz.verdict.as_ref().is_some_and(|v| v.right));
+                    let key = Progress::quiz_key(id, i + 1);
+                    assert_eq!(
+                        app.progress.quiz.get(&key),
+                        Some(&false),
+                        "the first answer counts"
+                    );
+                }
+                QuestionKind::Predict { measure, .. } => {
+                    app.update(Action::Enter);
+                    assert!(app.quiz.verdict.is_none(), "nothing typed, nothing graded");
+                    let live = (measure.value)(&app.snapshot).ok_or("no live value")?;
+                    for c in format!("{live:.6}").chars() {
+                        app.update(Action::Type(c));
+                    }
+                    let before = screen(&app, 140, 45)?;
+                    assert!(
+                        !before.contains("the live value is"),
+                        "revealed before the answer"
+                    );
+                    app.update(Action::Enter);
+                    let verdict = app.quiz.verdict.clone().ok_or("no verdict")?;
+                    assert!(verdict.right && verdict.live == Some(live), "{verdict}");
+                    assert!(screen(&app, 140, 45)?.contains("the live value is"));
+                }
+            }
+            answered += 1;
+            app.update(Action::Next);
+        }
+    }
+    let (done, _, total) = app.quiz_score();
+    assert_eq!(done, answered);
+    let footer = screen(&app, 140, 45)?;
+    let right = app.progress.quiz.values().filter(|r| **r).count();
+    assert!(
+        footer.contains(&format!("quiz {right}/{total} right ({answered} answered)")),
+        "{footer}"
+    );
+    // Esc leaves the quiz for the lesson; ← from the first question goes back to its last step.
+    open_quiz(&mut app, "gae")?;
+    app.update(Action::Back);
+    assert_eq!(app.overlay, Overlay::None);
+    Ok(())
+}
+
+#[test]
+fn saving_the_exercise_file_grades_it_one_grading_at_a_time() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "td-target")?;
+    app.on_saved();
+    assert!(app.exercise.grading);
+    assert_eq!(app.overlay, Overlay::Exercise(0));
+    let names = app.exercise.request.take().ok_or("no grading requested")?;
+    assert_eq!(names, vec!["td_target".to_string(), "td_delta".to_string()]);
+    app.on_saved();
+    assert!(app.exercise.request.is_none(), "one grading at a time");
+    app.on_graded(Vec::<ppo_tutor::tui::app::Graded>::new());
+    assert!(
+        app.exercise.request.is_some(),
+        "the save during the grading is graded after it"
+    );
+    assert_eq!(
+        app.exercise_files(),
+        vec![std::path::PathBuf::from("lessons/07-td-target/exercise.rs")]
+    );
+    app.update(Action::Back);
+    open(&mut app, "cartpole")?;
+    app.exercise.grading = false;
+    app.exercise.request = None;
+    app.on_saved();
+    assert!(
+        app.exercise.request.is_none(),
+        "a lesson without an exercise ignores saves"
+    );
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! Recipe for notebooks/07-td-target.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::{Snapshot, TensorView};
+use ppo_tutor::lesson::Snapshot;
 use ppo_tutor::notebook::snapshot;
 use ppo_tutor::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
@@ -11,28 +11,22 @@ println!("episode {} lasted {} steps", snap.episodes, trace.rewards.len());
 
 // %% step: What the critic is for
 // %% step: The TD target
-// check: td_target after 30 episodes
-// td_target = rewards + gamma * V(s') * (1 - dones), computed here from the batch.
-let gamma = config.gamma as f32;
-let targets: Vec<f32> = (0..trace.rewards.len())
-    .map(|t| {
-        let not_done = if trace.dones[t] { 0.0 } else { 1.0 };
-        trace.rewards[t] + gamma * trace.next_values[t] * not_done
-    })
-    .collect();
-TensorView::column("td_target", &targets)
-
 // %% step: Why multiply by (1 − done)
 let last = trace.rewards.len() - 1;
 println!(
     "last step: done = {}, V(s') = {:.4}, td_target = {:.4} = the reward alone",
-    trace.dones[last], trace.next_values[last], targets[last]
+    trace.dones[last], trace.next_values[last], trace.td_target[last]
 );
 
 // %% step: The TD error
-// check: td_delta after 30 episodes
-let deltas: Vec<f32> = targets.iter().zip(&trace.values).map(|(y, v)| y - v).collect();
-TensorView::column("td_delta", &deltas)
+// A positive TD error: the step went better than the critic expected from s_t.
+let positive = trace.td_delta.iter().filter(|d| **d > 0.0).count();
+println!(
+    "{positive} of {} TD errors are positive; the last is {:.4}, with V(s_T−1) = {:.4}",
+    trace.td_delta.len(),
+    trace.td_delta[last],
+    trace.values[last]
+);
 
 // %% step: Computed once per update
 // %% exercise

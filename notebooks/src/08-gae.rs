@@ -9,28 +9,22 @@ let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
 
 // %% step: From one-step errors to an advantage
-// check: advantage after 30 episodes
-// advantage_t = td_delta_t + γλ · advantage_{t+1}, backwards, in float32 as numpy does.
-let gl = (config.gamma * config.lmbda) as f32;
-let mut advantage = vec![0.0_f32; trace.td_delta.len()];
-let mut running = 0.0_f32;
-for t in (0..trace.td_delta.len()).rev() {
-    running = gl * running + trace.td_delta[t];
-    advantage[t] = running;
+// The weight (γλ)^l of the TD error l steps later in Â_t.
+let gl = config.gamma * config.lmbda;
+for l in [0, 1, 10, 30] {
+    println!("l = {l:2}: (γλ)^l = {:.3}", gl.powi(l));
 }
-TensorView::column("advantage", &advantage)
 
 // %% step: λ between two extremes
-// λ = 0: the advantage is the one-step TD error; λ = 1: the discounted sum of all of them.
-let gamma = config.gamma as f32;
-let lambda_0: Vec<f32> = trace.td_delta.clone();
-let mut lambda_1 = vec![0.0_f32; trace.td_delta.len()];
-let mut acc = 0.0_f32;
-for t in (0..trace.td_delta.len()).rev() {
-    acc = gamma * acc + trace.td_delta[t];
-    lambda_1[t] = acc;
-}
-println!("A_0 with λ = 0: {:.4}, λ = {}: {:.4}, λ = 1: {:.4}", lambda_0[0], config.lmbda, advantage[0], lambda_1[0]);
+// λ = 0: the advantage is the one-step TD error; λ = 1: the discounted sum of all of them
+// (the library's GAE at both ends of the dial; your own `compute_advantage` comes below).
+let lambda_0: Vec<f32> = ppo_tutor::ppo::compute_advantage(config.gamma, 0.0, &trace.td_delta);
+let lambda_1: Vec<f32> = ppo_tutor::ppo::compute_advantage(config.gamma, 1.0, &trace.td_delta);
+assert_eq!(lambda_0, trace.td_delta);
+println!(
+    "A_0 with λ = 0: {:.4}, λ = {}: {:.4}, λ = 1: {:.4}",
+    lambda_0[0], config.lmbda, trace.advantage[0], lambda_1[0]
+);
 
 // %% step: Why the loop runs backwards
 // %% step: The numpy detour, in float32
@@ -38,7 +32,7 @@ println!("A_0 with λ = 0: {:.4}, λ = {}: {:.4}, λ = 1: {:.4}", lambda_0[0], c
 // %% step: Advantage plus value: the λ-return, a second critic target
 // check: lambda_return after 30 episodes
 // CleanRL's `returns = advantages + values`: the seed's GAE plus V(s_t).
-let lambda_return: Vec<f32> = advantage.iter().zip(&trace.values).map(|(a, v)| a + v).collect();
+let lambda_return: Vec<f32> = trace.advantage.iter().zip(&trace.values).map(|(a, v)| a + v).collect();
 let n = lambda_return.len();
 println!("last row: λ-return {:.4}, TD target {:.4}", lambda_return[n - 1], trace.td_target[n - 1]);
 println!("first row: λ-return {:.4}, TD target {:.4}", lambda_return[0], trace.td_target[0]);

@@ -1,7 +1,7 @@
 //! Recipe for notebooks/09-ratio.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::{Snapshot, TensorView};
+use ppo_tutor::lesson::Snapshot;
 use ppo_tutor::notebook::snapshot;
 use ppo_tutor::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
@@ -9,18 +9,27 @@ let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
 
 // %% step: Log-probability of the action taken
-// check: old_log_probs after 30 episodes
-// gather the probability of the action taken, then log: π_old(a_t|s_t).
-let old_log_probs: Vec<f32> = snap.probs.iter().zip(&trace.actions).map(|(p, &a)| p[a].ln()).collect();
-TensorView::column("old_log_probs", &old_log_probs)
+// Row 0: the action picks a column of probs; old_log_probs is the log of that entry, so its
+// exponential gives the entry back.
+println!(
+    "probs {:?}, action {}: old_log_prob {:.6}, exp(old_log_prob) = {:.6}",
+    snap.probs[0],
+    trace.actions[0],
+    trace.old_log_probs[0],
+    trace.old_log_probs[0].exp()
+);
 
 // %% step: Why old_log_probs is detached
 // %% step: The ratio
-// check: ratio after 30 episodes
-// ratio = exp(log π_θ − log π_θ_old), in the last of the ten epochs.
+// The last of the ten epochs, first rows: ln(ratio) is log_probs − old_log_probs.
 let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();
-let ratios: Vec<f32> = last.log_probs.iter().zip(&trace.old_log_probs).map(|(l, o)| (l - o).exp()).collect();
-TensorView::column("ratio", &ratios)
+println!("row   log_probs  old_log_probs     ratio  ln(ratio)");
+for t in 0..3 {
+    println!(
+        "{t:3}  {:10.6}  {:13.6}  {:8.6}  {:9.6}",
+        last.log_probs[t], trace.old_log_probs[t], last.ratio[t], last.ratio[t].ln()
+    );
+}
 
 // %% step: Exactly 1 in the first epoch
 let first: EpochTrace = trace.epochs[0].clone();

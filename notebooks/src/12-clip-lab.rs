@@ -25,8 +25,17 @@ println!("explained variance before the update: {:?}", trace.explained_variance)
 // %% step: Experiment 3: a ten times larger actor step
 // %% step: Experiment 4: stopping early at a target KL
 // %% step: What the clip promises, and what it does not
+// The last epoch: the rows marked clipped are the ratios outside [1 − ε, 1 + ε].
 let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();
 let eps = config.eps as f32;
-let outside = last.ratio.iter().filter(|r| (**r - 1.0).abs() > eps).count();
 let marked = last.clipped.iter().filter(|c| **c).count();
-println!("last epoch: {outside} ratios outside [{}, {}], {marked} marked clipped", 1.0 - eps, 1.0 + eps);
+let lo = last.ratio.iter().copied().fold(f32::INFINITY, f32::min);
+let hi = last.ratio.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+println!(
+    "last epoch: ratios from {lo:.4} to {hi:.4}; {marked} of {} rows outside [{}, {}], marked clipped",
+    last.ratio.len(),
+    1.0 - eps,
+    1.0 + eps
+);
+
+// %% exercise

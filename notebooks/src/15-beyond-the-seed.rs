@@ -30,3 +30,5 @@ println!("CartPole-v0: no return above {best} (the 200-step limit)");
 // %% step: Rollouts, vector environments and minibatches
 // %% step: Entropy bonus and gradient-norm clipping
 // %% step: Value clipping, orthogonal init, learning-rate annealing
+
+// %% exercise

@@ -57,7 +57,8 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
         l.steps.len(),
         s.title
     );
-    let _ = writeln!(out, "{}\n", crate::lesson::details::fold(&s.body, true));
+    let body = s.text(crate::lesson::face::Face::Terminal);
+    let _ = writeln!(out, "{}\n", crate::lesson::details::fold(&body, true));
     if !s.python.is_empty() {
         let _ = writeln!(out, "## The seed (PyTorch)\n{}\n", s.python);
     }

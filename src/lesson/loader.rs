@@ -16,6 +16,17 @@ pub fn embedded_file(path: &str) -> Option<&'static str> {
     LESSONS.get_file(path).and_then(|f| f.contents_utf8())
 }
 
+/// The lesson folders under `lessons/` (for example `07-td-target`), in course order.
+#[must_use]
+pub fn lesson_dirs() -> Vec<String> {
+    let mut dirs: Vec<String> = LESSONS
+        .dirs()
+        .filter_map(|d| d.path().file_name()?.to_str().map(str::to_string))
+        .collect();
+    dirs.sort();
+    dirs
+}
+
 /// A lesson file that cannot be used, with where and how to fix it.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum LessonError {
@@ -40,7 +51,7 @@ pub enum LessonError {
         reason: String,
     },
     /// The body's `## ` headings do not match the `[[steps]]` tables, or a step's
-    /// `<details>` block is malformed.
+    /// `<details>` block or `<app>`/`<notebook>` passage is malformed.
     #[error("lessons/{dir}/lesson.md: step {index}: {reason}")]
     StepMismatch {
         /// The folder.
@@ -70,6 +81,9 @@ pub enum LessonError {
         /// What is wrong, from the TOML parser.
         reason: String,
     },
+    /// `quiz.toml` is not valid.
+    #[error(transparent)]
+    Quiz(#[from] super::quiz::QuizError),
     /// Two lessons share an id, or an id does not match its folder.
     #[error("lessons/{dir}: {reason}")]
     BadId {
@@ -214,6 +228,9 @@ impl Course {
                 lesson.exercise = lesson_exercise(&texts);
             }
         }
+        for lesson in &mut lessons {
+            lesson.quiz = super::quiz::questions(&lesson.id)?;
+        }
         let course = Self { lessons };
         course.check_ids()?;
         Ok(course)
@@ -326,6 +343,7 @@ pub fn parse_lesson(dir: &str, text: &str) -> Result<Lesson, LessonError> {
         order,
         steps,
         exercise: None,
+        quiz: Vec::new(),
     })
 }
 
@@ -343,12 +361,15 @@ fn check_step(
             reason: format!("title '{}' but heading '## {heading}'", meta.title),
         });
     }
-    if let Err(e) = super::details::parts(&body) {
-        return Err(LessonError::StepMismatch {
-            dir: dir.into(),
-            index,
-            reason: e.to_string(),
-        });
+    let step_error = |reason: String| LessonError::StepMismatch {
+        dir: dir.into(),
+        index,
+        reason,
+    };
+    super::face::check(&body).map_err(|e| step_error(e.to_string()))?;
+    for face in super::face::Face::ALL {
+        super::details::parts(&super::face::text(&body, face))
+            .map_err(|e| step_error(e.to_string()))?;
     }
     if !meta.code.is_empty() && anchor::find(&meta.code).is_none() {
         return Err(LessonError::UnknownReference {

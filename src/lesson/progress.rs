@@ -4,7 +4,7 @@
 //! the path in `PPO_TUTOR_STATE`). It is written to a temporary file and renamed, so a
 //! crash never leaves half a file; a corrupt file yields a warning and a fresh start.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
@@ -24,6 +24,30 @@ pub struct Progress {
     pub lessons_done: BTreeSet<String>,
     /// Exercises graded as passing.
     pub exercises_done: BTreeSet<String>,
+    /// Quiz questions answered, by `lesson#number` (e.g. `gae#2`): whether the first answer
+    /// was right.
+    pub quiz: BTreeMap<String, bool>,
+}
+
+impl Progress {
+    /// The key of question `number` (from 1) of lesson `lesson` in [`Self::quiz`].
+    #[must_use]
+    pub fn quiz_key(lesson: &str, number: usize) -> String {
+        format!("{lesson}#{number}")
+    }
+
+    /// Records the first answer to a question (later ones do not change it).
+    pub fn record_quiz(&mut self, lesson: &str, number: usize, right: bool) {
+        self.quiz
+            .entry(Self::quiz_key(lesson, number))
+            .or_insert(right);
+    }
+
+    /// `(answered, right)` over every question recorded.
+    #[must_use]
+    pub fn quiz_score(&self) -> (usize, usize) {
+        (self.quiz.len(), self.quiz.values().filter(|r| **r).count())
+    }
 }
 
 impl Progress {
@@ -90,6 +114,14 @@ mod tests {
             ..Progress::default()
         };
         p.lessons_done.insert("networks".into());
+        p.record_quiz("gae", 2, false);
+        p.record_quiz("gae", 2, true);
+        p.record_quiz("gae", 3, true);
+        assert_eq!(
+            p.quiz_score(),
+            (2, 1),
+            "a second answer does not change the first"
+        );
         p.save(&path)?;
         assert_eq!(Progress::load(&path).0, p);
         std::fs::write(&path, "{not json")?;

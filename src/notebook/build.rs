@@ -5,8 +5,10 @@
 //! before the first one is the recipe's own header), `// %% step: TITLE` where the lesson's
 //! step TITLE begins, and `// %% exercise` where the exercise goes. The generator adds the
 //! rest from `lessons/NN-slug/`: a title cell, the `:dep` cell, each step's explanation
-//! with the seed's Python and the Rust code by anchor, cells showing the step's live values
-//! (as the terminal app does beside the text), and the exercise with its grading cells.
+//! (its notebook face, [`crate::lesson::face`]) with the seed's Python and the Rust code by
+//! anchor, cells showing the step's live values (each value and view once per notebook:
+//! a step shows only what no earlier step of the notebook has shown), and the exercise with
+//! its grading cells.
 //!
 //! [`super::ipynb`] writes the cells (and their outputs) as a notebook file; executing them
 //! needs the evcxr engine (`super::kernel`, feature `notebook-runner`). Regenerate every
@@ -32,6 +34,7 @@ use std::path::Path;
 
 use crate::grade::prose::Prose;
 use crate::grade::{Backend, Exercise};
+use crate::lesson::face::Face;
 use crate::lesson::{Course, Lesson};
 
 /// The command that regenerates the notebooks (sources and outputs), run in the repository.
@@ -228,11 +231,19 @@ pub fn cells_from_recipe(
         Cell::Code(DEP_CELL.to_string()),
     ];
     let mut next_step = 0;
-    let mut pending_show: Vec<Cell> = Vec::new();
+    // The step whose live values are shown before the next marker, and what the notebook
+    // has shown so far.
+    let mut pending_show: Option<usize> = None;
+    let mut shown = Shown::default();
     let mut exercise_done = false;
     for piece in parse_recipe(recipe) {
         match piece {
-            Piece::Code(code) => cells.push(Cell::Code(code)),
+            Piece::Code(code) => {
+                if rebinds_snapshot(&code) {
+                    shown = Shown::default();
+                }
+                cells.push(Cell::Code(code));
+            }
             Piece::Step(title) => {
                 let Some(step) = lesson.steps.get(next_step) else {
                     return Err(BuildError::ExtraStep {
@@ -248,19 +259,25 @@ pub fn cells_from_recipe(
                         recipe: title,
                     });
                 }
-                cells.append(&mut pending_show);
+                if let Some(k) = pending_show.take() {
+                    cells.extend(show_cells(lesson, k, &mut shown));
+                }
                 cells.push(Cell::Markdown(step_markdown(lesson, next_step)));
-                pending_show = show_cells(lesson, next_step);
+                pending_show = Some(next_step);
                 next_step += 1;
             }
             Piece::Exercise => {
-                cells.append(&mut pending_show);
+                if let Some(k) = pending_show.take() {
+                    cells.extend(show_cells(lesson, k, &mut shown));
+                }
                 cells.extend(exercise_cells(lesson, file, root)?);
                 exercise_done = true;
             }
         }
     }
-    cells.append(&mut pending_show);
+    if let Some(k) = pending_show.take() {
+        cells.extend(show_cells(lesson, k, &mut shown));
+    }
     if next_step != lesson.steps.len() {
         return Err(BuildError::MissingStep {
             file: file.to_string(),
@@ -277,7 +294,52 @@ pub fn cells_from_recipe(
             file: file.to_string(),
         });
     }
+    cells.extend(quiz_cells(lesson));
     Ok(cells)
+}
+
+/// The lesson's quiz, last: a heading, then for each question its text (a markdown cell)
+/// and a code cell that grades an answer in place, generated unanswered (`'?'`, `"?"`) so
+/// that a prediction's live value stays hidden until the learner commits to a number.
+#[must_use]
+pub fn quiz_cells(lesson: &Lesson) -> Vec<Cell> {
+    use crate::lesson::quiz::{QuestionKind, letter_of};
+    if lesson.quiz.is_empty() {
+        return Vec::new();
+    }
+    let mut cells = vec![
+        Cell::Markdown(
+            "## Check your understanding\n\nAnswer each question in the code cell below it: \
+             replace `'?'` with the letter of your choice, or `\"?\"` with your prediction \
+             (a number), and run the cell. A prediction is graded against the live value of \
+             this notebook's agent (`snap`), shown only once you have answered."
+                .to_string(),
+        ),
+        Cell::Code("use ppo_tutor::lesson::quiz;".to_string()),
+    ];
+    for (i, question) in lesson.quiz.iter().enumerate() {
+        let n = i + 1;
+        let mut text = format!("**Question {n}.** {}", question.prompt);
+        let code = match &question.kind {
+            QuestionKind::Choice { choices, .. } => {
+                text.push('\n');
+                for (k, choice) in choices.iter().enumerate() {
+                    let _ = write!(text, "\n- **{})** {choice}", letter_of(k));
+                }
+                format!("quiz::answer(\"{}\", {n}, '?')", lesson.id)
+            }
+            QuestionKind::Predict { tolerance, .. } => {
+                let _ = write!(
+                    text,
+                    "\n\n(An answer within ±{tolerance} of the live value counts.)"
+                );
+                format!("quiz::predict(\"{}\", {n}, \"?\", &snap)", lesson.id)
+            }
+        };
+        cells.push(Cell::Markdown(text));
+        cells.push(Cell::Code(code));
+    }
+    cells
 }
 
 /// One piece of a recipe.
@@ -335,10 +397,16 @@ fn title_markdown(lesson: &Lesson) -> String {
     )
 }
 
-/// Step `k`'s explanation, the seed's Python and the Rust code (by anchor).
+/// Step `k`'s explanation (its notebook face), the seed's Python and the Rust code (by
+/// anchor).
 fn step_markdown(lesson: &Lesson, k: usize) -> String {
     let step = &lesson.steps[k];
-    let mut md = format!("## {}. {}\n\n{}\n", k + 1, step.title, step.body);
+    let mut md = format!(
+        "## {}. {}\n\n{}\n",
+        k + 1,
+        step.title,
+        step.text(Face::Notebook)
+    );
     if !step.python.is_empty() {
         let _ = write!(
             md,
@@ -359,23 +427,52 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
     md
 }
 
-/// The cells that show step `k`'s live values, as the terminal app does beside the text.
-fn show_cells(lesson: &Lesson, k: usize) -> Vec<Cell> {
+/// The comment that opens a cell of a step's live values.
+pub const LIVE_VALUES: &str = "// This step's live values, from the training run `snap`:";
+
+/// What a notebook has shown of its snapshot `snap` so far: live values by name, views
+/// (`plot`, `cartpole`, `clip_chart`) by name, experiments as `lab:NAME`.
+type Shown = std::collections::BTreeSet<String>;
+
+/// Whether a recipe cell binds `snap` anew (`let snap` or `let mut snap`): what the
+/// notebook showed of the old snapshot says nothing about the new one.
+fn rebinds_snapshot(code: &str) -> bool {
+    code.lines().any(|l| {
+        let l = l.trim_start();
+        ["let snap", "let mut snap"].iter().any(|p| {
+            l.strip_prefix(p)
+                .is_some_and(|rest| rest.starts_with([' ', ':', '=']))
+        })
+    })
+}
+
+/// The cells that show step `k`'s live values and views, less those `shown` already holds
+/// (which it then records); none when the step shows nothing new.
+fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
     let step = &lesson.steps[k];
+    let mut fresh = |key: String| shown.insert(key);
     let tensors: Vec<String> = step
         .show
         .iter()
         .filter(|n| !crate::lesson::VIEWS.contains(&n.as_str()))
+        .filter(|n| fresh((*n).clone()))
         .map(|n| format!("{n:?}"))
         .collect();
     let mut cells = Vec::new();
     if !tensors.is_empty() {
         cells.push(Cell::Code(format!(
-            "// What the terminal app shows beside this step:\nsnap.show(&[{}])",
+            "{LIVE_VALUES}\nsnap.show(&[{}])",
             tensors.join(", ")
         )));
     }
     for view in &step.show {
+        let key = match (view.as_str(), step.lab) {
+            ("lab", Some(e)) => format!("lab:{}", e.name()),
+            (v, _) => v.to_string(),
+        };
+        if !crate::lesson::VIEWS.contains(&view.as_str()) || !fresh(key) {
+            continue;
+        }
         match view.as_str() {
             "plot" => cells.push(Cell::Code(
                 "snap.return_plot(\"PPO on CartPole-v1\")?".to_string(),
@@ -385,7 +482,7 @@ fn show_cells(lesson: &Lesson, k: usize) -> Vec<Cell> {
             "lab" => {
                 if let Some(e) = step.lab {
                     cells.push(Cell::Code(format!(
-                        "// The experiment the terminal app runs with x (`ppo-tutor lab {name}`):\n\
+                        "// This step's experiment, as `ppo-tutor lab {name}` runs it in a terminal:\n\
                          // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.\n\
                          let lab = ppo_tutor::notebook::lab({name:?}, &[0, 1, 2, 3, 4], LAB_EPISODES)?;\n\
                          lab",
@@ -559,6 +656,7 @@ mod tests {
             order: 99,
             steps,
             exercise: None,
+            quiz: Vec::new(),
         }
     }
 
@@ -585,13 +683,123 @@ mod tests {
             code,
             [
                 &Cell::Code("a".into()),
-                &Cell::Code(
-                    "// What the terminal app shows beside this step:\nsnap.show(&[\"td_target\"])"
-                        .into()
-                ),
+                &Cell::Code(format!("{LIVE_VALUES}\nsnap.show(&[\"td_target\"])")),
                 &Cell::Code("snap.return_plot(\"PPO on CartPole-v1\")?".into()),
                 &Cell::Markdown("## 2. Two\n\nAbout Two.\n".into()),
             ]
+        );
+        Ok(())
+    }
+
+    /// The code cells after the title and the `:dep` cell, as text.
+    fn code_cells(cells: &[Cell]) -> Vec<&str> {
+        cells
+            .iter()
+            .skip(2)
+            .filter_map(|c| match c {
+                Cell::Code(code) => Some(code.as_str()),
+                Cell::Markdown(_) => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_step_shows_only_what_no_earlier_step_showed() -> Result<(), BuildError> {
+        let l = lesson(vec![
+            step("One", &["td_delta", "advantage", "clip_chart"]),
+            step("Two", &["hyper", "td_delta", "advantage"]),
+            step("Three", &["td_delta", "advantage", "clip_chart"]),
+            step("Four", &["dones", "advantage", "plot"]),
+        ]);
+        let recipe = "// %% step: One\n// %% step: Two\n// %% step: Three\n// %% step: Four\n";
+        let cells = cells_from_recipe(&l, recipe, "r.rs", root())?;
+        assert_eq!(
+            code_cells(&cells),
+            [
+                format!("{LIVE_VALUES}\nsnap.show(&[\"td_delta\", \"advantage\"])").as_str(),
+                "snap.clip_chart()",
+                format!("{LIVE_VALUES}\nsnap.show(&[\"hyper\"])").as_str(),
+                // Step three shows nothing new: no cell at all.
+                format!("{LIVE_VALUES}\nsnap.show(&[\"dones\"])").as_str(),
+                "snap.return_plot(\"PPO on CartPole-v1\")?",
+            ]
+        );
+        // The comment speaks of the step, not of the app.
+        assert!(!LIVE_VALUES.contains("app") && !LIVE_VALUES.contains("beside"));
+        Ok(())
+    }
+
+    #[test]
+    fn a_new_snapshot_shows_its_values_again() -> Result<(), BuildError> {
+        let l = lesson(vec![
+            step("One", &["ratio", "clip_chart"]),
+            step("Two", &["ratio", "clip_chart"]),
+            step("Three", &["ratio", "clip_chart"]),
+        ]);
+        let recipe = "// %% step: One\n// %% step: Two\nlet snap = snapshot(config, 0, 5)?;\n\
+                      // %% step: Three\nlet snapshot_b = 1;\n";
+        let cells = cells_from_recipe(&l, recipe, "r.rs", root())?;
+        let ratio = format!("{LIVE_VALUES}\nsnap.show(&[\"ratio\"])");
+        assert_eq!(
+            code_cells(&cells),
+            [
+                ratio.as_str(),
+                "snap.clip_chart()",
+                "let snap = snapshot(config, 0, 5)?;",
+                ratio.as_str(),
+                "snap.clip_chart()",
+                "let snapshot_b = 1;",
+            ]
+        );
+        assert!(rebinds_snapshot("x\n    let mut snap: Snapshot = s;"));
+        assert!(!rebinds_snapshot("let snapshot = 1;\nsnap.show(&[])"));
+        Ok(())
+    }
+
+    /// Every notebook of the course shows each live value and view at most once, and none of
+    /// its generated cells repeats another.
+    #[test]
+    fn no_notebook_shows_a_live_value_twice() -> Result<(), Box<dyn std::error::Error>> {
+        let course = Course::embedded()?;
+        for l in &course.lessons {
+            let cells = notebook_cells(root(), l)?;
+            let mut names = std::collections::BTreeSet::new();
+            for code in code_cells(&cells) {
+                let shown: Vec<String> = if let Some(list) = code
+                    .strip_prefix(LIVE_VALUES)
+                    .and_then(|c| c.trim().strip_prefix("snap.show(&["))
+                {
+                    list.trim_end_matches("])")
+                        .split(", ")
+                        .map(str::to_string)
+                        .collect()
+                } else if code.starts_with("snap.") {
+                    vec![code.to_string()]
+                } else {
+                    continue;
+                };
+                for name in shown {
+                    assert!(
+                        names.insert(name.clone()),
+                        "{}: {name} is shown twice",
+                        folder(l)
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The notebook reads the notebook face of a step: `<notebook>` passages kept, `<app>`
+    /// passages dropped, no tags left.
+    #[test]
+    fn a_step_s_markdown_is_its_notebook_face() -> Result<(), BuildError> {
+        let mut one = step("One", &[]);
+        one.body = "Run it<app> with `x`</app><notebook> in the next cell</notebook>.".into();
+        let cells = cells_from_recipe(&lesson(vec![one]), "// %% step: One\n", "r.rs", root())?;
+        assert_eq!(
+            cells[2],
+            Cell::Markdown("## 1. One\n\nRun it in the next cell.\n".into())
         );
         Ok(())
     }

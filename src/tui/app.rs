@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use crate::grade::Report;
+use crate::lesson::quiz::QuestionKind;
 use crate::lesson::{Course, Lesson, Progress, Snapshot, Step};
 use crate::ppo::PpoConfig;
 use crate::ppo::lab::Experiment;
@@ -30,6 +31,17 @@ pub enum Overlay {
     Sandbox,
     /// The exercise panel (status, hints, grading result); the field is the scroll offset.
     Exercise(u16),
+    /// The open lesson's quiz, after its last step; the field is the question (from 0).
+    Quiz(usize),
+}
+
+/// The answer being typed to the open quiz question, and its verdict once given.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct QuizState {
+    /// The prediction typed so far (digits, `.`, `-`).
+    pub input: String,
+    /// The verdict on the latest answer (or why it could not be graded yet).
+    pub verdict: Option<crate::lesson::quiz::Verdict>,
 }
 
 /// The grading of one exercise function: its report, or why grading could not run.
@@ -76,6 +88,8 @@ pub struct ExerciseState {
     pub hints_shown: usize,
     /// Functions to grade, taken by the event loop (which runs the grader off the UI thread).
     pub request: Option<Vec<String>>,
+    /// A save came in while grading: grade again when this grading ends.
+    pub regrade: bool,
 }
 
 /// Whether the worker is training.
@@ -138,6 +152,8 @@ pub struct App {
     pub labs: BTreeMap<Experiment, LabState>,
     /// An experiment to start, taken by the event loop (which runs it off the UI thread).
     pub lab_request: Option<(Experiment, PpoConfig)>,
+    /// The open quiz question's answer.
+    pub quiz: QuizState,
 }
 
 /// Seeds every clip-lab experiment runs in the app (as `ppo-tutor lab`'s default).
@@ -175,6 +191,7 @@ impl App {
             exercise: ExerciseState::default(),
             labs: BTreeMap::new(),
             lab_request: None,
+            quiz: QuizState::default(),
         }
     }
 
@@ -211,6 +228,7 @@ impl App {
             Overlay::Lessons(i) => self.update_lessons(action, i),
             Overlay::Sandbox => self.update_sandbox(action),
             Overlay::Exercise(scroll) => self.update_exercise(action, scroll),
+            Overlay::Quiz(i) => self.update_quiz(action, i),
             Overlay::None => self.update_main(action),
         }
     }
@@ -248,8 +266,122 @@ impl App {
             | Action::Up
             | Action::Down
             | Action::Increase
-            | Action::Decrease => {}
+            | Action::Decrease
+            | Action::Type(_)
+            | Action::Erase => {}
         }
+    }
+
+    /// Question `i` of the open lesson's quiz.
+    #[must_use]
+    pub fn quiz_question(&self, i: usize) -> Option<&crate::lesson::quiz::Question> {
+        self.current_lesson()?.quiz.get(i)
+    }
+
+    /// `(answered, right, total)` over the whole course's quizzes.
+    #[must_use]
+    pub fn quiz_score(&self) -> (usize, usize, usize) {
+        let total = self.course.lessons.iter().map(|l| l.quiz.len()).sum();
+        let (answered, right) = self.progress.quiz_score();
+        (answered, right, total)
+    }
+
+    fn open_question(&mut self, i: usize) {
+        self.quiz = QuizState::default();
+        self.overlay = Overlay::Quiz(i);
+        let total = self.current_lesson().map_or(0, |l| l.quiz.len());
+        let how = match self.quiz_question(i).map(|q| &q.kind) {
+            Some(QuestionKind::Predict { .. }) => "type a number, Enter",
+            _ => "a–d answers",
+        };
+        self.status = format!(
+            "check your understanding: question {}/{total} ({how})",
+            i + 1
+        );
+    }
+
+    fn update_quiz(&mut self, action: Action, i: usize) {
+        let Some(question) = self.quiz_question(i).cloned() else {
+            self.overlay = Overlay::None;
+            return;
+        };
+        match action {
+            Action::Type(c) => match &question.kind {
+                QuestionKind::Choice { .. } => {
+                    if c.is_ascii_lowercase() {
+                        let verdict = question.choose(c);
+                        self.answered(i, verdict);
+                    }
+                }
+                QuestionKind::Predict { .. } => {
+                    if self.quiz.verdict.as_ref().is_none_or(|v| !v.answered)
+                        && (c.is_ascii_digit() || c == '.' || c == '-')
+                        && self.quiz.input.len() < 16
+                    {
+                        self.quiz.input.push(c);
+                    }
+                }
+            },
+            Action::Erase => {
+                if self.quiz.verdict.as_ref().is_none_or(|v| !v.answered) {
+                    self.quiz.input.pop();
+                }
+            }
+            Action::Enter => {
+                if let QuestionKind::Predict { .. } = question.kind {
+                    if self.quiz.verdict.as_ref().is_some_and(|v| v.answered) {
+                        return;
+                    }
+                    let verdict = match self.quiz.input.parse::<f64>() {
+                        Ok(v) => question.predict(v, &self.snapshot),
+                        Err(_) => {
+                            self.status = "type a number first (digits, '.', '-')".into();
+                            return;
+                        }
+                    };
+                    self.answered(i, verdict);
+                }
+            }
+            Action::Next => {
+                let total = self.current_lesson().map_or(0, |l| l.quiz.len());
+                if i + 1 < total {
+                    self.open_question(i + 1);
+                } else {
+                    self.overlay = Overlay::None;
+                    self.leave_lesson();
+                }
+            }
+            Action::Prev => {
+                if i > 0 {
+                    self.open_question(i - 1);
+                } else {
+                    self.overlay = Overlay::None;
+                }
+            }
+            Action::Back => self.overlay = Overlay::None,
+            Action::Up | Action::ScrollUp | Action::Down | Action::ScrollDown => {}
+            other => self.update_main(other),
+        }
+    }
+
+    /// Shows `verdict` and records a real answer (the first one counts).
+    fn answered(&mut self, i: usize, verdict: crate::lesson::quiz::Verdict) {
+        if verdict.answered {
+            let id = self
+                .current_lesson()
+                .map(|l| l.id.clone())
+                .unwrap_or_default();
+            self.progress.record_quiz(&id, i + 1, verdict.right);
+            self.save_progress();
+            let (answered, right, total) = self.quiz_score();
+            self.status = format!(
+                "{} · quiz {right} right of {answered} answered ({total} questions) · n next",
+                if verdict.right { "right" } else { "not quite" }
+            );
+        } else {
+            self.status = verdict.text.lines().next().unwrap_or_default().to_string();
+        }
+        self.quiz.verdict = Some(verdict);
     }
 
     fn update_exercise(&mut self, action: Action, scroll: u16) {
@@ -286,6 +418,35 @@ impl App {
             && names
                 .iter()
                 .all(|n| self.progress.exercises_done.contains(n))
+    }
+
+    /// The open lesson's exercise files, as `ppo-tutor grade` finds them (relative to the
+    /// current folder), each once.
+    #[must_use]
+    pub fn exercise_files(&self) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = self
+            .exercise_names()
+            .iter()
+            .filter_map(|n| crate::grade::find(n).ok())
+            .map(|e| PathBuf::from(e.starter_path()))
+            .collect();
+        files.sort();
+        files.dedup();
+        files
+    }
+
+    /// An exercise file of the open lesson was saved: grade it (after the grading under
+    /// way, if any), as `g` does.
+    pub fn on_saved(&mut self) {
+        if self.exercise_names().is_empty() {
+            return;
+        }
+        if self.exercise.grading {
+            self.exercise.regrade = true;
+            return;
+        }
+        self.request_grade();
+        self.status = format!("saved: {}", self.status);
     }
 
     fn request_grade(&mut self) {
@@ -384,6 +545,9 @@ impl App {
         };
         self.exercise.graded = graded;
         self.save_progress();
+        if std::mem::take(&mut self.exercise.regrade) {
+            self.request_grade();
+        }
     }
 
     fn update_lessons(&mut self, action: Action, i: usize) {
@@ -513,14 +677,27 @@ impl App {
         };
         if self.step + 1 < lesson.steps.len() {
             self.go_to(self.lesson, self.step + 1);
-        } else {
+        } else if !lesson.quiz.is_empty() {
             let id = lesson.id.clone();
             self.progress.lessons_done.insert(id);
-            if self.lesson + 1 < self.course.lessons.len() {
-                self.go_to(self.lesson + 1, 0);
-            } else {
-                self.status = "that was the last step: l opens the lesson list".into();
-            }
+            self.open_question(0);
+        } else {
+            self.leave_lesson();
+        }
+    }
+
+    /// Marks the open lesson done and opens the next one.
+    fn leave_lesson(&mut self) {
+        let Some(lesson) = self.current_lesson() else {
+            return;
+        };
+        let id = lesson.id.clone();
+        self.progress.lessons_done.insert(id);
+        if self.lesson + 1 < self.course.lessons.len() {
+            self.go_to(self.lesson + 1, 0);
+        } else {
+            self.save_progress();
+            self.status = "that was the last step: l opens the lesson list".into();
         }
     }
 

@@ -49,12 +49,16 @@ pub enum Action {
     Details,
     /// Run the step's clip-lab experiment (x).
     RunLab,
+    /// A character typed into a quiz answer: a choice letter, or part of a number.
+    Type(char),
+    /// Erase the last character typed (Backspace).
+    Erase,
     /// Leave the app.
     Quit,
 }
 
 /// The help overlay's lines: key, what it does.
-pub const HELP: [(&str, &str); 20] = [
+pub const HELP: [(&str, &str); 21] = [
     ("→ / n", "next step"),
     ("← / p", "previous step"),
     ("j / k, wheel", "scroll the explanation"),
@@ -72,6 +76,10 @@ pub const HELP: [(&str, &str); 20] = [
     ),
     ("g", "grade this lesson's exercise (its exercise.rs)"),
     ("h", "reveal the exercise's next hint"),
+    (
+        "a–d, 0–9 Enter",
+        "answer the quiz after a lesson's last step",
+    ),
     ("?", "this help"),
     ("Esc", "close an overlay"),
     ("q / Ctrl-C", "quit (progress is saved)"),
@@ -80,9 +88,25 @@ pub const HELP: [(&str, &str); 20] = [
     ("", "green / red = positive / negative advantage"),
 ];
 
+/// Where a key press lands: what is open decides what some keys mean.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Context {
+    /// An overlay with a list or fields is open (↑/↓ move in it).
+    pub overlay_open: bool,
+    /// The sandbox is open (←/→ and +/− change a value).
+    pub sandbox_open: bool,
+    /// A quiz question is open (a–d, digits, `.` and `-` are typed as an answer).
+    pub quiz_open: bool,
+}
+
 /// Maps a key press to an action in the given context.
 #[must_use]
-pub fn map(key: KeyEvent, overlay_open: bool, sandbox_open: bool) -> Option<Action> {
+pub fn map(key: KeyEvent, context: Context) -> Option<Action> {
+    let Context {
+        overlay_open,
+        sandbox_open,
+        quiz_open,
+    } = context;
     if key.kind == KeyEventKind::Release {
         return None;
     }
@@ -90,6 +114,8 @@ pub fn map(key: KeyEvent, overlay_open: bool, sandbox_open: bool) -> Option<Acti
         return Some(Action::Quit);
     }
     let action = match key.code {
+        KeyCode::Char(c @ ('a'..='d' | '0'..='9' | '.' | '-')) if quiz_open => Action::Type(c),
+        KeyCode::Backspace if quiz_open => Action::Erase,
         KeyCode::Char('q') => Action::Quit,
         KeyCode::Esc => Action::Back,
         KeyCode::Char('?') => Action::Help,

@@ -53,6 +53,7 @@ impl Widget for &View<'_> {
             Overlay::Lessons(i) => draw_lessons(app, theme, i, area, buf),
             Overlay::Sandbox => draw_sandbox(app, theme, area, buf),
             Overlay::Exercise(scroll) => draw_exercise(app, theme, scroll, area, buf),
+            Overlay::Quiz(i) => draw_quiz(app, theme, i, area, buf),
         }
     }
 }
@@ -105,7 +106,10 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     };
     let [left, right] =
         Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(area);
-    let body = crate::lesson::details::fold(&step.body, app.details_open);
+    let body = crate::lesson::details::fold(
+        &step.text(crate::lesson::face::Face::Terminal),
+        app.details_open,
+    );
     Paragraph::new(text::markdown(&body, theme))
         .block(panel(&step.title, theme))
         .wrap(Wrap { trim: false })
@@ -296,8 +300,9 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
             exercise.join(", ")
         )
     };
+    let (answered, right, questions) = app.quiz_score();
     let status = format!(
-        " {}{exercise} · lessons done {done}/{} · exercises done {}/{}",
+        " {} · lessons done {done}/{} · exercises done {}/{} · quiz {right}/{questions} right ({answered} answered){exercise}",
         app.status,
         app.course.lessons.len(),
         app.progress.exercises_done.len(),
@@ -410,7 +415,7 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
     let mut lines = vec![
         Line::styled(heading, theme.title()),
         Line::styled(
-            " g grade · h next hint · ↑↓ scroll · Esc close",
+            " g grade (saving the file regrades too) · h next hint · ↑↓ scroll · Esc close",
             theme.dim(),
         ),
         Line::raw(""),
@@ -495,4 +500,70 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
         })
         .label(format!("exercises done {done}/{total}"))
         .render(gauge, buf);
+}
+
+fn draw_quiz(app: &App, theme: Theme, i: usize, area: Rect, buf: &mut Buffer) {
+    use crate::lesson::quiz::{QuestionKind, letter_of};
+    let (Some(lesson), Some(question)) = (app.current_lesson(), app.quiz_question(i)) else {
+        return;
+    };
+    let width = area.width.saturating_sub(8).min(100);
+    let mut lines = vec![
+        Line::styled(
+            format!(
+                " Check your understanding: question {}/{}",
+                i + 1,
+                lesson.quiz.len()
+            ),
+            theme.title(),
+        ),
+        Line::raw(""),
+        Line::raw(format!(" {}", question.prompt)),
+        Line::raw(""),
+    ];
+    let keys = match &question.kind {
+        QuestionKind::Choice { choices, .. } => {
+            for (k, choice) in choices.iter().enumerate() {
+                lines.push(Line::from(vec![
+                    Span::styled(format!(" {}) ", letter_of(k)), theme.key()),
+                    Span::raw(choice.clone()),
+                ]));
+            }
+            format!(" a–{} answer", letter_of(choices.len().saturating_sub(1)))
+        }
+        QuestionKind::Predict { tolerance, .. } => {
+            lines.push(Line::from(vec![
+                Span::styled(" your prediction: ", theme.key()),
+                Span::raw(format!("{}▏", app.quiz.input)),
+                Span::styled(format!("  (within ±{tolerance} counts)"), theme.dim()),
+            ]));
+            if app.snapshot.trace.is_none() {
+                lines.push(Line::styled(
+                    " the live value comes from the agent: train an episode first (e or t)",
+                    theme.dim(),
+                ));
+            }
+            " type a number, Enter reveals the live value".to_string()
+        }
+    };
+    if let Some(verdict) = &app.quiz.verdict {
+        lines.push(Line::raw(""));
+        lines.extend(verdict.text.lines().map(|l| Line::raw(format!(" {l}"))));
+    }
+    lines.push(Line::raw(""));
+    lines.push(Line::styled(
+        format!("{keys} · n next · p previous · Esc back to the lesson"),
+        theme.dim(),
+    ));
+    // As tall as the wrapped text needs, at most the screen.
+    let inner = usize::from(width.saturating_sub(2)).max(1);
+    let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
+    // (+ 3: word wrapping can take a row more than the estimate here and there)
+    let height = u16::try_from(rows + 5).unwrap_or(u16::MAX);
+    let rect = centered(area, width, height.min(area.height.saturating_sub(4)));
+    Clear.render(rect, buf);
+    panel("quiz", theme).render(rect, buf);
+    Paragraph::new(lines)
+        .wrap(Wrap { trim: false })
+        .render(rect.inner(ratatui::layout::Margin::new(1, 1)), buf);
 }

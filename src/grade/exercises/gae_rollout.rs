@@ -97,7 +97,7 @@ pub fn in_place(f: Signature) -> crate::grade::Report {
 #[derive(Clone, Copy)]
 enum Returns {
     /// `Â + V(s)`, right.
-    LambdaReturns,
+    Lambda,
     /// `r + γ·V(s′)·(1 − terminated)`.
     TdTargets,
     /// `Â` alone.
@@ -121,7 +121,7 @@ impl Rule {
         masks: |term, _| term,
         resets: |term, trunc| term || trunc,
         backwards: true,
-        returns: Returns::LambdaReturns,
+        returns: Returns::Lambda,
     };
     const FORWARDS: Self = Self {
         backwards: false,
@@ -152,7 +152,7 @@ fn gae(a: Args<'_>, rule: Rule) -> Output {
         adv[t] = carry;
     }
     let returns = match rule.returns {
-        Returns::LambdaReturns => adv.iter().zip(v).map(|(a, v)| a + v).collect(),
+        Returns::Lambda => adv.iter().zip(v).map(|(a, v)| a + v).collect(),
         Returns::TdTargets => targets,
         Returns::Advantages => adv.clone(),
     };

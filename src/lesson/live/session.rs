@@ -20,7 +20,7 @@ use crate::ppo::model::ActorSnapshot;
 use crate::ppo::{PpoConfig, PpoError, Trainer, moving_average, surrogate_gradients};
 
 /// The window of the return curve's moving average, as in the seed's plot.
-const MOVING_AVERAGE_WINDOW: usize = 9;
+pub const MOVING_AVERAGE_WINDOW: usize = 9;
 
 /// A training run and what the tutor shows of it after its latest episode.
 #[derive(Debug, Clone)]
