@@ -27,18 +27,7 @@ pub const EXERCISE: Plain = Plain {
         abs: 1e-4,
         rel: 1e-4,
     },
-    reference: |a| {
-        let (adv, ret) = sol::beyond::gae_rollout(
-            a.f32s(0),
-            a.f32s(1),
-            a.f32s(2),
-            a.bools(3),
-            a.bools(4),
-            a.f32(5),
-            a.f32(6),
-        );
-        Output::F32sPair(adv, ret)
-    },
+    reference: |a| call(a, sol::beyond::gae_rollout),
     mistakes: &[
         Mistake {
             id: "forwards",
@@ -79,18 +68,21 @@ pub type Signature = fn(&[f32], &[f32], &[f32], &[bool], &[bool], f32, f32) -> (
 /// and hints of `ppo-tutor grade gae_rollout`.
 #[must_use]
 pub fn in_place(f: Signature) -> crate::grade::Report {
-    EXERCISE.grade_in_place(std::sync::Arc::new(move |a: Args<'_>| {
-        let (adv, ret) = f(
-            a.f32s(0),
-            a.f32s(1),
-            a.f32s(2),
-            a.bools(3),
-            a.bools(4),
-            a.f32(5),
-            a.f32(6),
-        );
-        Output::F32sPair(adv, ret)
-    }))
+    EXERCISE.grade_in_place(std::sync::Arc::new(move |a: Args<'_>| call(a, f)))
+}
+
+/// `f` on a case's seven arguments.
+fn call(a: Args<'_>, f: Signature) -> Output {
+    let (adv, ret) = f(
+        a.f32s(0),
+        a.f32s(1),
+        a.f32s(2),
+        a.bools(3),
+        a.bools(4),
+        a.f32(5),
+        a.f32(6),
+    );
+    Output::F32sPair(adv, ret)
 }
 
 /// What a wrong answer takes as the returns.
