@@ -285,29 +285,39 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         spans.push(Span::styled(format!(" {k}"), theme.key()));
         spans.push(Span::raw(format!(" {what} ")));
     }
-    let done = app.progress.lessons_done.len();
+    // What stays first (the open exercise, the counts), the latest message last: a long
+    // message is cut at the right edge, the counts never are.
+    let mut parts = Vec::new();
     let exercise = app.exercise_names();
-    let exercise = if exercise.is_empty() {
-        String::new()
-    } else {
+    if !exercise.is_empty() {
         let state = if app.exercise_done() {
             "done"
         } else {
             "pending"
         };
-        format!(
-            " · exercise {}: {state} (g grade, h hint)",
+        parts.push(format!(
+            "exercise {}: {state} (g grade, h hint)",
             exercise.join(", ")
-        )
-    };
+        ));
+    }
     let (answered, right, questions) = app.quiz_score();
-    let status = format!(
-        " {} · lessons done {done}/{} · exercises done {}/{} · quiz {right}/{questions} right ({answered} answered){exercise}",
-        app.status,
-        app.course.lessons.len(),
+    parts.push(format!(
+        "lessons done {}/{}",
+        app.progress.lessons_done.len(),
+        app.course.lessons.len()
+    ));
+    parts.push(format!(
+        "exercises done {}/{}",
         app.progress.exercises_done.len(),
         crate::grade::exercise_names().len()
-    );
+    ));
+    parts.push(format!(
+        "quiz {right}/{questions} right ({answered} answered)"
+    ));
+    if !app.status.is_empty() {
+        parts.push(app.status.clone());
+    }
+    let status = format!(" {}", parts.join(" · "));
     Paragraph::new(vec![Line::from(spans), Line::styled(status, theme.dim())]).render(area, buf);
 }
 
