@@ -98,8 +98,14 @@ fn event_loop(
     (cmd_tx, tx): (&Sender<Command>, &Sender<Event>),
 ) -> anyhow::Result<()> {
     let mut watcher: Option<SaveWatcher> = None;
+    // The lesson whose exercise files `watcher` was set up for (once per lesson opened, not
+    // on every event).
+    let mut watched_lesson = None;
     loop {
-        watch_exercise_files(app, &mut watcher, tx);
+        if watched_lesson != Some(app.lesson) {
+            watched_lesson = Some(app.lesson);
+            watch_exercise_files(app, &mut watcher, tx);
+        }
         terminal.draw(|f| f.render_widget(&ui::View { app, theme }, f.area()))?;
         let Ok(event) = rx.recv() else { return Ok(()) };
         handle(app, event);
@@ -151,7 +157,8 @@ pub fn handle(app: &mut App, event: Event) {
 }
 
 /// Keeps `watcher` on the open lesson's exercise files (those that exist under the current
-/// folder), so that a save regrades them; a folder that cannot be watched is said once.
+/// folder), so that a save regrades them; a folder that cannot be watched is said in the
+/// status line.
 fn watch_exercise_files(app: &mut App, watcher: &mut Option<SaveWatcher>, tx: &Sender<Event>) {
     let files: Vec<std::path::PathBuf> = app
         .exercise_files()

@@ -157,7 +157,7 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "ratio_epoch1_max",
         about: "the largest ratio in epoch 1",
-        value: |s| first_epoch(s, |e| -min(&e.ratio.iter().map(|r| -r).collect::<Vec<_>>())),
+        value: |s| first_epoch(s, |e| max(&e.ratio)),
     },
     Measure {
         name: "clipped_rows_epoch1",
@@ -239,6 +239,12 @@ fn parameters(s: &Snapshot, prefix: &str) -> Option<f64> {
 
 fn first_epoch(s: &Snapshot, f: impl Fn(&crate::ppo::EpochTrace) -> f64) -> Option<f64> {
     s.trace.as_ref()?.epochs.first().map(f)
+}
+
+fn max(xs: &[f32]) -> f64 {
+    xs.iter()
+        .map(|&x| f64::from(x))
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 fn min(xs: &[f32]) -> f64 {
