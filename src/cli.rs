@@ -15,6 +15,7 @@ pub mod dev;
 pub mod grade;
 pub mod lab;
 pub mod lessons;
+pub mod pendulum;
 pub mod play;
 pub mod replay;
 pub mod train;
@@ -34,6 +35,8 @@ pub struct Cli {
 pub enum Command {
     /// Run the native CartPole: reset with a seed, apply actions, print the trajectory.
     Cartpole(cartpole::CartpoleArgs),
+    /// Run the native Pendulum-v1: reset with a seed, apply torques, print the trajectory.
+    Pendulum(pendulum::PendulumArgs),
     /// List the lessons, one `id<TAB>title` per line, in order.
     Lessons,
     /// Print one lesson step (or all steps) as plain text with its live values.
@@ -173,13 +176,20 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     // (`dev notebooks` re-runs itself with one thread among its other settings.)
     let uses_candle = !matches!(
         cli.command,
-        Some(Command::Cartpole(_) | Command::Lessons | Command::Reset(_) | Command::Dev(_))
+        Some(
+            Command::Cartpole(_)
+                | Command::Pendulum(_)
+                | Command::Lessons
+                | Command::Reset(_)
+                | Command::Dev(_)
+        )
     );
     if uses_candle && let Some(done) = rerun_with_one_candle_thread() {
         return done;
     }
     match cli.command {
         Some(Command::Cartpole(args)) => cartpole::run(&args),
+        Some(Command::Pendulum(args)) => pendulum::run(&args),
         Some(Command::Lessons) => lessons::list(),
         Some(Command::Show(args)) => lessons::show(&args),
         Some(Command::Train(args)) => train::run(&args),

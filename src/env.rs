@@ -1,11 +1,14 @@
-//! The native CartPole: Gymnasium 1.4.0's `CartPole-v1` (and `-v0`), bit for bit.
+//! The native environments: Gymnasium 1.4.0's `CartPole-v1` (and `-v0`) and `Pendulum-v1`,
+//! bit for bit.
 //!
 //! - [`CartPole`]: one environment with Gymnasium's `reset(seed)` / `step(action)`.
 //! - [`CartPoleVec`]: many environments stepped together, for throughput.
+//! - [`Pendulum`], [`PendulumVec`]: the same for `Pendulum-v1` (one continuous torque).
 //! - [`seeding`]: numpy's `SeedSequence` → `PCG64` → `uniform`, so seeds give Gymnasium's states.
 //! - [`sincos`]: libm's `sin` and `cos` bit for bit, computed inline (glibc's algorithm) where valid.
 
 pub mod cartpole;
+pub mod pendulum;
 pub mod quotient;
 pub mod seeding;
 pub mod sincos;
@@ -13,10 +16,11 @@ pub mod trace;
 pub mod vector;
 
 pub use cartpole::{CartPole, CartPoleConfig, EnvId, Integrator, Step};
+pub use pendulum::{Pendulum, PendulumConfig, PendulumStep, PendulumTrajectory};
 pub use trace::{Policy, Trajectory};
-pub use vector::{CartPoleVec, VecStep};
+pub use vector::{CartPoleVec, PendulumVec, VecStep};
 
-/// What can go wrong when using a CartPole.
+/// What can go wrong when using a CartPole or a Pendulum.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EnvError {
     /// `step` was called before the first `reset`.
