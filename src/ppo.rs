@@ -16,6 +16,8 @@
 //! - [`lab`]: the clip lab's experiments, one knob changed at a time over several seeds.
 //! - [`checkpoint`]: saving and loading an agent as safetensors with PyTorch's names.
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
+//! - [`continuous`]: the book's `PPOContinuous` for Pendulum, a Gaussian policy on the same
+//!   critic, GAE, clipped surrogate and Adam ([`PpoContinuous`]).
 //!
 //! The update runs on candle tensors with autograd; acting (one observation at a time,
 //! 200k times per run) runs the same two matrix products in plain Rust on a copy of the
@@ -26,6 +28,7 @@ pub mod advantage;
 pub mod agent;
 pub mod checkpoint;
 pub mod config;
+pub mod continuous;
 pub mod gradient;
 pub mod lab;
 pub mod model;
@@ -39,7 +42,12 @@ pub mod train;
 pub use adam::Adam;
 pub use advantage::{compute_advantage, normalize_advantage};
 pub use agent::{Agent, Losses, Transitions};
+pub use checkpoint::CheckpointKind;
 pub use config::{Algorithm, PpoConfig};
+pub use continuous::{
+    ContinuousEpochTrace, ContinuousTransitions, ContinuousUpdateTrace, PolicyNetContinuous,
+    PpoContinuous, PpoContinuousConfig,
+};
 pub use gradient::{SurrogateGradients, surrogate_gradients};
 pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
 pub use moving_average::moving_average;

@@ -1,4 +1,8 @@
 //! `ppo-tutor replay FILE`: re-run recorded PyTorch updates and print ours, to compare.
+//!
+//! FILE is either agent's fixture, told apart by its keys: the seed's discrete PPO
+//! (`ppo_update_pytorch.json`) or the book's `PPOContinuous` on Pendulum
+//! (`ppo_continuous_update_pytorch.json`, whose actor has `fc_mu` and `fc_std`).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -8,13 +12,15 @@ use anyhow::Context;
 use clap::Args;
 use serde_json::json;
 
-use crate::ppo::replay::{ReplayOutput, parse_replay, replay_case};
+use crate::ppo::continuous::replay::{ContinuousReplayOutput, replay_continuous_case};
+use crate::ppo::replay::{AnyReplay, ReplayOutput, parse_any_replay, replay_case};
 
 /// Arguments of `ppo-tutor replay`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "FILE has the schema of ppo_update_pytorch.json (made by ppo_fixtures.py): \
-{\"cases\": [{\"hyper\", \"weights_before\", \"batch\"}, ...]}.\n\nExample:\n  ppo-tutor replay tests/fixtures/ppo_update_pytorch.json --json > ours.json"
+    after_help = "FILE has the schema of ppo_update_pytorch.json (made by ppo_fixtures.py) or of \
+ppo_continuous_update_pytorch.json (made by ppo_continuous_fixtures.py; its actor has fc_mu and fc_std): \
+{\"cases\": [{\"hyper\", \"weights_before\", \"batch\"}, ...]}.\n\nExamples:\n  ppo-tutor replay tests/fixtures/ppo_update_pytorch.json --json > ours.json\n  ppo-tutor replay tests/fixtures/ppo_continuous_update_pytorch.json --json > ours_continuous.json"
 )]
 pub struct ReplayArgs {
     /// The recorded updates.
@@ -31,35 +37,53 @@ pub struct ReplayArgs {
 pub fn run(args: &ReplayArgs) -> anyhow::Result<ExitCode> {
     let name = args.file.display().to_string();
     let text = std::fs::read_to_string(&args.file).with_context(|| format!("reading {name}"))?;
-    let cases = parse_replay(&text, &name)?;
-    let outputs = cases
-        .iter()
-        .enumerate()
-        .map(|(i, case)| replay_case(case).with_context(|| format!("replaying cases[{i}]")))
-        .collect::<anyhow::Result<Vec<ReplayOutput>>>()?;
     let mut out = std::io::stdout().lock();
-    if args.json {
-        writeln!(out, "{}", json!({ "cases": outputs }))?;
-        return Ok(ExitCode::SUCCESS);
-    }
-    for (i, (case, o)) in cases.iter().zip(&outputs).enumerate() {
+    // (transitions, [(actor_loss, critic_loss)] per epoch) of each case, for the table
+    let summary: Vec<(usize, Vec<(f32, f32)>)> = match parse_any_replay(&text, &name)? {
+        AnyReplay::Discrete(cases) => {
+            let outputs = run_cases(&cases, replay_case)?;
+            if args.json {
+                writeln!(out, "{}", json!({ "cases": outputs }))?;
+                return Ok(ExitCode::SUCCESS);
+            }
+            cases
+                .iter()
+                .zip(&outputs)
+                .map(|(case, o): (_, &ReplayOutput)| {
+                    let losses = o.epochs.iter().map(|e| (e.actor_loss, e.critic_loss));
+                    (case.batch.len(), losses.collect())
+                })
+                .collect()
+        }
+        AnyReplay::Continuous(cases) => {
+            let outputs = run_cases(&cases, replay_continuous_case)?;
+            if args.json {
+                writeln!(out, "{}", json!({ "cases": outputs }))?;
+                return Ok(ExitCode::SUCCESS);
+            }
+            cases
+                .iter()
+                .zip(&outputs)
+                .map(|(case, o): (_, &ContinuousReplayOutput)| {
+                    let losses = o.epochs.iter().map(|e| (e.actor_loss, e.critic_loss));
+                    (case.batch.len(), losses.collect())
+                })
+                .collect()
+        }
+    };
+    for (i, (transitions, losses)) in summary.iter().enumerate() {
         writeln!(
             out,
-            "case {i}: {} transitions, {} epochs",
-            case.batch.len(),
-            o.epochs.len()
+            "case {i}: {transitions} transitions, {} epochs",
+            losses.len()
         )?;
         writeln!(
             out,
             "{:>7} {:>14} {:>14}",
             "epoch", "actor_loss", "critic_loss"
         )?;
-        for (e, epoch) in o.epochs.iter().enumerate() {
-            writeln!(
-                out,
-                "{e:>7} {:>14.7} {:>14.7}",
-                epoch.actor_loss, epoch.critic_loss
-            )?;
+        for (e, (actor_loss, critic_loss)) in losses.iter().enumerate() {
+            writeln!(out, "{e:>7} {actor_loss:>14.7} {critic_loss:>14.7}")?;
         }
     }
     writeln!(
@@ -67,4 +91,16 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<ExitCode> {
         "(--json prints every tensor, in the fixture's key names and shapes)"
     )?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Replays every case, naming the case in an error.
+fn run_cases<C, O>(
+    cases: &[C],
+    replay: impl Fn(&C) -> Result<O, crate::ppo::PpoError>,
+) -> anyhow::Result<Vec<O>> {
+    cases
+        .iter()
+        .enumerate()
+        .map(|(i, case)| replay(case).with_context(|| format!("replaying cases[{i}]")))
+        .collect()
 }

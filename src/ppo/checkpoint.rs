@@ -11,6 +11,13 @@
 //! (prefixed `actor.` / `critic.`), so a checkpoint converts to and from
 //! `torch.save({**actor.state_dict(), ...})` by renaming nothing. `H` is read from
 //! `actor.fc1.weight`; every other shape is then checked against it.
+//!
+//! A checkpoint says which agent it holds ([`CheckpointKind`]): the safetensors metadata
+//! `{"env": "CartPole-v1", "algorithm": "ppo"}` (or `Pendulum-v1` / `ppo-continuous` for
+//! [`PpoContinuous`](super::PpoContinuous)), and, for files without it (older ones, or
+//! written by PyTorch), the parameter names: `actor.fc2` is the CartPole policy,
+//! `actor.fc_mu` / `actor.fc_std` the Pendulum one. Loading one agent's checkpoint as the
+//! other is refused with a message naming both.
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -19,6 +26,166 @@ use candle_core::{DType, Device, Tensor};
 
 use super::model::{NamedWeights, WeightTensor};
 use super::{ACTION_DIM, Agent, PpoConfig, PpoError, STATE_DIM};
+
+/// Which agent a checkpoint holds: the environment and the algorithm it was trained for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CheckpointKind {
+    /// The seed's PPO on `CartPole-v1`: a softmax policy over two actions ([`Agent`]).
+    CartPolePpo,
+    /// The book's `PPOContinuous` on `Pendulum-v1`: a Gaussian policy
+    /// ([`PpoContinuous`](super::PpoContinuous)).
+    PendulumPpoContinuous,
+}
+
+impl CheckpointKind {
+    /// Gymnasium's id of the environment (`CartPole-v1`, `Pendulum-v1`).
+    #[must_use]
+    pub fn env(self) -> &'static str {
+        match self {
+            Self::CartPolePpo => "CartPole-v1",
+            Self::PendulumPpoContinuous => "Pendulum-v1",
+        }
+    }
+
+    /// The algorithm's name in the metadata (`ppo`, `ppo-continuous`).
+    #[must_use]
+    pub fn algorithm(self) -> &'static str {
+        match self {
+            Self::CartPolePpo => "ppo",
+            Self::PendulumPpoContinuous => "ppo-continuous",
+        }
+    }
+
+    /// A parameter name only this kind has, by which files without metadata are recognised.
+    fn telltale(self) -> &'static str {
+        match self {
+            Self::CartPolePpo => "actor.fc2.weight",
+            Self::PendulumPpoContinuous => "actor.fc_mu.weight",
+        }
+    }
+
+    /// How to write a checkpoint of this kind, for error messages.
+    fn how_to_save(self) -> &'static str {
+        match self {
+            Self::CartPolePpo => "write one with `ppo-tutor train --save FILE.safetensors`",
+            Self::PendulumPpoContinuous => "write one with `PpoContinuous::save`",
+        }
+    }
+
+    /// The safetensors metadata written with a checkpoint of this kind.
+    #[must_use]
+    pub fn metadata(self) -> HashMap<String, String> {
+        HashMap::from([
+            ("env".to_string(), self.env().to_string()),
+            ("algorithm".to_string(), self.algorithm().to_string()),
+        ])
+    }
+
+    const ALL: [Self; 2] = [Self::CartPolePpo, Self::PendulumPpoContinuous];
+
+    /// The kind named by `env` and `algorithm` metadata, if both are present and known.
+    #[must_use]
+    pub fn from_metadata(metadata: &HashMap<String, String>) -> Option<Self> {
+        let (env, algorithm) = (metadata.get("env")?, metadata.get("algorithm")?);
+        Self::ALL
+            .into_iter()
+            .find(|k| k.env() == env && k.algorithm() == algorithm)
+    }
+
+    /// The kind whose parameter names `names` holds (`actor.fc2.*` or `actor.fc_mu.*`).
+    #[must_use]
+    pub fn from_names(names: &[String]) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|k| names.iter().any(|n| n == k.telltale()))
+    }
+}
+
+/// Writes `weights` to a safetensors file (f32, PyTorch names) with `kind`'s metadata.
+///
+/// # Errors
+/// [`PpoError::File`] when the file cannot be written.
+pub fn write_checkpoint(
+    path: &Path,
+    weights: NamedWeights,
+    kind: CheckpointKind,
+) -> Result<(), PpoError> {
+    let mut tensors = Vec::with_capacity(weights.len());
+    for (name, w) in weights {
+        tensors.push((name, Tensor::from_vec(w.data, w.shape, &Device::Cpu)?));
+    }
+    safetensors::serialize_to_file(tensors, Some(kind.metadata()), path).map_err(|e| {
+        PpoError::File {
+            file: path.display().to_string(),
+            reason: format!("cannot write the checkpoint: {e}"),
+        }
+    })
+}
+
+/// Reads a checkpoint's tensors as f32, refusing one that holds another kind of agent than
+/// `want` (by its metadata, or else by its parameter names).
+///
+/// # Errors
+/// [`PpoError::File`] for an unreadable file, one that is not safetensors, or one of another
+/// kind (the message names both kinds); [`PpoError::WrongShape`] for a tensor that is not
+/// a number type.
+pub fn read_checkpoint(path: &Path, want: CheckpointKind) -> Result<NamedWeights, PpoError> {
+    let file = path.display().to_string();
+    let unreadable = |e: String| PpoError::File {
+        file: file.clone(),
+        reason: format!(
+            "not a readable safetensors checkpoint ({e}); {}",
+            want.how_to_save()
+        ),
+    };
+    let bytes = std::fs::read(path).map_err(|e| unreadable(e.to_string()))?;
+    let metadata = safetensors::SafeTensors::read_metadata(&bytes)
+        .map_err(|e| unreadable(e.to_string()))?
+        .1
+        .metadata()
+        .clone()
+        .unwrap_or_default();
+    let tensors = candle_core::safetensors::load_buffer(&bytes, &Device::Cpu)
+        .map_err(|e| unreadable(e.to_string()))?;
+    let names: Vec<String> = tensors.keys().cloned().collect();
+    let found = match CheckpointKind::from_metadata(&metadata) {
+        Some(kind) => Some((kind, "its metadata says so".to_string())),
+        None => CheckpointKind::from_names(&names).map(|k| (k, format!("it has {}", k.telltale()))),
+    };
+    if let Some((found, evidence)) = found
+        && found != want
+    {
+        return Err(PpoError::File {
+            file,
+            reason: format!(
+                "this checkpoint holds a {} agent for {} ({evidence}), not a {} agent for {}: \
+                 load it as a {} agent, or {}",
+                found.algorithm(),
+                found.env(),
+                want.algorithm(),
+                want.env(),
+                found.env(),
+                want.how_to_save()
+            ),
+        });
+    }
+    let mut weights = NamedWeights::new();
+    for (name, t) in tensors {
+        let shape = t.dims().to_vec();
+        let data = t
+            .to_dtype(DType::F32)
+            .and_then(|t| t.flatten_all())
+            .and_then(|t| t.to_vec1::<f32>())
+            .map_err(|e| PpoError::WrongShape {
+                file: file.clone(),
+                key: name.clone(),
+                expected: "an f32 tensor".into(),
+                got: format!("{:?} ({e})", t.dtype()),
+            })?;
+        weights.insert(name, WeightTensor { shape, data });
+    }
+    Ok(weights)
+}
 
 /// Every parameter's name and shape for hidden width `hidden_dim`, in PyTorch's order.
 #[must_use]
@@ -86,51 +253,25 @@ pub fn check_weights(
 }
 
 impl Agent {
-    /// Writes the weights to a safetensors file (f32, PyTorch names).
+    /// Writes the weights to a safetensors file (f32, PyTorch names), marked as a
+    /// `CartPole-v1` / `ppo` checkpoint ([`CheckpointKind`]).
     ///
     /// # Errors
     /// [`PpoError::File`] when the file cannot be written.
     pub fn save(&self, path: &Path) -> Result<(), PpoError> {
-        let mut tensors = HashMap::new();
-        for (name, w) in self.weights()? {
-            tensors.insert(name, Tensor::from_vec(w.data, w.shape, &Device::Cpu)?);
-        }
-        candle_core::safetensors::save(&tensors, path).map_err(|e| PpoError::File {
-            file: path.display().to_string(),
-            reason: format!("cannot write the checkpoint: {e}"),
-        })
+        write_checkpoint(path, self.weights()?, CheckpointKind::CartPolePpo)
     }
 
     /// Reads a checkpoint written by [`Agent::save`]; the hidden width comes from the file
     /// and overrides `config.hidden_dim`. Adam starts fresh; actions are sampled with `seed`.
     ///
     /// # Errors
-    /// [`PpoError::File`] for an unreadable file or one that is not safetensors;
-    /// [`PpoError::MissingKey`] / [`PpoError::WrongShape`] naming the tensor and its
+    /// [`PpoError::File`] for an unreadable file, one that is not safetensors, or one of a
+    /// Pendulum agent; [`PpoError::MissingKey`] / [`PpoError::WrongShape`] naming the tensor and its
     /// expected shape.
     pub fn load(path: &Path, config: &PpoConfig, seed: u64) -> Result<Self, PpoError> {
         let file = path.display().to_string();
-        let tensors = candle_core::safetensors::load(path, &Device::Cpu).map_err(|e| {
-            PpoError::File {
-                file: file.clone(),
-                reason: format!("not a readable safetensors checkpoint ({e}); write one with `ppo-tutor train --save FILE.safetensors`"),
-            }
-        })?;
-        let mut weights = NamedWeights::new();
-        for (name, t) in tensors {
-            let shape = t.dims().to_vec();
-            let data = t
-                .to_dtype(DType::F32)
-                .and_then(|t| t.flatten_all())
-                .and_then(|t| t.to_vec1::<f32>())
-                .map_err(|e| PpoError::WrongShape {
-                    file: file.clone(),
-                    key: name.clone(),
-                    expected: "an f32 tensor".into(),
-                    got: format!("{:?} ({e})", t.dtype()),
-                })?;
-            weights.insert(name, WeightTensor { shape, data });
-        }
+        let weights = read_checkpoint(path, CheckpointKind::CartPolePpo)?;
         let hidden_dim = match weights.get("actor.fc1.weight").map(|w| w.shape.as_slice()) {
             Some(&[h, STATE_DIM]) if h > 0 => h,
             Some(other) => {

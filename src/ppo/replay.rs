@@ -12,13 +12,51 @@
 //! Each case runs [`Agent::update`] from `weights_before` on `batch` with fresh Adam state,
 //! and [`ReplayOutput`] holds what the fixture's `expected` and `weights_after` hold, with
 //! the same key names and shapes (column tensors as `(N, 1)` lists of one-element lists).
+//!
+//! The continuous agent's fixture (`ppo_continuous_update_pytorch.json`, the book's
+//! `PPOContinuous` on Pendulum) has the same layout with a Gaussian actor
+//! (`actor.fc_mu`, `actor.fc_std`); [`parse_any_replay`] tells the two apart by those keys
+//! and [`continuous::replay`](super::continuous::replay) runs it.
 
 use serde::Serialize;
 use serde_json::{Map, Value};
 
 use super::checkpoint::parameter_shapes;
+use super::continuous::replay::{ContinuousReplayCase, parse_continuous_replay};
 use super::model::{NamedWeights, WeightTensor};
 use super::{Agent, PpoConfig, PpoError, Transitions};
+
+/// A replay file of either agent, told apart by its keys.
+#[derive(Debug, Clone)]
+pub enum AnyReplay {
+    /// `ppo_update_pytorch.json`: the seed's discrete PPO on CartPole.
+    Discrete(Vec<ReplayCase>),
+    /// `ppo_continuous_update_pytorch.json`: the book's `PPOContinuous` on Pendulum.
+    Continuous(Vec<ContinuousReplayCase>),
+}
+
+/// Parses a replay file of either agent: one whose first case's `weights_before` holds
+/// `actor.fc_mu.weight` (a Gaussian policy) is the continuous agent's, any other the
+/// discrete agent's; `file` names it in errors.
+///
+/// # Errors
+/// As [`parse_replay`] and [`parse_continuous_replay`].
+pub fn parse_any_replay(text: &str, file: &str) -> Result<AnyReplay, PpoError> {
+    let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
+        file: file.into(),
+        reason: format!("not valid JSON ({e})"),
+    })?;
+    let continuous = root
+        .get("cases")
+        .and_then(|c| c.get(0))
+        .and_then(|c| c.get("weights_before"))
+        .is_some_and(|w| w.get("actor.fc_mu.weight").is_some());
+    if continuous {
+        Ok(AnyReplay::Continuous(parse_continuous_replay(text, file)?))
+    } else {
+        Ok(AnyReplay::Discrete(parse_replay(text, file)?))
+    }
+}
 
 /// One case to replay.
 #[derive(Debug, Clone)]
@@ -121,7 +159,7 @@ pub fn replay_case(case: &ReplayCase) -> Result<ReplayOutput, PpoError> {
 }
 
 /// A weight as nested JSON lists: `(out, in)` rows for a matrix, a flat list for a bias.
-fn nested(w: &WeightTensor) -> Value {
+pub(crate) fn nested(w: &WeightTensor) -> Value {
     let num = |x: &f32| Value::from(f64::from(*x));
     match w.shape.as_slice() {
         [_, cols] if *cols > 0 => Value::Array(
@@ -135,8 +173,9 @@ fn nested(w: &WeightTensor) -> Value {
 }
 
 /// Reads JSON values, naming the key path and expected shape in every error.
-struct Reader<'a> {
-    file: &'a str,
+pub(crate) struct Reader<'a> {
+    /// The file's name, for error messages.
+    pub(crate) file: &'a str,
 }
 
 impl Reader<'_> {
@@ -148,7 +187,7 @@ impl Reader<'_> {
         }
     }
 
-    fn wrong(&self, key: &str, expected: &str, got: &Value) -> PpoError {
+    pub(crate) fn wrong(&self, key: &str, expected: &str, got: &Value) -> PpoError {
         let got = match got {
             Value::Array(a) => format!("a list of {} entries", a.len()),
             Value::Object(_) => "an object".into(),
@@ -164,7 +203,7 @@ impl Reader<'_> {
         }
     }
 
-    fn key<'v>(
+    pub(crate) fn key<'v>(
         &self,
         v: &'v Value,
         path: &str,
@@ -179,7 +218,7 @@ impl Reader<'_> {
         v.get(key).ok_or_else(|| self.missing(full, expected))
     }
 
-    fn array<'v>(
+    pub(crate) fn array<'v>(
         &self,
         v: &'v Value,
         path: &str,
@@ -188,12 +227,12 @@ impl Reader<'_> {
         v.as_array().ok_or_else(|| self.wrong(path, expected, v))
     }
 
-    fn number(&self, v: &Value, path: &str, expected: &str) -> Result<f64, PpoError> {
+    pub(crate) fn number(&self, v: &Value, path: &str, expected: &str) -> Result<f64, PpoError> {
         v.as_f64().ok_or_else(|| self.wrong(path, expected, v))
     }
 
     /// A list of `len` numbers (`len` None: any length).
-    fn floats(
+    pub(crate) fn floats(
         &self,
         v: &Value,
         path: &str,
@@ -264,8 +303,18 @@ impl Reader<'_> {
     }
 
     fn weights(&self, w: &Value, path: &str, hidden_dim: usize) -> Result<NamedWeights, PpoError> {
+        self.named_tensors(w, path, parameter_shapes(hidden_dim))
+    }
+
+    /// The tensors `shapes` names, each as nested lists of its shape (`(out, in)` rows).
+    pub(crate) fn named_tensors(
+        &self,
+        w: &Value,
+        path: &str,
+        shapes: impl IntoIterator<Item = (&'static str, Vec<usize>)>,
+    ) -> Result<NamedWeights, PpoError> {
         let mut out = NamedWeights::new();
-        for (name, shape) in parameter_shapes(hidden_dim) {
+        for (name, shape) in shapes {
             let key = format!("{path}.{name}");
             let expected = format!("a list of shape {shape:?}");
             let v = self.key(w, path, name, &expected)?;

@@ -1,0 +1,243 @@
+//! Saving and loading a [`PpoContinuous`] as safetensors, with PyTorch's parameter names.
+//!
+//! A checkpoint holds ten f32 tensors, shapes for hidden width `H`:
+//!
+//! ```text
+//! actor.fc1.weight (H, 3)      actor.fc1.bias (H)
+//! actor.fc_mu.weight (1, H)    actor.fc_mu.bias (1)
+//! actor.fc_std.weight (1, H)   actor.fc_std.bias (1)
+//! critic.fc1.weight (H, 3)     critic.fc1.bias (H)
+//! critic.fc2.weight (1, H)     critic.fc2.bias (1)
+//! ```
+//!
+//! the book's `state_dict()`s prefixed `actor.` / `critic.`, and the metadata
+//! `{"env": "Pendulum-v1", "algorithm": "ppo-continuous"}`
+//! ([`CheckpointKind::PendulumPpoContinuous`]). A CartPole checkpoint given to
+//! [`PpoContinuous::load`] is refused with a message saying what it holds, and the other way
+//! round. This table of names is the one the model, the checkpoint and the replay share.
+
+use std::path::Path;
+
+use super::agent::PpoContinuous;
+use super::{ACTION_DIM, PpoContinuousConfig, STATE_DIM};
+use crate::ppo::PpoError;
+use crate::ppo::checkpoint::{CheckpointKind, read_checkpoint, write_checkpoint};
+use crate::ppo::model::NamedWeights;
+
+/// Every parameter's name and shape for hidden width `hidden_dim`, in PyTorch's order.
+#[must_use]
+pub fn parameter_shapes(hidden_dim: usize) -> [(&'static str, Vec<usize>); 10] {
+    let h = hidden_dim;
+    [
+        ("actor.fc1.weight", vec![h, STATE_DIM]),
+        ("actor.fc1.bias", vec![h]),
+        ("actor.fc_mu.weight", vec![ACTION_DIM, h]),
+        ("actor.fc_mu.bias", vec![ACTION_DIM]),
+        ("actor.fc_std.weight", vec![ACTION_DIM, h]),
+        ("actor.fc_std.bias", vec![ACTION_DIM]),
+        ("critic.fc1.weight", vec![h, STATE_DIM]),
+        ("critic.fc1.bias", vec![h]),
+        ("critic.fc2.weight", vec![1, h]),
+        ("critic.fc2.bias", vec![1]),
+    ]
+}
+
+/// The ten parameter names, in PyTorch's order.
+#[must_use]
+pub fn parameter_names() -> [&'static str; 10] {
+    parameter_shapes(0).map(|(name, _)| name)
+}
+
+/// Checks that `weights` holds exactly the ten parameters with the shapes `hidden_dim`
+/// gives, and finite values.
+///
+/// # Errors
+/// [`PpoError::MissingKey`] or [`PpoError::WrongShape`] naming the tensor in `source`.
+pub fn check_weights(
+    weights: &NamedWeights,
+    hidden_dim: usize,
+    source: &str,
+) -> Result<(), PpoError> {
+    for (name, shape) in parameter_shapes(hidden_dim) {
+        let Some(w) = weights.get(name) else {
+            return Err(PpoError::MissingKey {
+                file: source.into(),
+                key: name.into(),
+                expected: format!("an f32 tensor of shape {shape:?}"),
+            });
+        };
+        if w.shape != shape || w.data.len() != shape.iter().product::<usize>() {
+            return Err(PpoError::WrongShape {
+                file: source.into(),
+                key: name.into(),
+                expected: format!("shape {shape:?} (hidden width {hidden_dim})"),
+                got: format!("shape {:?}", w.shape),
+            });
+        }
+        if let Some(i) = w.data.iter().position(|x| !x.is_finite()) {
+            return Err(PpoError::WrongShape {
+                file: source.into(),
+                key: name.into(),
+                expected: "finite values".into(),
+                got: format!("{} at flat index {i}", w.data[i]),
+            });
+        }
+    }
+    if let Some(extra) = weights
+        .keys()
+        .find(|k| !parameter_names().contains(&k.as_str()))
+    {
+        return Err(PpoError::WrongShape {
+            file: source.into(),
+            key: extra.clone(),
+            expected: "only the ten actor./critic. parameters of the Gaussian policy".into(),
+            got: "an unknown tensor".into(),
+        });
+    }
+    Ok(())
+}
+
+impl PpoContinuous {
+    /// Writes the weights to a safetensors file (f32, PyTorch names), marked as a
+    /// `Pendulum-v1` / `ppo-continuous` checkpoint.
+    ///
+    /// # Errors
+    /// [`PpoError::File`] when the file cannot be written.
+    pub fn save(&self, path: &Path) -> Result<(), PpoError> {
+        write_checkpoint(path, self.weights()?, CheckpointKind::PendulumPpoContinuous)
+    }
+
+    /// Reads a checkpoint written by [`PpoContinuous::save`]; the hidden width comes from the
+    /// file and overrides `config.hidden_dim`. Adam starts fresh; torques are sampled with
+    /// `seed`.
+    ///
+    /// # Errors
+    /// [`PpoError::File`] for an unreadable file, one that is not safetensors, or one of a
+    /// CartPole agent; [`PpoError::MissingKey`] / [`PpoError::WrongShape`] naming the tensor
+    /// and its expected shape.
+    pub fn load(path: &Path, config: &PpoContinuousConfig, seed: u64) -> Result<Self, PpoError> {
+        let file = path.display().to_string();
+        let weights = read_checkpoint(path, CheckpointKind::PendulumPpoContinuous)?;
+        let hidden_dim = match weights.get("actor.fc1.weight").map(|w| w.shape.as_slice()) {
+            Some(&[h, STATE_DIM]) if h > 0 => h,
+            Some(other) => {
+                return Err(PpoError::WrongShape {
+                    file,
+                    key: "actor.fc1.weight".into(),
+                    expected: format!("shape [hidden, {STATE_DIM}]"),
+                    got: format!("shape {other:?}"),
+                });
+            }
+            None => {
+                return Err(PpoError::MissingKey {
+                    file,
+                    key: "actor.fc1.weight".into(),
+                    expected: format!("an f32 tensor of shape [hidden, {STATE_DIM}]"),
+                });
+            }
+        };
+        let config = PpoContinuousConfig {
+            hidden_dim,
+            ..config.clone()
+        };
+        Self::from_weights(&config, &weights, seed, &file)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ppo::{Agent, PpoConfig};
+
+    #[test]
+    fn weights_round_trip_through_a_file() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("pendulum.safetensors");
+        let config = PpoContinuousConfig {
+            hidden_dim: 16,
+            ..PpoContinuousConfig::default()
+        };
+        let agent = PpoContinuous::new(&config, 5)?;
+        agent.save(&path)?;
+        let loaded = PpoContinuous::load(&path, &PpoContinuousConfig::default(), 0)?;
+        assert_eq!(loaded.config().hidden_dim, 16);
+        assert_eq!(agent.weights()?, loaded.weights()?);
+        let names: Vec<String> = agent.weights()?.into_keys().collect();
+        let mut want: Vec<&str> = parameter_names().to_vec();
+        want.sort_unstable();
+        assert_eq!(names, want);
+        Ok(())
+    }
+
+    /// A CartPole checkpoint is refused as a Pendulum agent and the other way round, with a
+    /// message naming both environments.
+    #[test]
+    fn the_other_agents_checkpoint_is_refused() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let cartpole = dir.path().join("cartpole.safetensors");
+        let pendulum = dir.path().join("pendulum.safetensors");
+        Agent::new(&PpoConfig::default(), 0)?.save(&cartpole)?;
+        PpoContinuous::new(&PpoContinuousConfig::default(), 0)?.save(&pendulum)?;
+
+        let err = PpoContinuous::load(&cartpole, &PpoContinuousConfig::default(), 0)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            err.contains("ppo agent for CartPole-v1")
+                && err.contains("not a ppo-continuous agent for Pendulum-v1"),
+            "{err}"
+        );
+        let err = Agent::load(&pendulum, &PpoConfig::default(), 0)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            err.contains("ppo-continuous agent for Pendulum-v1")
+                && err.contains("not a ppo agent for CartPole-v1"),
+            "{err}"
+        );
+        Ok(())
+    }
+
+    /// A file without metadata (as PyTorch's `safetensors.torch.save_file` writes it) is
+    /// recognised by its parameter names.
+    #[test]
+    fn files_without_metadata_are_recognised_by_their_names()
+    -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("plain.safetensors");
+        let agent = PpoContinuous::new(&PpoContinuousConfig::default(), 2)?;
+        let mut tensors = std::collections::HashMap::new();
+        for (name, w) in agent.weights()? {
+            let t = candle_core::Tensor::from_vec(w.data, w.shape, &candle_core::Device::Cpu)?;
+            tensors.insert(name, t);
+        }
+        candle_core::safetensors::save(&tensors, &path)?;
+        let loaded = PpoContinuous::load(&path, &PpoContinuousConfig::default(), 0)?;
+        assert_eq!(loaded.weights()?, agent.weights()?);
+        let err = Agent::load(&path, &PpoConfig::default(), 0)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(err.contains("it has actor.fc_mu.weight"), "{err}");
+        Ok(())
+    }
+
+    #[test]
+    fn wrong_shapes_are_named() -> Result<(), Box<dyn std::error::Error>> {
+        let mut w = PpoContinuous::new(&PpoContinuousConfig::default(), 0)?.weights()?;
+        if let Some(t) = w.get_mut("actor.fc_std.weight") {
+            t.shape = vec![2, 64];
+        }
+        let err = check_weights(&w, 128, "x")
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            err.contains("actor.fc_std.weight") && err.contains("[1, 128]"),
+            "{err}"
+        );
+        Ok(())
+    }
+}

@@ -1,0 +1,333 @@
+//! Re-running a recorded PyTorch `PPOContinuous.update`: how anyone checks our numbers.
+//!
+//! The input has the schema of `ppo_continuous_update_pytorch.json` (made by
+//! `ppo_continuous_fixtures.py`):
+//!
+//! ```text
+//! {"cases": [{"hyper": {"actor_lr", "critic_lr", "gamma", "lmbda", "epochs", "eps", "hidden_dim"},
+//!             "weights_before": {"actor.fc1.weight": (H, 3), ..., "actor.fc_mu.weight": (1, H),
+//!                                ..., "critic.fc2.bias": (1)},
+//!             "batch": {"states": (N, 3), "actions": (N) torques, "rewards": (N),
+//!                       "next_states": (N, 3), "dones": (N)}}, ...]}
+//! ```
+//!
+//! Each case runs [`PpoContinuous::update`] from `weights_before` on `batch` with fresh Adam
+//! state; [`ContinuousReplayOutput`] holds what the fixture's `expected` and `weights_after`
+//! hold, with the same key names and shapes (columns as `(N, 1)` lists of one-element lists).
+
+use serde::Serialize;
+use serde_json::{Map, Value};
+
+use super::agent::{ContinuousTransitions, PpoContinuous};
+use super::checkpoint::parameter_shapes;
+use super::{PpoContinuousConfig, STATE_DIM};
+use crate::ppo::PpoError;
+use crate::ppo::model::NamedWeights;
+use crate::ppo::replay::{Reader, nested};
+
+/// One case to replay.
+#[derive(Debug, Clone)]
+pub struct ContinuousReplayCase {
+    /// The hyper-parameters from `hyper` (`num_episodes` is the book's default, unused).
+    pub config: PpoContinuousConfig,
+    /// `weights_before`.
+    pub weights_before: NamedWeights,
+    /// `batch`.
+    pub batch: ContinuousTransitions,
+}
+
+/// One replayed case, in the fixture's key names and shapes.
+#[derive(Debug, Clone, Serialize)]
+pub struct ContinuousReplayOutput {
+    /// `(N, 1)`: `(r + 8) / 8`.
+    pub scaled_rewards: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub td_target: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub td_delta: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub advantage: Vec<[f32; 1]>,
+    /// `(N, 1)`: μ before the update.
+    pub mu: Vec<[f32; 1]>,
+    /// `(N, 1)`: σ before the update.
+    pub std: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub old_log_probs: Vec<[f32; 1]>,
+    /// One per epoch.
+    pub epochs: Vec<ContinuousReplayEpoch>,
+    /// Every parameter after the update, nested lists in PyTorch's layout.
+    pub weights_after: Map<String, Value>,
+}
+
+/// One epoch of a replayed case.
+#[derive(Debug, Clone, Serialize)]
+pub struct ContinuousReplayEpoch {
+    /// `(N, 1)`.
+    pub log_probs: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub ratio: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub surr1: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub surr2: Vec<[f32; 1]>,
+    /// Scalar.
+    pub actor_loss: f32,
+    /// Scalar.
+    pub critic_loss: f32,
+}
+
+/// Parses a continuous replay file's text; `file` names it in errors.
+///
+/// # Errors
+/// [`PpoError::File`] for text that is not JSON; [`PpoError::MissingKey`] /
+/// [`PpoError::WrongShape`] naming the key path (like `cases[0].batch.states`) and the
+/// expected shape; [`PpoError::InvalidConfig`] for a hyper-parameter out of range.
+pub fn parse_continuous_replay(
+    text: &str,
+    file: &str,
+) -> Result<Vec<ContinuousReplayCase>, PpoError> {
+    let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
+        file: file.into(),
+        reason: format!("not valid JSON ({e})"),
+    })?;
+    let r = Reader { file };
+    let cases = r.array(
+        r.key(&root, "", "cases", "a list of cases")?,
+        "cases",
+        "a list of cases",
+    )?;
+    cases
+        .iter()
+        .enumerate()
+        .map(|(i, case)| parse_case(&r, case, &format!("cases[{i}]")))
+        .collect()
+}
+
+/// Runs one case: the update from `weights_before` with fresh Adam state.
+///
+/// # Errors
+/// [`PpoError::NonFinite`] when the update produces NaN; shape errors cannot happen after
+/// [`parse_continuous_replay`].
+pub fn replay_continuous_case(
+    case: &ContinuousReplayCase,
+) -> Result<ContinuousReplayOutput, PpoError> {
+    let mut agent =
+        PpoContinuous::from_weights(&case.config, &case.weights_before, 0, "weights_before")?;
+    let trace = agent.update(&case.batch)?;
+    let col = |v: &[f32]| v.iter().map(|&x| [x]).collect::<Vec<_>>();
+    let mut weights_after = Map::new();
+    for (name, w) in agent.weights()? {
+        weights_after.insert(name, nested(&w));
+    }
+    Ok(ContinuousReplayOutput {
+        scaled_rewards: col(&trace.scaled_rewards),
+        td_target: col(&trace.td_target),
+        td_delta: col(&trace.td_delta),
+        advantage: col(&trace.advantage),
+        mu: col(&trace.mu),
+        std: col(&trace.std),
+        old_log_probs: col(&trace.old_log_probs),
+        epochs: trace
+            .epochs
+            .iter()
+            .map(|e| ContinuousReplayEpoch {
+                log_probs: col(&e.log_probs),
+                ratio: col(&e.ratio),
+                surr1: col(&e.surr1),
+                surr2: col(&e.surr2),
+                actor_loss: e.actor_loss,
+                critic_loss: e.critic_loss,
+            })
+            .collect(),
+        weights_after,
+    })
+}
+
+const HYPER: &str = "an object with actor_lr, critic_lr, gamma, lmbda, epochs, eps, hidden_dim";
+const BATCH: &str = "an object with states, actions, rewards, next_states, dones";
+
+fn parse_case(r: &Reader<'_>, case: &Value, path: &str) -> Result<ContinuousReplayCase, PpoError> {
+    let config = hyper(
+        r,
+        r.key(case, path, "hyper", HYPER)?,
+        &format!("{path}.hyper"),
+    )?;
+    let weights = r.key(
+        case,
+        path,
+        "weights_before",
+        "the ten actor./critic. tensors",
+    )?;
+    let weights_before = r.named_tensors(
+        weights,
+        &format!("{path}.weights_before"),
+        parameter_shapes(config.hidden_dim),
+    )?;
+    let batch = batch(
+        r,
+        r.key(case, path, "batch", BATCH)?,
+        &format!("{path}.batch"),
+    )?;
+    Ok(ContinuousReplayCase {
+        config,
+        weights_before,
+        batch,
+    })
+}
+
+fn hyper(r: &Reader<'_>, h: &Value, path: &str) -> Result<PpoContinuousConfig, PpoError> {
+    let num = |key: &str, expected: &str| -> Result<f64, PpoError> {
+        r.number(
+            r.key(h, path, key, expected)?,
+            &format!("{path}.{key}"),
+            expected,
+        )
+    };
+    let count = |key: &str| -> Result<usize, PpoError> {
+        let expected = "a positive integer";
+        let v = r.key(h, path, key, expected)?;
+        v.as_u64()
+            .and_then(|n| usize::try_from(n).ok())
+            .ok_or_else(|| r.wrong(&format!("{path}.{key}"), expected, v))
+    };
+    let config = PpoContinuousConfig {
+        actor_lr: num("actor_lr", "a number > 0")?,
+        critic_lr: num("critic_lr", "a number > 0")?,
+        gamma: num("gamma", "a number in (0, 1]")?,
+        lmbda: num("lmbda", "a number in [0, 1]")?,
+        eps: num("eps", "a number in (0, 1)")?,
+        epochs: count("epochs")?,
+        hidden_dim: count("hidden_dim")?,
+        ..PpoContinuousConfig::default()
+    };
+    config.validate()?;
+    Ok(config)
+}
+
+fn batch(r: &Reader<'_>, b: &Value, path: &str) -> Result<ContinuousTransitions, PpoError> {
+    let column = |key: &str, expected: &str| -> Result<&Vec<Value>, PpoError> {
+        r.array(
+            r.key(b, path, key, expected)?,
+            &format!("{path}.{key}"),
+            expected,
+        )
+    };
+    let n = column("actions", "a list of N torques")?.len();
+    if n == 0 {
+        return Err(r.wrong(
+            &format!("{path}.actions"),
+            "at least one transition",
+            &Value::Array(vec![]),
+        ));
+    }
+    let numbers = |key: &str, what: &str| -> Result<Vec<f32>, PpoError> {
+        // f64 in the file, rounded to f32 as `torch.tensor(..., dtype=torch.float)` does
+        let expected = format!("a list of {n} {what} (one per step)");
+        r.floats(
+            r.key(b, path, key, &expected)?,
+            &format!("{path}.{key}"),
+            Some(n),
+            &expected,
+        )
+    };
+    let rows = |key: &str| -> Result<Vec<[f32; 3]>, PpoError> {
+        let expected = format!("a list of shape [{n}, {STATE_DIM}] (one observation per step)");
+        let list = column(key, &expected)?;
+        if list.len() != n {
+            let got = Value::Array(list.clone());
+            return Err(r.wrong(&format!("{path}.{key}"), &expected, &got));
+        }
+        list.iter()
+            .enumerate()
+            .map(|(t, row)| {
+                let key = format!("{path}.{key}[{t}]");
+                let v = r.floats(row, &key, Some(STATE_DIM), &expected)?;
+                Ok([v[0], v[1], v[2]])
+            })
+            .collect()
+    };
+    let dones_expected = format!("a list of {n} booleans (one per step)");
+    let dones_v = column("dones", &dones_expected)?;
+    if dones_v.len() != n {
+        let got = Value::Array(dones_v.clone());
+        return Err(r.wrong(&format!("{path}.dones"), &dones_expected, &got));
+    }
+    let dones = dones_v
+        .iter()
+        .enumerate()
+        .map(|(t, d)| {
+            d.as_bool()
+                .ok_or_else(|| r.wrong(&format!("{path}.dones[{t}]"), "true or false", d))
+        })
+        .collect::<Result<Vec<bool>, _>>()?;
+    Ok(ContinuousTransitions {
+        states: rows("states")?,
+        actions: numbers("actions", "torques")?,
+        rewards: numbers("rewards", "rewards")?,
+        next_states: rows("next_states")?,
+        dones,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ppo::replay::{AnyReplay, parse_any_replay};
+
+    fn case_json() -> Value {
+        serde_json::json!({"cases": [{
+            "hyper": {"actor_lr": 1e-4, "critic_lr": 5e-3, "gamma": 0.9, "lmbda": 0.9,
+                      "epochs": 2, "eps": 0.2, "hidden_dim": 2},
+            "weights_before": {
+                "actor.fc1.weight": [[0.1, 0.2, 0.3], [-0.1, 0.0, 0.1]],
+                "actor.fc1.bias": [0.0, 0.1],
+                "actor.fc_mu.weight": [[0.5, -0.5]], "actor.fc_mu.bias": [0.0],
+                "actor.fc_std.weight": [[0.2, 0.1]], "actor.fc_std.bias": [0.0],
+                "critic.fc1.weight": [[0.1, 0.2, 0.3], [-0.1, 0.0, 0.1]],
+                "critic.fc1.bias": [0.0, 0.1], "critic.fc2.weight": [[0.5, -0.5]],
+                "critic.fc2.bias": [0.0]},
+            "batch": {"states": [[1.0, 0.0, 0.1]], "actions": [0.5], "rewards": [-8.0],
+                      "next_states": [[1.0, 0.01, 0.2]], "dones": [true]}}]})
+    }
+
+    #[test]
+    fn a_small_case_replays() -> Result<(), PpoError> {
+        let text = case_json().to_string();
+        let AnyReplay::Continuous(cases) = parse_any_replay(&text, "t.json")? else {
+            return Err(PpoError::InvalidBatch(
+                "not recognised as continuous".into(),
+            ));
+        };
+        let out = replay_continuous_case(&cases[0])?;
+        assert_eq!(out.scaled_rewards, vec![[0.0]]); // (-8 + 8) / 8
+        assert_eq!(out.td_target, vec![[0.0]]); // done: no bootstrap
+        assert_eq!(out.epochs.len(), 2);
+        assert_eq!(out.weights_after.len(), 10);
+        Ok(())
+    }
+
+    #[test]
+    fn errors_name_the_key_and_shape() {
+        let mut j = case_json();
+        j["cases"][0]["weights_before"]["actor.fc_std.weight"] = serde_json::json!([[0.5]]);
+        let err = parse_any_replay(&j.to_string(), "t.json")
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            err.contains("cases[0].weights_before.actor.fc_std.weight[0]")
+                && err.contains("[1, 2]"),
+            "{err}"
+        );
+        let mut j = case_json();
+        j["cases"][0]["batch"]["states"] = serde_json::json!([[1.0, 0.0, 0.1, 0.0]]);
+        let err = parse_any_replay(&j.to_string(), "t.json")
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            err.contains("cases[0].batch.states[0]") && err.contains("[1, 3]"),
+            "{err}"
+        );
+    }
+}
