@@ -55,6 +55,7 @@ pub mod report;
 pub mod solutions;
 pub mod spec;
 pub mod value;
+#[cfg(feature = "app")]
 pub mod watch;
 
 use std::path::{Path, PathBuf};

@@ -9,7 +9,7 @@
 //!    and the committed cells equal the generated ones (which checks the steps' titles in
 //!    order and every exercise function present);
 //! 2. runs every notebook top to bottom in a fresh evcxr `CommandContext` (what the kernel
-//!    uses), with `:dep ppo-tutor = { path = ".." }` resolved from `notebooks/` as Jupyter
+//!    uses), with `:dep ppo-tutor = { path = "..", default-features = false }` resolved from `notebooks/` as Jupyter
 //!    would; a compile error, or anything on stderr (a panic, a failed `assert!`, a `?`
 //!    error: the kernel reports those only there) fails the test;
 //! 3. checks the cells marked `// check: NAME after N episodes`: the values the notebook

@@ -6,7 +6,7 @@
 //!
 //! - evcxr re-executes the current binary as its runtime: [`runtime_hook`] must be the first
 //!   call in that binary's `main` (`ppo-tutor` with the feature, `tests/notebooks.rs`);
-//! - evcxr reads its work folder from `EVCXR_TMPDIR`, and `:dep ppo-tutor = { path = ".." }`
+//! - evcxr reads its work folder from `EVCXR_TMPDIR`, and `:dep ppo-tutor = { path = "..", default-features = false }`
 //!   resolves against the working directory: [`relaunch`] re-runs the binary as a *driver*
 //!   with both set (`notebooks/` as Jupyter would use), candle on one thread (faster for
 //!   these small networks), and this crate's `Cargo.lock` so the kernel builds the same
