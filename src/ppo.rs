@@ -17,7 +17,8 @@
 //! - [`checkpoint`]: saving and loading an agent as safetensors with PyTorch's names.
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
 //! - [`continuous`]: the book's `PPOContinuous` for Pendulum, a Gaussian policy on the same
-//!   critic, GAE, clipped surrogate and Adam ([`PpoContinuous`]).
+//!   critic, GAE, clipped surrogate and Adam ([`PpoContinuous`]), trained by
+//!   [`ContinuousTrainer`].
 //!
 //! The update runs on candle tensors with autograd; acting (one observation at a time,
 //! 200k times per run) runs the same two matrix products in plain Rust on a copy of the
@@ -45,8 +46,9 @@ pub use agent::{Agent, Losses, Transitions};
 pub use checkpoint::CheckpointKind;
 pub use config::{Algorithm, PpoConfig};
 pub use continuous::{
-    ContinuousEpochTrace, ContinuousTransitions, ContinuousUpdateTrace, PolicyNetContinuous,
-    PpoContinuous, PpoContinuousConfig,
+    ContinuousEpisodeReport, ContinuousEpochTrace, ContinuousTrainer, ContinuousTransitions,
+    ContinuousUpdateTrace, PolicyNetContinuous, PpoContinuous, PpoContinuousConfig,
+    train_continuous,
 };
 pub use gradient::{SurrogateGradients, surrogate_gradients};
 pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};

@@ -1,25 +1,33 @@
-//! `ppo-tutor play --load FILE`: watch a saved agent balance the pole in the terminal.
+//! `ppo-tutor play --load FILE`: watch a saved agent in the terminal: the cart and pole of
+//! a CartPole agent, or the swinging pendulum of a Pendulum-v1 agent. The checkpoint says
+//! which it holds ([`CheckpointKind`]).
 
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
 use anyhow::Context;
 use clap::Args;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::widgets::{Block, Widget};
 
-use super::args::{parse_env, parse_seed};
+use super::args::parse_seed;
 use super::cartpole::ascii_frame;
-use crate::env::{CartPole, EnvId};
-use crate::ppo::{Agent, PpoConfig};
+use super::train::{TrainEnv, parse_train_env};
+use crate::env::{CartPole, EnvId, Pendulum};
+use crate::ppo::{Agent, CheckpointKind, PpoConfig, PpoContinuous, PpoContinuousConfig};
+use crate::tui::widgets::pendulum::PendulumView;
 
 /// Arguments of `ppo-tutor play`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Example:\n  ppo-tutor train --save agent.safetensors && ppo-tutor play --load agent.safetensors"
+    after_help = "Examples:\n  ppo-tutor train --save agent.safetensors && ppo-tutor play --load agent.safetensors\n  ppo-tutor train --env Pendulum-v1 --save pendulum.safetensors && ppo-tutor play --load pendulum.safetensors"
 )]
 pub struct PlayArgs {
-    /// The agent, as written by `ppo-tutor train --save FILE.safetensors`.
+    /// The agent, as written by `ppo-tutor train --save FILE.safetensors` (CartPole or
+    /// Pendulum-v1: the file says which).
     #[arg(long, value_name = "FILE")]
     pub load: PathBuf,
     /// Episodes to play.
@@ -28,15 +36,18 @@ pub struct PlayArgs {
     /// Seed of the first reset and of the action sampling.
     #[arg(long, default_value = "0", value_parser = parse_seed, allow_hyphen_values = true)]
     pub seed: u64,
-    /// Gymnasium environment id.
-    #[arg(long = "env", default_value = "CartPole-v1", value_parser = parse_env)]
-    pub env_id: EnvId,
-    /// Take the most probable action instead of sampling as in training.
+    /// Gymnasium environment id, in any case [default: the checkpoint's, CartPole-v1 or
+    /// Pendulum-v1]; CartPole-v0 plays a CartPole agent with a 200-step limit.
+    #[arg(long = "env", value_parser = parse_train_env)]
+    pub env_id: Option<TrainEnv>,
+    /// Take the most probable action instead of sampling as in training (a Pendulum-v1
+    /// agent always plays its mean torque μ).
     #[arg(long)]
     pub greedy: bool,
-    /// Milliseconds per frame (Gymnasium renders CartPole at 50 fps: 20 ms).
-    #[arg(long, default_value_t = 20)]
-    pub delay_ms: u64,
+    /// Milliseconds per frame [default: 20 for CartPole (Gymnasium's 50 fps), 33 for
+    /// Pendulum-v1 (30 fps)].
+    #[arg(long)]
+    pub delay_ms: Option<u64>,
     /// Print only each episode's return, without animation.
     #[arg(long)]
     pub no_render: bool,
@@ -46,24 +57,65 @@ pub struct PlayArgs {
 ///
 /// # Errors
 /// The checkpoint is missing or malformed (the message names the tensor and its expected
-/// shape), or writing to the terminal failed.
+/// shape), `--env` names another environment than the checkpoint's, or writing to the
+/// terminal failed.
 pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
+    let kind = checkpoint_kind(&args.load);
+    let pendulum_file = kind == Some(CheckpointKind::PendulumPpoContinuous);
+    let env = match args.env_id {
+        None if pendulum_file => TrainEnv::Pendulum,
+        None => TrainEnv::CartPole(EnvId::CartPoleV1),
+        // An unreadable file goes to the loader of the environment asked, which says why.
+        Some(asked) if kind.is_none() || (asked == TrainEnv::Pendulum) == pendulum_file => asked,
+        Some(asked) => {
+            let holds = kind.map_or("another agent".to_string(), |k| {
+                format!("a {} agent for {}", k.algorithm(), k.env())
+            });
+            eprintln!(
+                "error: --env {asked} does not match {}: it holds {holds}; drop --env to play \
+                 it on its own environment (see --help)",
+                args.load.display()
+            );
+            return Ok(ExitCode::from(super::EXIT_USAGE));
+        }
+    };
+    match env {
+        TrainEnv::CartPole(env_id) => play_cartpole(args, env_id),
+        TrainEnv::Pendulum => play_pendulum(args),
+    }
+}
+
+/// Which agent the file at `path` holds, by its metadata or else its parameter names;
+/// `None` when it cannot be told (an unreadable file: loading it reports why).
+#[must_use]
+pub fn checkpoint_kind(path: &Path) -> Option<CheckpointKind> {
+    let bytes = std::fs::read(path).ok()?;
+    let (_, header) = safetensors::SafeTensors::read_metadata(&bytes).ok()?;
+    header
+        .metadata()
+        .as_ref()
+        .and_then(CheckpointKind::from_metadata)
+        .or_else(|| CheckpointKind::from_names(&header.offset_keys()))
+}
+
+fn play_cartpole(args: &PlayArgs, env_id: EnvId) -> anyhow::Result<ExitCode> {
     let config = PpoConfig {
-        env_id: args.env_id,
+        env_id,
         ..PpoConfig::default()
     };
     let mut agent = Agent::load(&args.load, &config, args.seed)
         .with_context(|| format!("loading the agent from {}", args.load.display()))?;
     let render = !args.no_render && std::io::stdout().is_terminal();
-    let mut env = CartPole::new(args.env_id);
+    let delay = Duration::from_millis(args.delay_ms.unwrap_or(20));
+    let mut env = CartPole::new(env_id);
     let mut out = std::io::stdout().lock();
     for episode in 0..args.episodes {
         let mut obs = env.reset((episode == 0).then_some(args.seed));
         let (mut total, mut steps, mut drawn) = (0.0, 0, 0);
         loop {
             if render {
-                drawn = draw(&mut out, &env, args, episode, steps, drawn)?;
-                std::thread::sleep(Duration::from_millis(args.delay_ms));
+                drawn = draw_cartpole(&mut out, &env, env_id, (episode, steps), drawn)?;
+                std::thread::sleep(delay);
             }
             let action = if args.greedy {
                 agent.greedy_action(&obs)
@@ -76,7 +128,7 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
             steps += 1;
             if step.terminated || step.truncated {
                 if render {
-                    draw(&mut out, &env, args, episode, steps, drawn)?;
+                    draw_cartpole(&mut out, &env, env_id, (episode, steps), drawn)?;
                 }
                 let how = if step.terminated {
                     "the pole fell"
@@ -94,13 +146,12 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Draws one frame over the previous one; returns the number of lines drawn.
-fn draw(
+/// Draws one CartPole frame over the previous one; returns the number of lines drawn.
+fn draw_cartpole(
     out: &mut impl Write,
     env: &CartPole,
-    args: &PlayArgs,
-    episode: usize,
-    step: usize,
+    env_id: EnvId,
+    (episode, step): (usize, usize),
     previous: usize,
 ) -> anyhow::Result<usize> {
     let Some(state) = env.state() else {
@@ -112,12 +163,136 @@ fn draw(
     }
     writeln!(
         out,
-        "{} episode {episode} step {step:>3}  x={:+.3} θ={:+.3}      ",
-        args.env_id, state[0], state[2]
+        "{env_id} episode {episode} step {step:>3}  x={:+.3} θ={:+.3}      ",
+        state[0], state[2]
     )?;
     for line in &lines {
         writeln!(out, "{line}")?;
     }
     out.flush()?;
     Ok(lines.len() + 1)
+}
+
+/// Plays a Pendulum-v1 agent's mean torque μ(s), as the book watches a trained policy.
+fn play_pendulum(args: &PlayArgs) -> anyhow::Result<ExitCode> {
+    let agent = PpoContinuous::load(&args.load, &PpoContinuousConfig::default(), args.seed)
+        .with_context(|| format!("loading the agent from {}", args.load.display()))?;
+    let render = !args.no_render && std::io::stdout().is_terminal();
+    let delay = Duration::from_millis(args.delay_ms.unwrap_or(33));
+    let mut env = Pendulum::new();
+    let mut out = std::io::stdout().lock();
+    for episode in 0..args.episodes {
+        let mut obs = env.reset((episode == 0).then_some(args.seed));
+        let (mut total, mut steps, mut drawn, mut torque) = (0.0, 0, 0, 0.0);
+        loop {
+            if render {
+                let frame = PendulumFrame {
+                    episode,
+                    step: steps,
+                    torque,
+                };
+                drawn = draw_pendulum(&mut out, &env, &frame, drawn)?;
+                std::thread::sleep(delay);
+            }
+            torque = f64::from(agent.deterministic_action(&obs));
+            let step = env.step(torque)?;
+            obs = step.obs;
+            total += step.reward;
+            steps += 1;
+            if step.terminated || step.truncated {
+                if render {
+                    let frame = PendulumFrame {
+                        episode,
+                        step: steps,
+                        torque,
+                    };
+                    draw_pendulum(&mut out, &env, &frame, drawn)?;
+                }
+                writeln!(
+                    out,
+                    "episode {episode}: return {total:.2} (time limit after {steps} steps)"
+                )?;
+                break;
+            }
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// What the status line of a pendulum frame shows.
+struct PendulumFrame {
+    episode: usize,
+    step: usize,
+    /// The torque the agent asked for at the previous step (the env clips it to ±2).
+    torque: f64,
+}
+
+/// Canvas size of a pendulum frame, in terminal cells (twice as wide as high: square dots).
+const PENDULUM_CELLS: (u16, u16) = (44, 20);
+
+/// Draws one Pendulum frame over the previous one; returns the number of lines drawn.
+fn draw_pendulum(
+    out: &mut impl Write,
+    env: &Pendulum,
+    frame: &PendulumFrame,
+    previous: usize,
+) -> anyhow::Result<usize> {
+    let Some([theta, theta_dot]) = env.state() else {
+        return Ok(previous);
+    };
+    let lines = pendulum_lines(theta, frame.torque);
+    if previous > 0 {
+        write!(out, "\x1b[{previous}A")?;
+    }
+    writeln!(
+        out,
+        "Pendulum-v1 episode {} step {:>3}  θ={:+.3} θ̇={:+.3} u={:+.3}      ",
+        frame.episode,
+        frame.step,
+        crate::env::pendulum::angle_normalize(theta),
+        theta_dot,
+        frame.torque.clamp(-2.0, 2.0),
+    )?;
+    for line in &lines {
+        writeln!(out, "{line}")?;
+    }
+    out.flush()?;
+    Ok(lines.len() + 1)
+}
+
+/// The pendulum drawn by [`PendulumView`] as lines of text.
+fn pendulum_lines(theta: f64, torque: f64) -> Vec<String> {
+    let area = Rect::new(0, 0, PENDULUM_CELLS.0, PENDULUM_CELLS.1);
+    let mut buf = Buffer::empty(area);
+    PendulumView {
+        theta,
+        torque,
+        block: Block::bordered().title(" torque: arc around the pivot "),
+        color: false,
+    }
+    .render(area, &mut buf);
+    (0..area.height)
+        .map(|y| {
+            (0..area.width)
+                .map(|x| buf[(x, y)].symbol())
+                .collect::<String>()
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pendulum_frame_is_a_box_of_text() {
+        let lines = pendulum_lines(0.3, 1.0);
+        assert_eq!(lines.len(), usize::from(PENDULUM_CELLS.1));
+        assert!(
+            lines
+                .iter()
+                .all(|l| l.chars().count() == usize::from(PENDULUM_CELLS.0))
+        );
+        assert!(lines[0].contains("torque"));
+    }
 }

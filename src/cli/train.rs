@@ -1,9 +1,10 @@
 //! `ppo-tutor train`: the seed's `train_on_policy_agent` with tqdm-like progress bars, a
 //! summary, the return curve in the terminal, and optional JSON, checkpoint and figure.
+//! `--env Pendulum-v1` trains the book's `PPOContinuous` the same way ([`setup`]).
 
 use std::io::{IsTerminal, Write};
 use std::ops::ControlFlow;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
@@ -11,32 +12,43 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 
-use super::args::{SeedList, parse_env, parse_seed, parse_seeds};
+use super::args::{SeedList, parse_seed, parse_seeds};
 use crate::env::EnvId;
 use crate::plot::{ascii_return_plot, save_return_plot, smoothed_returns};
 use crate::ppo::train::mean_last;
-use crate::ppo::{Algorithm, EpisodeReport, PpoConfig, PpoError, TrainSummary, train};
+use crate::ppo::{
+    Agent, Algorithm, ContinuousEpisodeReport, EpisodeReport, PpoConfig, PpoContinuous, PpoError,
+    TrainSummary, train, train_continuous,
+};
 
-/// Arguments of `ppo-tutor train`; defaults are the seed's.
+pub mod setup;
+mod several;
+
+pub use setup::{Setup, TrainEnv, parse_train_env};
+
+/// Arguments of `ppo-tutor train`; defaults are the seed's on CartPole, the book's on
+/// Pendulum-v1.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  ppo-tutor train\n  ppo-tutor train --seed 3 --json run.json --save agent.safetensors --plot returns.svg\n  ppo-tutor play --load agent.safetensors\n  ppo-tutor train --seeds 0-4 --plot seeds.svg --json seeds.json"
+    after_help = "Examples:\n  ppo-tutor train\n  ppo-tutor train --seed 3 --json run.json --save agent.safetensors --plot returns.svg\n  ppo-tutor play --load agent.safetensors\n  ppo-tutor train --seeds 0-4 --plot seeds.svg --json seeds.json\n  ppo-tutor train --env Pendulum-v1 --save pendulum.safetensors && ppo-tutor play --load pendulum.safetensors"
 )]
 pub struct TrainArgs {
-    /// Episodes to train for (one update per episode).
-    #[arg(long, default_value_t = 500)]
-    pub episodes: usize,
+    /// Episodes to train for (one update per episode) [default: 500 on CartPole, 2000 on
+    /// Pendulum-v1].
+    #[arg(long)]
+    pub episodes: Option<usize>,
     /// Seed of the network initialisation, the action sampling and the first env.reset.
     #[arg(long, default_value = "0", value_parser = parse_seed, allow_hyphen_values = true)]
     pub seed: u64,
     /// Train several seeds in parallel (a range or a list: 0-4, 1,3,8): prints each seed's
-    /// mean of the last 50 returns and their mean ± std, and draws the mean curve over the
-    /// band of the seeds.
+    /// mean of the last 50 returns (100 on Pendulum-v1) and their mean ± std, and draws the
+    /// mean curve over the band of the seeds.
     #[arg(long, value_name = "LIST", value_parser = parse_seeds, conflicts_with_all = ["seed", "save"])]
     pub seeds: Option<SeedList>,
-    /// Gymnasium environment id.
-    #[arg(long = "env", default_value = "CartPole-v1", value_parser = parse_env)]
-    pub env_id: EnvId,
+    /// Gymnasium environment id, in any case: CartPole-v1 and CartPole-v0 (the seed's PPO) or
+    /// Pendulum-v1 (the book's PPOContinuous, a Gaussian policy).
+    #[arg(long = "env", default_value = "CartPole-v1", value_parser = parse_train_env)]
+    pub env_id: TrainEnv,
     /// Write returns, env steps and timing as JSON to FILE.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -49,47 +61,50 @@ pub struct TrainArgs {
     /// No progress bars and no terminal plot: only the summary.
     #[arg(long, short)]
     pub quiet: bool,
-    /// Actor (policy) learning rate.
-    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
-    pub actor_lr: f64,
-    /// Critic (value) learning rate.
-    #[arg(long, default_value_t = 1e-2, allow_hyphen_values = true)]
-    pub critic_lr: f64,
-    /// Discount factor γ, in (0, 1].
-    #[arg(long, default_value_t = 0.98, allow_hyphen_values = true)]
-    pub gamma: f64,
-    /// GAE λ, in [0, 1].
-    #[arg(long, default_value_t = 0.95, allow_hyphen_values = true)]
-    pub lmbda: f64,
-    /// Clip range ε, in (0, 1).
-    #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
-    pub eps: f64,
-    /// Epochs per update.
-    #[arg(long, default_value_t = 10)]
-    pub epochs: usize,
-    /// Hidden width of both networks.
-    #[arg(long, default_value_t = 128)]
-    pub hidden_dim: usize,
-    /// Bootstrap from V(s') when the time limit cuts an episode (not in the seed).
+    /// Actor (policy) learning rate [default: 1e-3 on CartPole, 1e-4 on Pendulum-v1].
+    #[arg(long, allow_hyphen_values = true)]
+    pub actor_lr: Option<f64>,
+    /// Critic (value) learning rate [default: 1e-2 on CartPole, 5e-3 on Pendulum-v1].
+    #[arg(long, allow_hyphen_values = true)]
+    pub critic_lr: Option<f64>,
+    /// Discount factor γ, in (0, 1] [default: 0.98 on CartPole, 0.9 on Pendulum-v1].
+    #[arg(long, allow_hyphen_values = true)]
+    pub gamma: Option<f64>,
+    /// GAE λ, in [0, 1] [default: 0.95 on CartPole, 0.9 on Pendulum-v1].
+    #[arg(long, allow_hyphen_values = true)]
+    pub lmbda: Option<f64>,
+    /// Clip range ε, in (0, 1) [default: 0.2].
+    #[arg(long, allow_hyphen_values = true)]
+    pub eps: Option<f64>,
+    /// Epochs per update [default: 10].
+    #[arg(long)]
+    pub epochs: Option<usize>,
+    /// Hidden width of both networks [default: 128].
+    #[arg(long)]
+    pub hidden_dim: Option<usize>,
+    /// Bootstrap from V(s') when the time limit cuts an episode (not in the seed; CartPole
+    /// only).
     #[arg(long)]
     pub bootstrap_truncation: bool,
-    /// Normalise advantages to mean 0, std 1 (not in the seed).
+    /// Normalise advantages to mean 0, std 1 (not in the seed; CartPole only).
     #[arg(long)]
     pub normalize_advantage: bool,
-    /// Entropy bonus coefficient; 0 is off (the seed).
+    /// Entropy bonus coefficient; 0 is off (the seed; CartPole only).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub entropy_coef: f64,
-    /// Clip each network's gradient norm to this value (off in the seed).
+    /// Clip each network's gradient norm to this value (off in the seed; CartPole only).
     #[arg(long, allow_hyphen_values = true)]
     pub max_grad_norm: Option<f64>,
-    /// Stop an update's epochs once approx_kl exceeds 1.5 × this (Spinning Up); off in the seed.
+    /// Stop an update's epochs once approx_kl exceeds 1.5 × this (Spinning Up); off in the
+    /// seed; CartPole only.
     #[arg(long, allow_hyphen_values = true)]
     pub target_kl: Option<f64>,
-    /// Drop the clip: the actor loss is −mean(ratio·Â) (the clip-lab experiment); off in the seed.
+    /// Drop the clip: the actor loss is −mean(ratio·Â) (the clip-lab experiment); off in the
+    /// seed; CartPole only.
     #[arg(long)]
     pub no_clip: bool,
     /// The update rule: ppo (the seed) or reinforce (REINFORCE with a baseline: one step per
-    /// episode on log π·(G_t − V(s_t)), no ratio, no clip).
+    /// episode on log π·(G_t − V(s_t)), no ratio, no clip; CartPole only).
     #[arg(long, value_enum, default_value = "ppo")]
     pub algorithm: AlgorithmArg,
 }
@@ -113,19 +128,21 @@ impl From<AlgorithmArg> for Algorithm {
 }
 
 impl TrainArgs {
-    /// The configuration these arguments describe.
+    /// The CartPole configuration these arguments describe, on `env_id`; flags left out
+    /// take the seed's values.
     #[must_use]
-    pub fn config(&self) -> PpoConfig {
+    pub fn config_for(&self, env_id: EnvId) -> PpoConfig {
+        let seed = PpoConfig::default();
         PpoConfig {
-            actor_lr: self.actor_lr,
-            critic_lr: self.critic_lr,
-            hidden_dim: self.hidden_dim,
-            gamma: self.gamma,
-            lmbda: self.lmbda,
-            epochs: self.epochs,
-            eps: self.eps,
-            num_episodes: self.episodes,
-            env_id: self.env_id,
+            actor_lr: self.actor_lr.unwrap_or(seed.actor_lr),
+            critic_lr: self.critic_lr.unwrap_or(seed.critic_lr),
+            hidden_dim: self.hidden_dim.unwrap_or(seed.hidden_dim),
+            gamma: self.gamma.unwrap_or(seed.gamma),
+            lmbda: self.lmbda.unwrap_or(seed.lmbda),
+            epochs: self.epochs.unwrap_or(seed.epochs),
+            eps: self.eps.unwrap_or(seed.eps),
+            num_episodes: self.episodes.unwrap_or(seed.num_episodes),
+            env_id,
             bootstrap_on_truncation: self.bootstrap_truncation,
             normalize_advantage: self.normalize_advantage,
             entropy_coef: self.entropy_coef,
@@ -142,34 +159,36 @@ impl TrainArgs {
 /// # Errors
 /// Training diverged, or an output file could not be written.
 pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
-    let config = args.config();
-    if let Err(err) = config.validate() {
-        let err = match err {
-            PpoError::InvalidConfig {
-                field,
-                value,
-                expected,
-            } => format!("invalid --{} {value}: expected {expected}", flag_of(field)),
-            other => other.to_string(),
-        };
-        eprintln!("error: {err} (see --help)");
-        return Ok(ExitCode::from(super::EXIT_USAGE));
-    }
+    let setup = match Setup::from_args(args) {
+        Ok(setup) => setup,
+        Err(err) => {
+            eprintln!("error: {err} (see --help)");
+            return Ok(ExitCode::from(super::EXIT_USAGE));
+        }
+    };
     if let Some(seeds) = &args.seeds {
-        return several::run(args, &config, &seeds.0);
+        return several::run(args, &setup, &seeds.0);
     }
     let mut bars = Bars::new(!args.quiet && std::io::stderr().is_terminal(), !args.quiet);
-    let (summary, agent) = train(config.clone(), args.seed, |report| {
-        bars.update(report);
-        ControlFlow::Continue(())
-    })
+    let (summary, agent) = match &setup {
+        Setup::CartPole(config) => train(config.clone(), args.seed, |report| {
+            bars.update(&Progress::from(report));
+            ControlFlow::Continue(())
+        })
+        .map(|(summary, agent)| (summary, Trained::CartPole(agent))),
+        Setup::Pendulum(config) => train_continuous(config.clone(), args.seed, |report| {
+            bars.update(&Progress::from(report));
+            ControlFlow::Continue(())
+        })
+        .map(|(summary, agent)| (summary, Trained::Pendulum(agent))),
+    }
     .context("training stopped")?;
     bars.finish();
 
     let smoothed = smoothed_returns(&summary.returns);
-    print_summary(&summary, &config, args.seed, &smoothed, !args.quiet)?;
+    print_summary(&summary, &setup, args.seed, &smoothed, !args.quiet)?;
     if let Some(path) = &args.json {
-        let value = run_json(&summary, &config, args.seed, &smoothed);
+        let value = run_json(&summary, &setup, args.seed, &smoothed);
         std::fs::write(path, format!("{value}\n"))
             .with_context(|| format!("writing {}", path.display()))?;
     }
@@ -179,35 +198,40 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         writeln!(out, "saved the agent to {}", path.display())?;
     }
     if let Some(path) = &args.plot {
-        let title = format!("PPO on {}", config.env_id);
+        let title = format!("PPO on {}", setup.env());
         save_return_plot(path, &title, &summary.returns, &smoothed)?;
         writeln!(out, "drew the return curve to {}", path.display())?;
     }
     Ok(ExitCode::SUCCESS)
 }
 
-mod several;
+/// A trained agent of either kind, to save.
+enum Trained {
+    CartPole(Agent),
+    Pendulum(PpoContinuous),
+}
 
-/// The `--flag` spelling of a config field.
-fn flag_of(field: &str) -> String {
-    match field {
-        "num_episodes" => "episodes".into(),
-        "bootstrap_on_truncation" => "bootstrap-truncation".into(),
-        other => other.replace('_', "-"),
+impl Trained {
+    fn save(&self, path: &Path) -> Result<(), PpoError> {
+        match self {
+            Self::CartPole(agent) => agent.save(path),
+            Self::Pendulum(agent) => agent.save(path),
+        }
     }
 }
 
-/// The `--json` document: what `seed_ppo.py --json` writes, plus the configuration.
+/// The `--json` document: what `seed_ppo.py --json` writes, plus the configuration (and,
+/// on Pendulum-v1, `book_ppo_continuous.py`'s `mean_last_100`).
 pub(super) fn run_json(
     summary: &TrainSummary,
-    config: &PpoConfig,
+    setup: &Setup,
     seed: u64,
     smoothed: &[f64],
 ) -> serde_json::Value {
-    json!({
+    let mut value = json!({
         "episodes": summary.returns.len(),
         "seed": seed,
-        "env": config.env_id.as_str(),
+        "env": setup.env(),
         "env_steps": summary.env_steps,
         "wall_s": summary.wall_s,
         "steps_per_s": summary.steps_per_s(),
@@ -215,8 +239,12 @@ pub(super) fn run_json(
         "peak_rss_mb": peak_rss_mb(),
         "returns": summary.returns,
         "moving_average": smoothed,
-        "config": config,
-    })
+        "config": setup.config_json(),
+    });
+    if let Setup::Pendulum(_) = setup {
+        value["mean_last_100"] = json!(summary.mean_last(100));
+    }
+    value
 }
 
 /// The process's peak resident memory in MB (Linux `VmHWM`), `None` elsewhere.
@@ -230,27 +258,37 @@ pub fn peak_rss_mb() -> Option<f64> {
 
 fn print_summary(
     summary: &TrainSummary,
-    config: &PpoConfig,
+    setup: &Setup,
     seed: u64,
     smoothed: &[f64],
     plot: bool,
 ) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();
-    let best = summary.returns.iter().copied().fold(0.0, f64::max);
+    let best = summary
+        .returns
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    // CartPole's returns are whole numbers; Pendulum's are not.
+    let best = match setup {
+        Setup::CartPole(_) => format!("{best}"),
+        Setup::Pendulum(_) => format!("{best:.1}"),
+    };
     writeln!(
         out,
         "PPO on {}, seed {seed}: {} episodes, {} env steps in {:.2} s ({:.0} steps/s)",
-        config.env_id,
+        setup.env(),
         summary.returns.len(),
         summary.env_steps,
         summary.wall_s,
         summary.steps_per_s()
     )?;
+    let last = setup.last();
     writeln!(
         out,
         "mean return of the last {} episodes: {:.1}   (last 10: {:.1}, best: {best})",
-        summary.returns.len().min(50),
-        summary.mean_last(50),
+        summary.returns.len().min(last),
+        summary.mean_last(last),
         summary.mean_last(10),
     )?;
     if plot {
@@ -261,6 +299,39 @@ fn print_summary(
         }
     }
     Ok(())
+}
+
+/// What the progress bars need from one episode, of either agent.
+struct Progress {
+    episode: usize,
+    iteration: usize,
+    episode_in_iteration: usize,
+    iteration_len: usize,
+    episode_return: f64,
+}
+
+impl From<&EpisodeReport> for Progress {
+    fn from(r: &EpisodeReport) -> Self {
+        Self {
+            episode: r.episode,
+            iteration: r.iteration,
+            episode_in_iteration: r.episode_in_iteration,
+            iteration_len: r.iteration_len,
+            episode_return: r.episode_return,
+        }
+    }
+}
+
+impl From<&ContinuousEpisodeReport> for Progress {
+    fn from(r: &ContinuousEpisodeReport) -> Self {
+        Self {
+            episode: r.episode,
+            iteration: r.iteration,
+            episode_in_iteration: r.episode_in_iteration,
+            iteration_len: r.iteration_len,
+            episode_return: r.episode_return,
+        }
+    }
 }
 
 /// The seed's ten tqdm bars ("Iteration i"), with the same postfix every 10 episodes.
@@ -282,7 +353,7 @@ impl Bars {
         }
     }
 
-    fn update(&mut self, r: &EpisodeReport) {
+    fn update(&mut self, r: &Progress) {
         self.returns.push(r.episode_return);
         if self.draw && r.episode_in_iteration == 0 {
             let style = ProgressStyle::with_template(

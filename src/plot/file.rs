@@ -251,30 +251,35 @@ fn draw<DB: DrawingBackend>(
     figure: Figure<'_>,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     root.fill(&WHITE)?;
-    let (len, highest) = match figure {
+    let (len, values): (usize, Vec<f64>) = match figure {
         Figure::Curve { returns, smoothed } => (
             returns.len(),
-            returns.iter().chain(smoothed).copied().fold(1.0, f64::max),
+            returns.iter().chain(smoothed).copied().collect(),
         ),
         Figure::Band { band, .. } => (
             band.mean.len(),
-            band.high.iter().copied().fold(1.0, f64::max),
+            band.high.iter().chain(&band.low).copied().collect(),
         ),
         Figure::Arms { arms, .. } => (
             arms.iter().map(|(_, b)| b.mean.len()).max().unwrap_or(0),
             arms.iter()
-                .flat_map(|(_, b)| b.high.iter().copied())
-                .fold(1.0, f64::max),
+                .flat_map(|(_, b)| b.high.iter().chain(&b.low).copied())
+                .collect(),
         ),
     };
+    let finite = || values.iter().copied().filter(|v| v.is_finite());
+    let highest = finite().fold(1.0, f64::max);
+    // Returns below 0 (Pendulum's) extend the axis down; CartPole's start at 0.
+    let lowest = finite().fold(0.0, f64::min);
     let x_max = len.saturating_sub(1).max(1) as f64;
     let y_max = highest * 1.05;
+    let y_min = lowest * 1.05;
     let mut chart = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 28))
         .margin(20)
         .x_label_area_size(50)
         .y_label_area_size(70)
-        .build_cartesian_2d(0.0..x_max, 0.0..y_max)?;
+        .build_cartesian_2d(0.0..x_max, y_min..y_max)?;
     chart
         .configure_mesh()
         .x_desc("Episodes")

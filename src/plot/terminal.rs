@@ -12,7 +12,8 @@
 use crate::ppo::seeds::Band;
 
 /// Draws `returns` (`.`) and `smoothed` (`*`, drawn over) in a `width` x `height` grid of
-/// cells, with a y axis from 0 to a round maximum and an x axis of episode numbers.
+/// cells, with a y axis from 0 to a round maximum (from a round minimum to 0 for negative
+/// returns, as Pendulum's) and an x axis of episode numbers.
 /// Returns the lines to print, without trailing newlines.
 #[must_use]
 pub fn ascii_return_plot(
@@ -88,10 +89,12 @@ pub fn ascii_versus_plot(
     ))
 }
 
-/// A character grid with a y axis from 0 to a round maximum and `n` episodes across.
+/// A character grid with a y axis from 0 to a round maximum (or from a round minimum, for
+/// negative values) and `n` episodes across.
 struct Grid {
     cells: Vec<Vec<char>>,
     top: f64,
+    bottom: f64,
     n: usize,
     width: usize,
     height: usize,
@@ -100,10 +103,20 @@ struct Grid {
 impl Grid {
     fn new(values: impl Iterator<Item = f64>, n: usize, width: usize, height: usize) -> Self {
         let (width, height) = (width.max(10), height.max(3));
-        let top = nice_ceiling(values.filter(|v| v.is_finite()).fold(0.0, f64::max));
+        let (low, high) = values
+            .filter(|v| v.is_finite())
+            .fold((0.0, 0.0), |(lo, hi): (f64, f64), v| (lo.min(v), hi.max(v)));
+        // Only negative values: the axis ends at 0 (at a round maximum otherwise).
+        let top = if low < 0.0 && high <= 0.0 {
+            0.0
+        } else {
+            nice_ceiling(high)
+        };
+        let bottom = if low < 0.0 { -nice_ceiling(-low) } else { 0.0 };
         Self {
             cells: vec![vec![' '; width]; height],
             top,
+            bottom,
             n,
             width,
             height,
@@ -119,7 +132,7 @@ impl Grid {
     }
 
     fn row(&self, v: f64) -> usize {
-        let frac = (v / self.top).clamp(0.0, 1.0);
+        let frac = ((v - self.bottom) / (self.top - self.bottom)).clamp(0.0, 1.0);
         ((1.0 - frac) * (self.height - 1) as f64).round() as usize
     }
 
@@ -146,20 +159,21 @@ impl Grid {
         let Self {
             cells,
             top,
+            bottom,
             n,
             width,
             height,
         } = self;
-        let label_width = format!("{top}").len().max(1);
+        let label_width = format!("{top}").len().max(format!("{bottom}").len());
         let mut lines = Vec::with_capacity(height + 3);
         lines.push(format!("{:>label_width$}  {legend}", ""));
         for (r, row) in cells.into_iter().enumerate() {
             let label = if r == 0 {
                 format!("{top}")
             } else if r == (height - 1) / 2 && height > 4 {
-                format!("{}", top / 2.0)
+                format!("{}", f64::midpoint(top, bottom))
             } else if r == height - 1 {
-                "0".to_string()
+                format!("{bottom}")
             } else {
                 String::new()
             };
@@ -234,6 +248,19 @@ mod tests {
         );
         assert!(lines[1].starts_with("500 +"), "{}", lines[1]);
         assert!(lines.last().is_some_and(|l| l.ends_with("499")));
+    }
+
+    /// Pendulum's returns are negative: the axis runs from a round minimum to 0.
+    #[test]
+    fn negative_returns_hang_below_zero() {
+        let returns = [-1200.0, -800.0, -250.0];
+        let lines = ascii_return_plot(&returns, &returns, 21, 11);
+        assert!(lines[1].starts_with("    0 +"), "{lines:#?}");
+        assert!(lines[6].starts_with("-1000 +"), "{lines:#?}");
+        assert!(lines[11].starts_with("-2000 +"), "{lines:#?}");
+        // -1200 is row 6 of 0..=10 on a -2000..0 axis; -250 is row 1.
+        assert_eq!(lines[7].chars().nth(7), Some('*'), "{lines:#?}");
+        assert_eq!(lines[2].chars().nth(7 + 20), Some('*'), "{lines:#?}");
     }
 
     #[test]

@@ -24,6 +24,8 @@
 //!   [`ContinuousUpdateTrace`] ([`trace`]).
 //! - [`checkpoint`]: safetensors with PyTorch's names, marked as a Pendulum-v1 agent.
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_continuous_update_pytorch.json`).
+//! - [`train`](mod@train): the book's episode loop on Pendulum-v1 as a step-by-step
+//!   [`ContinuousTrainer`], and [`train_continuous`].
 //!
 //! ```
 //! use ppo_tutor::ppo::{ContinuousTransitions, PpoContinuous, PpoContinuousConfig};
@@ -46,12 +48,14 @@ pub mod model;
 pub mod normal;
 pub mod replay;
 pub mod trace;
+pub mod train;
 
 pub use agent::{ContinuousTransitions, PpoContinuous};
 pub use config::PpoContinuousConfig;
 pub use model::{ContinuousActorSnapshot, PolicyNetContinuous, softplus, softplus_f32};
 pub use normal::{log_prob, normal_log_prob};
 pub use trace::{ContinuousEpochTrace, ContinuousUpdateTrace};
+pub use train::{ContinuousEpisodeReport, ContinuousTrainer, train_continuous};
 
 /// Observations per state: Pendulum's `(cos θ, sin θ, θ̇)`.
 pub const STATE_DIM: usize = 3;

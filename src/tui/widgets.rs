@@ -1,8 +1,10 @@
-//! The app's custom drawings: live tensors, the return plot, the cart and pole, the clip chart.
+//! The app's custom drawings: live tensors, the return plot, the cart and pole, the
+//! pendulum, the clip chart.
 
 pub mod cartpole;
 pub mod clip;
 pub mod lab;
+pub mod pendulum;
 pub mod plot;
 pub mod tensors;
 pub mod text;

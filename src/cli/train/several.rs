@@ -1,6 +1,6 @@
 //! `ppo-tutor train --seeds LIST`: one configuration over several seeds at once, on every
-//! core, summarised as each seed's mean of the last 50 returns, their mean ± std, and the
-//! mean curve over the band the seeds span.
+//! core, summarised as each seed's mean of the last 50 returns (100 on Pendulum-v1), their
+//! mean ± std, and the mean curve over the band the seeds span.
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -9,32 +9,38 @@ use std::time::Instant;
 use anyhow::Context;
 use serde_json::json;
 
-use super::{TrainArgs, peak_rss_mb};
+use super::{Setup, TrainArgs, peak_rss_mb};
 use crate::plot::{ascii_band_plot, save_band_plot, smoothed_returns};
-use crate::ppo::PpoConfig;
-use crate::ppo::seeds::{Band, SeedRun, mean_std, train_seeds};
+use crate::ppo::seeds::{Band, SeedRun, mean_std, train_continuous_seeds, train_seeds};
 
-/// Episodes at the end of a run whose mean return summarises it (the seed's 50).
-const LAST: usize = 50;
-
-/// Trains `config` once per seed and reports as the module says.
+/// Trains `setup` once per seed and reports as the module says.
 ///
 /// # Errors
 /// A run that diverged, or an output file that could not be written.
-pub(super) fn run(args: &TrainArgs, config: &PpoConfig, seeds: &[u64]) -> anyhow::Result<ExitCode> {
+pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Result<ExitCode> {
     let threads = std::thread::available_parallelism()
         .map_or(1, usize::from)
         .min(seeds.len());
-    let bar =
-        super::super::episodes_bar(args.quiet, seeds.len() * config.num_episodes, "all seeds");
+    let episodes = setup.num_episodes();
+    let bar = super::super::episodes_bar(args.quiet, seeds.len() * episodes, "all seeds");
     let started = Instant::now();
-    let runs = train_seeds(config, seeds, threads, |seed, report| {
+    let on_episode = |seed: u64, episode: usize| {
         if let Some(bar) = &bar {
             bar.inc(1);
-        } else if !args.quiet && report.episode + 1 == config.num_episodes {
-            eprintln!("seed {seed}: {} episodes trained", config.num_episodes);
+        } else if !args.quiet && episode + 1 == episodes {
+            eprintln!("seed {seed}: {episodes} episodes trained");
         }
-    })
+    };
+    let runs = match setup {
+        Setup::CartPole(config) => train_seeds(config, seeds, threads, |seed, report| {
+            on_episode(seed, report.episode);
+        }),
+        Setup::Pendulum(config) => {
+            train_continuous_seeds(config, seeds, threads, |seed, report| {
+                on_episode(seed, report.episode);
+            })
+        }
+    }
     .context("training stopped")?;
     if let Some(bar) = &bar {
         bar.finish_and_clear();
@@ -45,24 +51,24 @@ pub(super) fn run(args: &TrainArgs, config: &PpoConfig, seeds: &[u64]) -> anyhow
         .map(|r| smoothed_returns(&r.summary.returns))
         .collect();
     let band = Band::of(&smoothed);
-    let finals: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(LAST)).collect();
+    let last = setup.last();
+    let finals: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(last)).collect();
 
     let mut out = std::io::stdout().lock();
     let steps: u64 = runs.iter().map(|r| r.summary.env_steps).sum();
     writeln!(
         out,
-        "PPO on {}, {} seeds, {} episodes each, {threads} at a time: {steps} env steps in {wall_s:.2} s",
-        config.env_id,
+        "PPO on {}, {} seeds, {episodes} episodes each, {threads} at a time: {steps} env steps in {wall_s:.2} s",
+        setup.env(),
         runs.len(),
-        config.num_episodes,
     )?;
     for run in &runs {
         writeln!(
             out,
             "seed {:>3}: mean return of the last {} episodes {:6.1}",
             run.seed,
-            run.summary.returns.len().min(LAST),
-            run.summary.mean_last(LAST)
+            run.summary.returns.len().min(last),
+            run.summary.mean_last(last)
         )?;
     }
     let (mean, std) = mean_std(&finals);
@@ -79,12 +85,12 @@ pub(super) fn run(args: &TrainArgs, config: &PpoConfig, seeds: &[u64]) -> anyhow
         }
     }
     if let Some(path) = &args.json {
-        let value = seeds_json(config, &runs, &smoothed, &band, (mean, std), wall_s);
+        let value = seeds_json(setup, &runs, &smoothed, &band, (mean, std), wall_s);
         std::fs::write(path, format!("{value}\n"))
             .with_context(|| format!("writing {}", path.display()))?;
     }
     if let Some(path) = &args.plot {
-        let title = format!("PPO on {}, {} seeds", config.env_id, runs.len());
+        let title = format!("PPO on {}, {} seeds", setup.env(), runs.len());
         save_band_plot(path, &title, &band, runs.len())?;
         writeln!(out, "drew the seeds' curves to {}", path.display())?;
     }
@@ -92,30 +98,47 @@ pub(super) fn run(args: &TrainArgs, config: &PpoConfig, seeds: &[u64]) -> anyhow
 }
 
 /// The `--json` document of a several-seed run: every seed's returns and moving average,
-/// the summary over seeds and the band.
+/// the summary over seeds (`mean_last_50`; on Pendulum-v1 `mean_last_100` too, the one
+/// `(mean, std)` gives) and the band.
 fn seeds_json(
-    config: &PpoConfig,
+    setup: &Setup,
     runs: &[SeedRun],
     smoothed: &[Vec<f64>],
     band: &Band,
     (mean, std): (f64, f64),
     wall_s: f64,
 ) -> serde_json::Value {
-    json!({
-        "episodes": config.num_episodes,
+    let key = format!("mean_last_{}", setup.last());
+    let over_seeds = |k: usize| {
+        if k == setup.last() {
+            (mean, std)
+        } else {
+            let means: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(k)).collect();
+            mean_std(&means)
+        }
+    };
+    let (mean_50, std_50) = over_seeds(50);
+    let mut value = json!({
+        "episodes": setup.num_episodes(),
         "seeds": runs.iter().map(|r| r.seed).collect::<Vec<_>>(),
-        "env": config.env_id.as_str(),
+        "env": setup.env(),
         "wall_s": wall_s,
         "peak_rss_mb": peak_rss_mb(),
-        "mean_last_50": { "mean": mean, "std": std },
-        "runs": runs.iter().zip(smoothed).map(|(r, s)| json!({
-            "seed": r.seed,
-            "env_steps": r.summary.env_steps,
-            "mean_last_50": r.summary.mean_last(LAST),
-            "returns": r.summary.returns,
-            "moving_average": s,
-        })).collect::<Vec<_>>(),
+        "mean_last_50": { "mean": mean_50, "std": std_50 },
+        "runs": runs.iter().zip(smoothed).map(|(r, s)| {
+            let mut run = json!({
+                "seed": r.seed,
+                "env_steps": r.summary.env_steps,
+                "mean_last_50": r.summary.mean_last(50),
+                "returns": r.summary.returns,
+                "moving_average": s,
+            });
+            run[&key] = json!(r.summary.mean_last(setup.last()));
+            run
+        }).collect::<Vec<_>>(),
         "band": { "of": "moving_average", "mean": band.mean, "low": band.low, "high": band.high },
-        "config": config,
-    })
+        "config": setup.config_json(),
+    });
+    value[&key] = json!({ "mean": mean, "std": std });
+    value
 }

@@ -1,0 +1,237 @@
+//! Which environment `ppo-tutor train` trains on, and the configuration its flags give:
+//! the seed's PPO on CartPole (the default) or the book's `PPOContinuous` on Pendulum-v1.
+//!
+//! Every hyper-parameter flag (`--actor-lr`, `--critic-lr`, `--gamma`, `--lmbda`, `--eps`,
+//! `--epochs`, `--hidden-dim`, `--episodes`) works for both and defaults to the chosen
+//! environment's reference (the seed's on CartPole, the book's on Pendulum-v1). The
+//! CartPole agent's opt-in switches are refused on Pendulum-v1, each with its reason: the
+//! book's continuous update has none of them (no advantage normalisation, entropy bonus,
+//! gradient clipping, KL stop, unclipped or REINFORCE variant, nor a bootstrap at the time
+//! limit: its `done` is `terminated or truncated`).
+
+use std::fmt;
+
+use serde_json::json;
+
+use super::{AlgorithmArg, TrainArgs};
+use crate::env::EnvId;
+use crate::env::pendulum::ENV_ID as PENDULUM_V1;
+use crate::ppo::{PpoConfig, PpoContinuousConfig, PpoError};
+
+/// A Gymnasium id `ppo-tutor train` and `play` accept.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TrainEnv {
+    /// `CartPole-v1` or `CartPole-v0`: the seed's PPO.
+    CartPole(EnvId),
+    /// `Pendulum-v1`: the book's `PPOContinuous`.
+    Pendulum,
+}
+
+impl TrainEnv {
+    /// Every id, in the order help and errors list them.
+    pub const ALL: [TrainEnv; 3] = [
+        TrainEnv::CartPole(EnvId::CartPoleV1),
+        TrainEnv::CartPole(EnvId::CartPoleV0),
+        TrainEnv::Pendulum,
+    ];
+
+    /// The id as Gymnasium spells it.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::CartPole(id) => id.as_str(),
+            Self::Pendulum => PENDULUM_V1,
+        }
+    }
+}
+
+impl fmt::Display for TrainEnv {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Parses a Gymnasium id in any case (`CartPole-v1`, `pendulum-v1`).
+///
+/// # Errors
+/// A message listing the supported ids.
+pub fn parse_train_env(s: &str) -> Result<TrainEnv, String> {
+    let wanted = s.trim();
+    TrainEnv::ALL
+        .into_iter()
+        .find(|id| id.as_str().eq_ignore_ascii_case(wanted))
+        .ok_or_else(|| {
+            let ids: Vec<_> = TrainEnv::ALL.iter().map(|id| id.as_str()).collect();
+            format!(
+                "unknown environment '{s}': expected one of {} (any case)",
+                ids.join(", ")
+            )
+        })
+}
+
+/// What one `ppo-tutor train` command trains: an agent and its hyper-parameters.
+#[derive(Debug, Clone)]
+pub enum Setup {
+    /// The seed's PPO on CartPole.
+    CartPole(PpoConfig),
+    /// The book's `PPOContinuous` on Pendulum-v1.
+    Pendulum(PpoContinuousConfig),
+}
+
+impl Setup {
+    /// The configuration `args` describe, checked.
+    ///
+    /// # Errors
+    /// A usage message naming the flag: a value out of range, or a CartPole-only switch
+    /// given for Pendulum-v1 (with why it does not apply).
+    pub fn from_args(args: &TrainArgs) -> Result<Self, String> {
+        let setup = match args.env_id {
+            TrainEnv::CartPole(env_id) => Self::CartPole(args.config_for(env_id)),
+            TrainEnv::Pendulum => {
+                refuse_cartpole_switches(args)?;
+                let book = PpoContinuousConfig::default();
+                Self::Pendulum(PpoContinuousConfig {
+                    actor_lr: args.actor_lr.unwrap_or(book.actor_lr),
+                    critic_lr: args.critic_lr.unwrap_or(book.critic_lr),
+                    hidden_dim: args.hidden_dim.unwrap_or(book.hidden_dim),
+                    gamma: args.gamma.unwrap_or(book.gamma),
+                    lmbda: args.lmbda.unwrap_or(book.lmbda),
+                    epochs: args.epochs.unwrap_or(book.epochs),
+                    eps: args.eps.unwrap_or(book.eps),
+                    num_episodes: args.episodes.unwrap_or(book.num_episodes),
+                })
+            }
+        };
+        let checked = match &setup {
+            Self::CartPole(config) => config.validate(),
+            Self::Pendulum(config) => config.validate(),
+        };
+        match checked {
+            Ok(()) => Ok(setup),
+            Err(PpoError::InvalidConfig {
+                field,
+                value,
+                expected,
+            }) => Err(format!(
+                "invalid --{} {value}: expected {expected}",
+                flag_of(field)
+            )),
+            Err(other) => Err(other.to_string()),
+        }
+    }
+
+    /// The environment's Gymnasium id.
+    #[must_use]
+    pub fn env(&self) -> &'static str {
+        match self {
+            Self::CartPole(config) => config.env_id.as_str(),
+            Self::Pendulum(_) => PENDULUM_V1,
+        }
+    }
+
+    /// Episodes per run.
+    #[must_use]
+    pub fn num_episodes(&self) -> usize {
+        match self {
+            Self::CartPole(config) => config.num_episodes,
+            Self::Pendulum(config) => config.num_episodes,
+        }
+    }
+
+    /// How many final episodes the summary averages: the seed's 50 on CartPole, the book's
+    /// measurement's 100 on Pendulum-v1 (`mean_last_100` in `book_ppo_continuous.py`).
+    #[must_use]
+    pub fn last(&self) -> usize {
+        match self {
+            Self::CartPole(_) => 50,
+            Self::Pendulum(_) => 100,
+        }
+    }
+
+    /// The hyper-parameters as the `--json` documents record them.
+    #[must_use]
+    pub fn config_json(&self) -> serde_json::Value {
+        match self {
+            Self::CartPole(config) => json!(config),
+            Self::Pendulum(config) => json!(config),
+        }
+    }
+}
+
+/// Refuses each switch of the CartPole agent that the book's continuous update lacks.
+fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
+    let given: [(bool, &str, &str); 7] = [
+        (
+            args.bootstrap_truncation,
+            "--bootstrap-truncation",
+            "the book's PPOContinuous ends every episode at Pendulum-v1's 200-step time limit \
+             (done = terminated or truncated) and its update has no bootstrap from V(s')",
+        ),
+        (
+            args.normalize_advantage,
+            "--normalize-advantage",
+            "the book's PPOContinuous update uses the GAE advantage as it is",
+        ),
+        (
+            args.entropy_coef != 0.0,
+            "--entropy-coef",
+            "the book's PPOContinuous update has no entropy bonus",
+        ),
+        (
+            args.max_grad_norm.is_some(),
+            "--max-grad-norm",
+            "the book's PPOContinuous update does not clip gradients",
+        ),
+        (
+            args.target_kl.is_some(),
+            "--target-kl",
+            "the book's PPOContinuous update always runs all its epochs",
+        ),
+        (
+            args.no_clip,
+            "--no-clip",
+            "the book's PPOContinuous update always clips the ratio",
+        ),
+        (
+            args.algorithm != AlgorithmArg::Ppo,
+            "--algorithm",
+            "REINFORCE is implemented for CartPole's softmax policy only",
+        ),
+    ];
+    match given.into_iter().find(|(on, _, _)| *on) {
+        Some((_, flag, why)) => Err(format!(
+            "{flag} works only with CartPole: {why}; drop {flag} to train {PENDULUM_V1}"
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The `--flag` spelling of a config field.
+fn flag_of(field: &str) -> String {
+    match field {
+        "num_episodes" => "episodes".into(),
+        "bootstrap_on_truncation" => "bootstrap-truncation".into(),
+        other => other.replace('_', "-"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_parse_in_any_case_and_unknown_ones_list_the_choices() {
+        assert_eq!(parse_train_env("pendulum-V1"), Ok(TrainEnv::Pendulum));
+        assert_eq!(
+            parse_train_env("CARTPOLE-v0"),
+            Ok(TrainEnv::CartPole(EnvId::CartPoleV0))
+        );
+        let err = parse_train_env("Acrobot-v1").err().unwrap_or_default();
+        assert!(
+            err.contains("'Acrobot-v1'")
+                && err.contains("CartPole-v1")
+                && err.contains("Pendulum-v1"),
+            "{err}"
+        );
+    }
+}
