@@ -91,6 +91,13 @@ pub fn is_driver() -> bool {
 /// `RAYON_NUM_THREADS=1`, and no `CARGO_TARGET_DIR` (evcxr finds its build under
 /// `tmp/target`; a target folder set for this project's build must not redirect it).
 ///
+/// The notebooks turn on evcxr's cache of compiled dependencies (`:cache`), which lives in
+/// the user's cache folder. The driver keeps its own, `tmp/cache` (`XDG_CACHE_HOME`), so that
+/// cache and build folder always come from the same builds (a build folder left by older
+/// runs, filled up from a cache written by other builds, failed here: the cached candle and
+/// serde did not load, "can't find crate"), and the user's own kernels stay out of the
+/// tests' way.
+///
 /// # Errors
 /// [`KernelError::Io`] when `tmp` cannot be created or the driver cannot start.
 pub fn relaunch(root: &Path, tmp: &Path) -> Result<ExitStatus, KernelError> {
@@ -108,6 +115,7 @@ pub fn relaunch(root: &Path, tmp: &Path) -> Result<ExitStatus, KernelError> {
         .env(DRIVER_VAR, "1")
         .env("EVCXR_TMPDIR", tmp)
         .env("RAYON_NUM_THREADS", "1")
+        .env("XDG_CACHE_HOME", tmp.join("cache"))
         .env_remove("CARGO_TARGET_DIR")
         .env_remove("CARGO_BUILD_TARGET_DIR")
         .current_dir(root.join("notebooks"))
