@@ -41,13 +41,15 @@ pub enum Command {
     Lessons,
     /// Print one lesson step (or all steps) as plain text with its live values.
     Show(lessons::ShowArgs),
-    /// Train the seed's PPO on CartPole-v1: progress bars, a summary and the return curve.
+    /// Train the seed's PPO on CartPole-v1 (or the book's PPOContinuous with --env Pendulum-v1):
+    /// progress bars, a summary and the return curve.
     Train(train::TrainArgs),
     /// Run a clip-lab experiment: one knob changed, every setting over several seeds.
     Lab(lab::LabArgs),
-    /// Watch a saved agent (`train --save`) balance the pole in the terminal.
+    /// Watch a saved agent (`train --save`) balance the pole or swing up the pendulum.
     Play(play::PlayArgs),
-    /// Re-run recorded PyTorch updates (ppo_update_pytorch.json schema) and print ours.
+    /// Re-run recorded PyTorch updates (ppo_update_pytorch.json, or its continuous twin) and
+    /// print ours.
     Replay(replay::ReplayArgs),
     /// Grade your solution of an exercise (or all): checks, first failing input, hints.
     Grade(grade::GradeArgs),

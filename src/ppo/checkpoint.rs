@@ -68,7 +68,9 @@ impl CheckpointKind {
     fn how_to_save(self) -> &'static str {
         match self {
             Self::CartPolePpo => "write one with `ppo-tutor train --save FILE.safetensors`",
-            Self::PendulumPpoContinuous => "write one with `PpoContinuous::save`",
+            Self::PendulumPpoContinuous => {
+                "write one with `ppo-tutor train --env Pendulum-v1 --save FILE.safetensors`"
+            }
         }
     }
 
