@@ -1,13 +1,19 @@
 #!/usr/bin/env python3
 """ppo-tutor's candle PPO against the seed's PyTorch PPO, side by side, same machine.
 
-Runs the full default training (500 episodes, CartPole-v1) of both programs for each seed,
-one after the other, and prints a Markdown table: wall time, env steps per second, peak
-resident memory (from wait4, the process and anything it waited for), and the mean return
-of the last 50 episodes.
+Runs the full default training of both programs for each seed, one after the other, and
+prints a Markdown table: wall time, env steps per second, peak resident memory (from wait4,
+the process and anything it waited for), and the mean return of the last episodes.
+
+- CartPole-v1 (default): the seed's PPO, 500 episodes, mean of the last 50 returns; the
+  peer is seed_ppo.py.
+- `--env Pendulum-v1`: the book's PPOContinuous, 2000 episodes, mean of the last 100; the
+  peer is book_ppo_continuous.py (it imports seed_ppo.py from its own folder).
 
 usage: python3 benches/ppo_vs_pytorch.py --peer PATH/seed_ppo.py --python PEER_VENV/bin/python \
            [--seeds 0-3] [--episodes 500] [--bin target/release/ppo-tutor] [--out results.json]
+       python3 benches/ppo_vs_pytorch.py --env Pendulum-v1 --peer PATH/book_ppo_continuous.py \
+           --python PEER_VENV/bin/python [--seeds 0-4] [--episodes 2000]
 
 The peer needs gymnasium==1.4.0, torch and numpy (see the peer's README); seed_ppo.py runs
 with --threads 1 (torch.set_num_threads(1)). Build ppo-tutor first: cargo build --release.
@@ -40,31 +46,36 @@ def main():
     p.add_argument('--python', default=sys.executable, help='python with torch + gymnasium')
     p.add_argument('--bin', default='target/release/ppo-tutor')
     p.add_argument('--seeds', default='0-3')
-    p.add_argument('--episodes', type=int, default=500)
+    p.add_argument('--episodes', type=int, help='default: 500 (CartPole-v1), 2000 (Pendulum-v1)')
+    p.add_argument('--env', default='CartPole-v1', choices=['CartPole-v1', 'Pendulum-v1'])
     p.add_argument('--out', help='also write every run as JSON here')
     a = p.parse_args()
+    pendulum = a.env == 'Pendulum-v1'
+    episodes = a.episodes or (2000 if pendulum else 500)
+    last = 100 if pendulum else 50
+    peer_name = 'PyTorch book' if pendulum else 'PyTorch seed'
     rows, tmp = [], tempfile.mkdtemp()
     for seed in seeds(a.seeds):
         for name, cmd in (
-            ('ppo-tutor', [a.bin, 'train', '--quiet', '--episodes', str(a.episodes), '--seed', str(seed)]),
-            ('PyTorch seed', [a.python, a.peer, '--episodes', str(a.episodes), '--seed', str(seed), '--threads', '1']),
+            ('ppo-tutor', [a.bin, 'train', '--quiet', '--env', a.env, '--episodes', str(episodes), '--seed', str(seed)]),
+            (peer_name, [a.python, a.peer, '--episodes', str(episodes), '--seed', str(seed), '--threads', '1']),
         ):
             out = os.path.join(tmp, f'{name.split()[0]}-{seed}.json')
             doc, wall, rss = run(cmd + ['--json', out], out)
             row = dict(program=name, seed=seed, wall_s=wall, train_s=doc['wall_s'],
                        env_steps=doc['env_steps'], steps_per_s=doc['env_steps'] / doc['wall_s'],
-                       peak_rss_mb=rss, mean_last_50=statistics.fmean(doc['returns'][-50:]))
+                       peak_rss_mb=rss, mean_last=statistics.fmean(doc['returns'][-last:]))
             rows.append(row)
             print(f"{name:12} seed {seed}: {wall:7.2f} s, {row['env_steps']} steps, "
-                  f"{rss:6.1f} MB, mean last 50 {row['mean_last_50']:.1f}", file=sys.stderr)
+                  f"{rss:6.1f} MB, mean last {last} {row['mean_last']:.1f}", file=sys.stderr)
     if a.out:
         with open(a.out, 'w') as f:
             json.dump(rows, f, indent=1)
-    print('| program | seed | wall time (s) | training loop (s) | env steps | env steps/s | peak RSS (MB) | mean return, last 50 |')
+    print(f'| program | seed | wall time (s) | training loop (s) | env steps | env steps/s | peak RSS (MB) | mean return, last {last} |')
     print('|---|---:|---:|---:|---:|---:|---:|---:|')
     for r in rows:
         print(f"| {r['program']} | {r['seed']} | {r['wall_s']:.2f} | {r['train_s']:.2f} | {r['env_steps']} | "
-              f"{r['steps_per_s']:,.0f} | {r['peak_rss_mb']:.0f} | {r['mean_last_50']:.1f} |")
+              f"{r['steps_per_s']:,.0f} | {r['peak_rss_mb']:.0f} | {r['mean_last']:.1f} |")
     ours = [r for r in rows if r['program'] == 'ppo-tutor']
     theirs = [r for r in rows if r['program'] != 'ppo-tutor']
     speed = statistics.fmean(t['wall_s'] / o['wall_s'] for o, t in zip(ours, theirs))
