@@ -3,7 +3,7 @@
 //! which it holds ([`CheckpointKind`]).
 
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
 
@@ -60,7 +60,7 @@ pub struct PlayArgs {
 /// shape), `--env` names another environment than the checkpoint's, or writing to the
 /// terminal failed.
 pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
-    let kind = checkpoint_kind(&args.load);
+    let kind = CheckpointKind::of_file(&args.load);
     let pendulum_file = kind == Some(CheckpointKind::PendulumPpoContinuous);
     let env = match args.env_id {
         None if pendulum_file => TrainEnv::Pendulum,
@@ -83,19 +83,6 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
         TrainEnv::CartPole(env_id) => play_cartpole(args, env_id),
         TrainEnv::Pendulum => play_pendulum(args),
     }
-}
-
-/// Which agent the file at `path` holds, by its metadata or else its parameter names;
-/// `None` when it cannot be told (an unreadable file: loading it reports why).
-#[must_use]
-pub fn checkpoint_kind(path: &Path) -> Option<CheckpointKind> {
-    let bytes = std::fs::read(path).ok()?;
-    let (_, header) = safetensors::SafeTensors::read_metadata(&bytes).ok()?;
-    header
-        .metadata()
-        .as_ref()
-        .and_then(CheckpointKind::from_metadata)
-        .or_else(|| CheckpointKind::from_names(&header.offset_keys()))
 }
 
 fn play_cartpole(args: &PlayArgs, env_id: EnvId) -> anyhow::Result<ExitCode> {

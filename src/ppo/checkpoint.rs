@@ -101,6 +101,19 @@ impl CheckpointKind {
             .into_iter()
             .find(|k| names.iter().any(|n| n == k.telltale()))
     }
+
+    /// Which agent the file at `path` holds, by its metadata or else its parameter names;
+    /// `None` when it cannot be told (an unreadable file: loading it reports why).
+    #[must_use]
+    pub fn of_file(path: &Path) -> Option<Self> {
+        let bytes = std::fs::read(path).ok()?;
+        let (_, header) = safetensors::SafeTensors::read_metadata(&bytes).ok()?;
+        header
+            .metadata()
+            .as_ref()
+            .and_then(Self::from_metadata)
+            .or_else(|| Self::from_names(&header.offset_keys()))
+    }
 }
 
 /// Writes `weights` to a safetensors file (f32, PyTorch names) with `kind`'s metadata.
