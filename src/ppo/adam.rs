@@ -90,34 +90,103 @@ impl Adam {
             };
             all_grads.push(g);
         }
-        if let Some(max_norm) = max_grad_norm {
-            clip_grad_norm(&mut all_grads, max_norm);
-        }
-        self.step_t += 1;
-        let bias_correction1 = 1.0 - self.beta1.powi(self.step_t);
-        let bias_correction2 = 1.0 - self.beta2.powi(self.step_t);
-        let step_size = (self.lr / bias_correction1) as f32;
-        let bias_correction2_sqrt = bias_correction2.sqrt() as f32;
-        let (w1, b2, w2, eps) = (
-            (1.0 - self.beta1) as f32,
-            self.beta2 as f32,
-            (1.0 - self.beta2) as f32,
-            self.eps as f32,
-        );
+        let scalars = self.begin_step(&mut all_grads, max_grad_norm);
         for (i, grad) in all_grads.iter().enumerate() {
             let Some(grad) = grad else { continue };
             let var = &self.vars[i];
             let mut theta = var.as_tensor().flatten_all()?.to_vec1::<f32>()?;
             let (m, v) = (&mut self.first_moment[i], &mut self.second_moment[i]);
-            for (k, &g) in grad.iter().enumerate() {
-                m[k] += w1 * (g - m[k]);
-                v[k] = v[k] * b2 + w2 * g * g;
-                let denom = v[k].sqrt() / bias_correction2_sqrt + eps;
-                theta[k] += -step_size * m[k] / denom;
-            }
+            scalars.apply(grad, m, v, &mut theta);
             var.set(&Tensor::from_vec(theta, var.shape(), var.device())?)?;
         }
         Ok(())
+    }
+
+    /// [`Adam::step`] on plain data: `grads[i]` and `params[i]` belong to the `i`-th variable
+    /// given to [`Adam::new`] (flattened, row-major), and `params` are updated in place; the
+    /// variables themselves are not touched. The arithmetic is `step`'s, line for line.
+    ///
+    /// # Errors
+    /// When the counts or lengths do not match the variables.
+    pub(crate) fn step_params(
+        &mut self,
+        grads: &mut [Option<Vec<f32>>],
+        params: &mut [&mut [f32]],
+        max_grad_norm: Option<f64>,
+    ) -> candle_core::Result<()> {
+        let lengths_match = grads.len() == self.vars.len()
+            && params.len() == self.vars.len()
+            && self
+                .vars
+                .iter()
+                .zip(grads.iter())
+                .zip(params.iter())
+                .all(|((var, g), p)| {
+                    p.len() == var.elem_count() && g.as_ref().is_none_or(|g| g.len() == p.len())
+                });
+        if !lengths_match {
+            candle_core::bail!("adam: gradients or parameters do not match the variables")
+        }
+        let scalars = self.begin_step(grads, max_grad_norm);
+        for (i, (grad, theta)) in grads.iter().zip(params.iter_mut()).enumerate() {
+            let Some(grad) = grad else { continue };
+            let (m, v) = (&mut self.first_moment[i], &mut self.second_moment[i]);
+            scalars.apply(grad, m, v, theta);
+        }
+        Ok(())
+    }
+
+    /// Clips the gradients if asked, counts the step and rounds its scalars to f32.
+    fn begin_step(
+        &mut self,
+        all_grads: &mut [Option<Vec<f32>>],
+        max_grad_norm: Option<f64>,
+    ) -> StepScalars {
+        if let Some(max_norm) = max_grad_norm {
+            clip_grad_norm(all_grads, max_norm);
+        }
+        self.step_t += 1;
+        let bias_correction1 = 1.0 - self.beta1.powi(self.step_t);
+        let bias_correction2 = 1.0 - self.beta2.powi(self.step_t);
+        StepScalars {
+            step_size: (self.lr / bias_correction1) as f32,
+            bias_correction2_sqrt: bias_correction2.sqrt() as f32,
+            w1: (1.0 - self.beta1) as f32,
+            b2: self.beta2 as f32,
+            w2: (1.0 - self.beta2) as f32,
+            eps: self.eps as f32,
+        }
+    }
+}
+
+/// One step's scalars, rounded to f32 as PyTorch's kernels use them.
+struct StepScalars {
+    step_size: f32,
+    bias_correction2_sqrt: f32,
+    w1: f32,
+    b2: f32,
+    w2: f32,
+    eps: f32,
+}
+
+impl StepScalars {
+    /// The moment updates and the parameter step for one parameter tensor.
+    #[inline(always)]
+    fn apply(&self, grad: &[f32], m: &mut [f32], v: &mut [f32], theta: &mut [f32]) {
+        let Self {
+            step_size,
+            bias_correction2_sqrt,
+            w1,
+            b2,
+            w2,
+            eps,
+        } = *self;
+        for (k, &g) in grad.iter().enumerate() {
+            m[k] += w1 * (g - m[k]);
+            v[k] = v[k] * b2 + w2 * g * g;
+            let denom = v[k].sqrt() / bias_correction2_sqrt + eps;
+            theta[k] += -step_size * m[k] / denom;
+        }
     }
 }
 

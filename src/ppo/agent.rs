@@ -43,6 +43,8 @@ use super::trace::{EarlyStop, EpochTrace, UpdateTrace};
 use super::{ACTION_DIM, Algorithm, PpoConfig, PpoError, STATE_DIM};
 use crate::env::seeding::NumpyRng;
 
+mod lean;
+
 // ANCHOR: transition_dict
 /// One episode's transitions, the seed's `transition_dict`, column by column.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -152,6 +154,8 @@ pub struct Agent {
     critic_optimizer: Adam,
     rng: NumpyRng,
     acting: ActorSnapshot,
+    /// Buffers of the update without tensors ([`lean`]), boxed to keep the agent small.
+    lean: Box<lean::Workspace>,
 }
 
 impl Agent {
@@ -246,6 +250,7 @@ impl Agent {
             critic_optimizer,
             rng,
             acting,
+            lean: Box::default(),
         })
     }
 
@@ -372,6 +377,22 @@ impl Agent {
         losses: Option<&Losses<'_>>,
     ) -> Result<UpdateTrace, PpoError> {
         batch.check()?;
+        // The seed's configuration runs without tensors, with the same float operations
+        // (bit for bit the numbers of `update_with_tensors`; see `lean`).
+        if losses.is_none()
+            && let Some(simd) = lean::handles(&self.config, batch)
+        {
+            return lean::update(simd, self, batch);
+        }
+        self.update_with_tensors(batch, losses)
+    }
+
+    /// The update on candle tensors (the code the lessons show), for a checked batch.
+    fn update_with_tensors(
+        &mut self,
+        batch: &Transitions,
+        losses: Option<&Losses<'_>>,
+    ) -> Result<UpdateTrace, PpoError> {
         let cfg = &self.config;
         let n = batch.len();
         let dev = &Device::Cpu;

@@ -208,7 +208,10 @@ impl ValueNet {
 /// The actor's weights copied out of candle, for acting on one observation at a time.
 ///
 /// Computes exactly the formula of [`PolicyNet::forward`] with plain loops: a 4-128-2
-/// network is ~1k multiply-adds, far below the cost of building tensors for it.
+/// network is ~1k multiply-adds, far below the cost of building tensors for it. (Its sums
+/// run in order, so its probabilities can differ from the tensor version's in the last
+/// bit; they are what the agent samples from, and they stay the same from version to
+/// version.)
 #[derive(Debug, Clone, Default)]
 pub struct ActorSnapshot {
     w1: Vec<f32>,
@@ -216,7 +219,12 @@ pub struct ActorSnapshot {
     w2: Vec<f32>,
     b2: Vec<f32>,
     state_dim: usize,
+    /// `w1` transposed, `(state_dim, hidden)`, for [`ActorSnapshot::probs2`].
+    w1t: Vec<f32>,
 }
+
+/// The widest hidden layer [`ActorSnapshot::probs2`] keeps on the stack.
+const MAX_STACK_HIDDEN: usize = 512;
 
 impl ActorSnapshot {
     /// Copies the current weights of `actor`.
@@ -225,25 +233,56 @@ impl ActorSnapshot {
     /// Only if candle cannot read the tensors.
     pub fn of(actor: &PolicyNet) -> candle_core::Result<Self> {
         let flat = |v: &Var| v.as_tensor().flatten_all()?.to_vec1::<f32>();
-        Ok(Self {
-            w1: flat(&actor.fc1.weight)?,
-            b1: flat(&actor.fc1.bias)?,
-            w2: flat(&actor.fc2.weight)?,
-            b2: flat(&actor.fc2.bias)?,
-            state_dim: actor
-                .fc1
-                .weight
-                .as_tensor()
-                .dims()
-                .get(1)
-                .copied()
-                .unwrap_or(0),
-        })
+        let state_dim = actor
+            .fc1
+            .weight
+            .as_tensor()
+            .dims()
+            .get(1)
+            .copied()
+            .unwrap_or(0);
+        Ok(Self::from_parts(
+            flat(&actor.fc1.weight)?,
+            flat(&actor.fc1.bias)?,
+            flat(&actor.fc2.weight)?,
+            flat(&actor.fc2.bias)?,
+            state_dim,
+        ))
+    }
+
+    /// A snapshot of the given weights (PyTorch layouts, row-major), `state_dim` inputs.
+    pub(crate) fn from_parts(
+        w1: Vec<f32>,
+        b1: Vec<f32>,
+        w2: Vec<f32>,
+        b2: Vec<f32>,
+        state_dim: usize,
+    ) -> Self {
+        let hidden = b1.len();
+        let mut w1t = vec![0.0; w1.len()];
+        if w1.len() == hidden * state_dim {
+            for (j, row) in w1.chunks_exact(state_dim.max(1)).enumerate() {
+                for (p, &w) in row.iter().enumerate() {
+                    w1t[p * hidden + j] = w;
+                }
+            }
+        }
+        Self {
+            w1,
+            b1,
+            w2,
+            b2,
+            state_dim,
+            w1t,
+        }
     }
 
     /// `softmax(fc2(relu(fc1(state))))` for one state, in f32.
     #[must_use]
     pub fn probs(&self, state: &[f32]) -> Vec<f32> {
+        if let Some(probs) = self.probs2(state) {
+            return probs.to_vec();
+        }
         let hidden: Vec<f32> = self
             .w1
             .chunks_exact(self.state_dim.max(1))
@@ -258,6 +297,63 @@ impl ActorSnapshot {
             .collect();
         softmax(&logits)
     }
+
+    /// [`ActorSnapshot::probs`] for CartPole's shapes (4 inputs, 2 actions, a hidden layer
+    /// of at most 512) without allocating: the same operations in the same order (each
+    /// unit's sum runs over its inputs in order, from `-0.0` as `Iterator::sum`), only the
+    /// independent units side by side. `None` for other shapes.
+    #[must_use]
+    pub(crate) fn probs2(&self, state: &[f32]) -> Option<[f32; 2]> {
+        let h = self.b1.len();
+        let shapes_fit = self.state_dim == 4
+            && state.len() == 4
+            && h <= MAX_STACK_HIDDEN
+            && self.w1t.len() == 4 * h
+            && self.w2.len() == 2 * h
+            && self.b2.len() == 2;
+        if !shapes_fit {
+            return None;
+        }
+        let mut buffer = [0.0_f32; MAX_STACK_HIDDEN];
+        let hidden = &mut buffer[..h];
+        let (c0, rest) = self.w1t.split_at(h);
+        let (c1, rest) = rest.split_at(h);
+        let (c2, c3) = rest.split_at(h);
+        let (s0, s1, s2, s3) = (state[0], state[1], state[2], state[3]);
+        for (((((y, &a), &b), &c), &d), &bias) in hidden
+            .iter_mut()
+            .zip(c0)
+            .zip(c1)
+            .zip(c2)
+            .zip(c3)
+            .zip(&self.b1)
+        {
+            let dot = (((-0.0 + a * s0) + b * s1) + c * s2) + d * s3;
+            *y = (dot + bias).max(0.0);
+        }
+        let (w0, w1) = self.w2.split_at(h);
+        let (mut z0, mut z1) = (-0.0_f32, -0.0_f32);
+        for ((&a, &b), &x) in w0.iter().zip(w1).zip(hidden.iter()) {
+            z0 += a * x;
+            z1 += b * x;
+        }
+        let logits = [z0 + self.b2[0], z1 + self.b2[1]];
+        let max = f32::max(f32::max(f32::NEG_INFINITY, logits[0]), logits[1]);
+        let exps = [
+            exp_of_difference(logits[0], max),
+            exp_of_difference(logits[1], max),
+        ];
+        let sum = (-0.0 + exps[0]) + exps[1];
+        Some([exps[0] / sum, exps[1] / sum])
+    }
+}
+
+/// `(z - max).exp()`, without calling `exp` where the difference is zero (`exp(±0) = 1`
+/// exactly).
+#[inline]
+fn exp_of_difference(z: f32, max: f32) -> f32 {
+    let d = z - max;
+    if d == 0.0 { 1.0 } else { d.exp() }
 }
 
 fn dot(a: &[f32], b: &[f32]) -> f32 {
@@ -296,6 +392,30 @@ mod tests {
             .flatten_all()?
             .to_vec1::<f32>()?;
         assert_eq!(w1, w1b);
+        Ok(())
+    }
+
+    /// The allocation-free path gives the generic loops' numbers, bit for bit.
+    #[test]
+    fn probs2_is_the_generic_formula() -> candle_core::Result<()> {
+        assert_eq!(0.0_f32.exp().to_bits(), 1.0_f32.to_bits());
+        assert_eq!((-0.0_f32).exp().to_bits(), 1.0_f32.to_bits());
+        let mut rng = NumpyRng::from_seed(5);
+        for hidden in [1, 7, 128, 200] {
+            let net = PolicyNet::new(4, hidden, 2, &mut rng)?;
+            let snap = ActorSnapshot::of(&net)?;
+            let generic = ActorSnapshot {
+                w1t: Vec::new(), // no fast path
+                ..snap.clone()
+            };
+            for _ in 0..500 {
+                let state = [2.4, 3.0, 0.21, 3.5].map(|s: f64| (rng.uniform(-s, s)) as f32);
+                let fast = snap.probs2(&state).map(|p| p.map(f32::to_bits));
+                let slow = generic.probs(&state);
+                assert!(generic.probs2(&state).is_none());
+                assert_eq!(fast, Some([slow[0].to_bits(), slow[1].to_bits()]));
+            }
+        }
         Ok(())
     }
 
