@@ -20,6 +20,7 @@
 pub mod anchor;
 pub mod details;
 pub mod face;
+pub mod files;
 pub mod live;
 pub mod loader;
 pub mod progress;

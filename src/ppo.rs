@@ -36,6 +36,7 @@ pub mod model;
 pub mod moving_average;
 pub mod ops;
 pub mod replay;
+pub mod replay_file;
 pub mod seeds;
 pub mod trace;
 pub mod train;

@@ -13,7 +13,8 @@ use clap::Args;
 use serde_json::json;
 
 use crate::ppo::continuous::replay::{ContinuousReplayOutput, replay_continuous_case};
-use crate::ppo::replay::{AnyReplay, ReplayOutput, parse_any_replay, replay_case};
+use crate::ppo::replay::{ReplayOutput, replay_case};
+use crate::ppo::replay_file::{AnyReplay, parse_any_replay};
 
 /// Arguments of `ppo-tutor replay`.
 #[derive(Debug, Args)]

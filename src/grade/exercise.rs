@@ -65,13 +65,13 @@ pub trait Exercise: Sync {
     /// The embedded starter's text.
     fn starter(&self) -> Option<&'static str> {
         let m = self.meta();
-        crate::lesson::loader::embedded_file(&format!("{}/{}", m.lesson, m.starter))
+        crate::lesson::files::embedded_file(&format!("{}/{}", m.lesson, m.starter))
     }
 
     /// The embedded reference solution (shown after a pass).
     fn solution(&self) -> Option<&'static str> {
         let m = self.meta();
-        crate::lesson::loader::embedded_file(&format!("{}/{}", m.lesson, m.solution))
+        crate::lesson::files::embedded_file(&format!("{}/{}", m.lesson, m.solution))
     }
 
     /// A sentence to print before a grading whose build is slow the first time (the candle

@@ -1,4 +1,4 @@
-//! Where answers come from: the learner's program ([`Session`], over a pipe) or their
+//! Where answers come from: the learner's program ([`LearnerProcess`], over a pipe) or their
 //! function running in this process ([`InProcess`], on a worker thread). Both answer one
 //! question at a time with the same [`Answer`], so one judge serves both.
 //!
@@ -82,7 +82,7 @@ fn seconds(limit: Duration) -> u64 {
 /// A running learner program: one question per line on stdin, one answer per line on
 /// stdout (`ok <reply>`, `error <message>` or `panic <message>`).
 #[derive(Debug)]
-pub struct Session {
+pub struct LearnerProcess {
     child: Child,
     stdin: Option<ChildStdin>,
     lines: Receiver<String>,
@@ -92,7 +92,7 @@ pub struct Session {
     stopped: bool,
 }
 
-impl Session {
+impl LearnerProcess {
     /// Starts `program`; `display` replaces its name for the learner's file in messages.
     ///
     /// # Errors
@@ -204,7 +204,7 @@ impl Session {
     }
 }
 
-impl Drop for Session {
+impl Drop for LearnerProcess {
     fn drop(&mut self) {
         if !self.stopped {
             self.stop();
@@ -213,7 +213,7 @@ impl Drop for Session {
 }
 
 /// A function running on a worker thread of this process: the in-place counterpart of
-/// [`Session`].
+/// [`LearnerProcess`].
 pub struct InProcess<Q, R> {
     requests: Option<mpsc::Sender<Q>>,
     replies: Receiver<Answer<R>>,

@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 use super::build::{self, Build, Program};
 use super::error::{GradeError, GradeOptions};
 use super::judge::Judge;
-use super::learner::{Answer, InProcess, Learner, Quiet, Session, panic_message};
+use super::learner::{Answer, InProcess, Learner, LearnerProcess, Quiet, panic_message};
 use super::prose::Prose;
 use super::report::{CheckReport, CheckStatus, Report};
 use super::spec::{Cases, Spec};
@@ -81,7 +81,7 @@ pub fn grade_source<S: Spec>(
             return Ok(report);
         }
     };
-    let mut session = Session::start(&program, display)?;
+    let mut session = LearnerProcess::start(&program, display)?;
     let mut learner = Talk {
         spec,
         session: &mut session,
@@ -189,7 +189,7 @@ fn judged<S: Spec>(
 /// A learner's program, asked through `spec`'s encoding.
 struct Talk<'a, S> {
     spec: &'a S,
-    session: &'a mut Session,
+    session: &'a mut LearnerProcess,
 }
 
 impl<S: Spec> Learner<S::Question, S::Reply> for Talk<'_, S> {

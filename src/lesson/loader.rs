@@ -2,30 +2,9 @@
 
 use std::collections::BTreeMap;
 
-use include_dir::{Dir, include_dir};
 use serde::Deserialize;
 
 use super::{Exercise, Lesson, Step, VIEWS, anchor};
-
-static LESSONS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/lessons");
-
-/// A file embedded from `lessons/`, by its path under that folder (for example
-/// `07-td-target/exercise.rs`), as text.
-#[must_use]
-pub fn embedded_file(path: &str) -> Option<&'static str> {
-    LESSONS.get_file(path).and_then(|f| f.contents_utf8())
-}
-
-/// The lesson folders under `lessons/` (for example `07-td-target`), in course order.
-#[must_use]
-pub fn lesson_dirs() -> Vec<String> {
-    let mut dirs: Vec<String> = LESSONS
-        .dirs()
-        .filter_map(|d| d.path().file_name()?.to_str().map(str::to_string))
-        .collect();
-    dirs.sort();
-    dirs
-}
 
 /// A lesson file that cannot be used, with where and how to fix it.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -150,7 +129,7 @@ pub fn parse_exercises(dir: &str, text: &str) -> Result<Vec<ExerciseText>, Lesso
 /// The first file that fails to parse.
 pub fn embedded_exercises() -> Result<Vec<(String, Vec<ExerciseText>)>, LessonError> {
     let mut out: Vec<(String, Vec<ExerciseText>)> = Vec::new();
-    for d in LESSONS.dirs() {
+    for d in super::files::root().dirs() {
         let name = d.path().file_name().and_then(|n| n.to_str()).unwrap_or("");
         let file = d
             .get_file(d.path().join("exercise.toml"))
@@ -201,7 +180,7 @@ impl Course {
     /// # Errors
     /// The first lesson file that fails to parse (the content test catches this first).
     pub fn embedded() -> Result<Self, LessonError> {
-        let mut folders: Vec<(&str, Option<&str>)> = LESSONS
+        let mut folders: Vec<(&str, Option<&str>)> = super::files::root()
             .dirs()
             .map(|d| {
                 let name = d.path().file_name().and_then(|n| n.to_str()).unwrap_or("");

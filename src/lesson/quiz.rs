@@ -23,7 +23,7 @@
 use serde::Deserialize;
 
 use super::Snapshot;
-use super::loader::embedded_file;
+use super::files::embedded_file;
 
 /// One question.
 #[derive(Debug, Clone, PartialEq)]
@@ -405,7 +405,7 @@ pub fn parse(dir: &str, text: &str) -> Result<Vec<Question>, QuizError> {
 /// # Errors
 /// [`QuizError::UnknownLesson`], or [`QuizError::File`] for a malformed file.
 pub fn questions(id: &str) -> Result<Vec<Question>, QuizError> {
-    let dir = super::loader::lesson_dirs()
+    let dir = super::files::lesson_dirs()
         .into_iter()
         .find(|d| d.split_once('-').is_some_and(|(_, slug)| slug == id))
         .ok_or_else(|| QuizError::UnknownLesson(id.to_string()))?;

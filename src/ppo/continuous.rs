@@ -46,6 +46,7 @@ pub mod checkpoint;
 pub mod config;
 pub mod model;
 pub mod normal;
+pub mod params;
 pub mod replay;
 pub mod trace;
 pub mod train;

@@ -15,48 +15,15 @@
 //!
 //! The continuous agent's fixture (`ppo_continuous_update_pytorch.json`, the book's
 //! `PPOContinuous` on Pendulum) has the same layout with a Gaussian actor
-//! (`actor.fc_mu`, `actor.fc_std`); [`parse_any_replay`] tells the two apart by those keys
-//! and [`continuous::replay`](super::continuous::replay) runs it.
+//! (`actor.fc_mu`, `actor.fc_std`); [`replay_file::parse_any_replay`](super::replay_file::parse_any_replay)
+//! tells the two apart by those keys and [`continuous::replay`](super::continuous::replay) runs it.
 
 use serde::Serialize;
 use serde_json::{Map, Value};
 
 use super::checkpoint::parameter_shapes;
-use super::continuous::replay::{ContinuousReplayCase, parse_continuous_replay};
 use super::model::{NamedWeights, WeightTensor};
 use super::{Agent, PpoConfig, PpoError, Transitions};
-
-/// A replay file of either agent, told apart by its keys.
-#[derive(Debug, Clone)]
-pub enum AnyReplay {
-    /// `ppo_update_pytorch.json`: the seed's discrete PPO on CartPole.
-    Discrete(Vec<ReplayCase>),
-    /// `ppo_continuous_update_pytorch.json`: the book's `PPOContinuous` on Pendulum.
-    Continuous(Vec<ContinuousReplayCase>),
-}
-
-/// Parses a replay file of either agent: one whose first case's `weights_before` holds
-/// `actor.fc_mu.weight` (a Gaussian policy) is the continuous agent's, any other the
-/// discrete agent's; `file` names it in errors.
-///
-/// # Errors
-/// As [`parse_replay`] and [`parse_continuous_replay`].
-pub fn parse_any_replay(text: &str, file: &str) -> Result<AnyReplay, PpoError> {
-    let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
-        file: file.into(),
-        reason: format!("not valid JSON ({e})"),
-    })?;
-    let continuous = root
-        .get("cases")
-        .and_then(|c| c.get(0))
-        .and_then(|c| c.get("weights_before"))
-        .is_some_and(|w| w.get("actor.fc_mu.weight").is_some());
-    if continuous {
-        Ok(AnyReplay::Continuous(parse_continuous_replay(text, file)?))
-    } else {
-        Ok(AnyReplay::Discrete(parse_replay(text, file)?))
-    }
-}
 
 /// One case to replay.
 #[derive(Debug, Clone)]

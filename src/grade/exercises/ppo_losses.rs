@@ -341,7 +341,7 @@ impl Outcome {
 
 /// What a report line checks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
+pub enum CheckKind {
     /// Both losses' values.
     Losses,
     /// The weight gradients.
@@ -353,7 +353,7 @@ impl Spec for PpoLosses {
     type Question = Inputs;
     type Reply = Reply;
     type Value = Outcome;
-    type Kind = Kind;
+    type Kind = CheckKind;
 
     fn meta(&self) -> Meta {
         Meta {
@@ -376,7 +376,7 @@ impl Spec for PpoLosses {
         }
     }
 
-    fn cases(&self) -> Result<Cases<Case, Kind>, GradeError> {
+    fn cases(&self) -> Result<Cases<Case, CheckKind>, GradeError> {
         let c = cases::all().map_err(|e| GradeError::Fixture(e.to_string()))?;
         let (f, r, e) = (c.fixture.len(), c.random.len(), c.edge.len());
         let epochs: Vec<String> = cases::FIXTURE_EPOCHS
@@ -394,24 +394,24 @@ impl Spec for PpoLosses {
                     "losses on the recorded PyTorch episodes, epochs {}",
                     epochs.join(", ")
                 ),
-                Kind::Losses,
+                CheckKind::Losses,
                 0..f,
             ),
             check(
                 format!("losses on {r} seeded random batches"),
-                Kind::Losses,
+                CheckKind::Losses,
                 f..f + r,
             ),
             check(
                 "losses on edge cases (a single step, only negative advantages with every \
                  ratio outside 1 ± ε, every ratio exactly 1)"
                     .into(),
-                Kind::Losses,
+                CheckKind::Losses,
                 f + r..f + r + e,
             ),
             check(
                 "gradients into the actor's and the critic's weights".into(),
-                Kind::Gradients,
+                CheckKind::Gradients,
                 0..f + r + e,
             ),
         ];
@@ -446,9 +446,9 @@ impl Spec for PpoLosses {
         got.agrees(want, part)
     }
 
-    fn differs(&self, kind: Kind, got: &Outcome, want: &Outcome) -> Option<Difference> {
+    fn differs(&self, kind: CheckKind, got: &Outcome, want: &Outcome) -> Option<Difference> {
         match kind {
-            Kind::Losses => {
+            CheckKind::Losses => {
                 let part = Part::BOTH.into_iter().find(|&p| !got.loss_ok(want, p))?;
                 let show = |o: &Outcome| {
                     format!(
@@ -468,7 +468,7 @@ impl Spec for PpoLosses {
                     fallback: "fallback",
                 })
             }
-            Kind::Gradients => {
+            CheckKind::Gradients => {
                 let part = Part::BOTH.into_iter().find(|&p| !got.grads_ok(want, p))?;
                 let (names, g, w, loss) = match part {
                     Part::Actor => (

@@ -33,9 +33,9 @@ use std::convert::Infallible;
 use candle_core::{DType, Device, Tensor, Var};
 use rand_distr::{Distribution, Normal};
 
-use super::checkpoint::{check_weights, parameter_names};
 use super::model::{ContinuousActorSnapshot, PolicyNetContinuous};
 use super::normal::log_prob;
+use super::params::{check_weights, parameter_names};
 use super::trace::{ContinuousEpochTrace, ContinuousUpdateTrace};
 use super::{ACTION_DIM, PpoContinuousConfig, REWARD_SCALE, REWARD_SHIFT, STATE_DIM};
 use crate::env::seeding::NumpyRng;

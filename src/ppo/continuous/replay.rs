@@ -19,7 +19,7 @@ use serde::Serialize;
 use serde_json::{Map, Value};
 
 use super::agent::{ContinuousTransitions, PpoContinuous};
-use super::checkpoint::parameter_shapes;
+use super::params::parameter_shapes;
 use super::{PpoContinuousConfig, STATE_DIM};
 use crate::ppo::PpoError;
 use crate::ppo::model::NamedWeights;
@@ -272,7 +272,7 @@ fn batch(r: &Reader<'_>, b: &Value, path: &str) -> Result<ContinuousTransitions,
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ppo::replay::{AnyReplay, parse_any_replay};
+    use crate::ppo::replay_file::{AnyReplay, parse_any_replay};
 
     fn case_json() -> Value {
         serde_json::json!({"cases": [{

@@ -42,7 +42,7 @@ pub struct Case {
 
 /// The checks' cases, in report order.
 #[derive(Debug, Clone)]
-pub struct Cases {
+pub struct LossesCases {
     /// The recorded PyTorch episodes at [`FIXTURE_EPOCHS`].
     pub fixture: Vec<Case>,
     /// [`RANDOM_CASES`] seeded random batches.
@@ -138,8 +138,8 @@ fn case(agent: &Agent, e: &Episode<'_>, c: Columns) -> candle_core::Result<Case>
 ///
 /// # Errors
 /// Only if the embedded fixture cannot be replayed, which the tests rule out.
-pub fn all() -> Result<Cases, PpoError> {
-    Ok(Cases {
+pub fn all() -> Result<LossesCases, PpoError> {
+    Ok(LossesCases {
         fixture: fixture()?,
         random: (0..RANDOM_CASES)
             .map(|i| random(1000 + i as u64))

@@ -33,7 +33,7 @@ impl Part {
 
 /// A typical wrong answer.
 #[derive(Debug, Clone, Copy)]
-pub struct Mistake {
+pub struct LossesMistake {
     /// A stable id (the file stem of its wrong answer in `tests/wrong_answers/ppo_losses/`).
     pub id: &'static str,
     /// The loss it gets wrong.
@@ -84,8 +84,8 @@ macro_rules! critic_mistake {
 }
 
 /// The catalogue, actor mistakes first.
-pub const MISTAKES: &[Mistake] = &[
-    Mistake {
+pub const MISTAKES: &[LossesMistake] = &[
+    LossesMistake {
         id: "no_minus_sign",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
@@ -94,7 +94,7 @@ pub const MISTAKES: &[Mistake] = &[
             surr1.minimum(&surr2)?.mean_all()?
         }),
     },
-    Mistake {
+    LossesMistake {
         id: "max_instead_of_min",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
@@ -103,7 +103,7 @@ pub const MISTAKES: &[Mistake] = &[
             surr1.maximum(&surr2)?.neg()?.mean_all()?
         }),
     },
-    Mistake {
+    LossesMistake {
         id: "clamp_on_advantage",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
@@ -112,12 +112,12 @@ pub const MISTAKES: &[Mistake] = &[
             surr1.minimum(&surr2)?.neg()?.mean_all()?
         }),
     },
-    Mistake {
+    LossesMistake {
         id: "unclipped",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| (&r * adv)?.neg()?.mean_all()?),
     },
-    Mistake {
+    LossesMistake {
         id: "ratio_without_exp",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
@@ -125,7 +125,7 @@ pub const MISTAKES: &[Mistake] = &[
             clipped_loss(&ratio, adv, eps)?
         }),
     },
-    Mistake {
+    LossesMistake {
         id: "ratio_inverted",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
@@ -133,7 +133,7 @@ pub const MISTAKES: &[Mistake] = &[
             clipped_loss(&ratio, adv, eps)?
         }),
     },
-    Mistake {
+    LossesMistake {
         id: "no_log",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
@@ -141,7 +141,7 @@ pub const MISTAKES: &[Mistake] = &[
             clipped_loss(&ratio, adv, eps)?
         }),
     },
-    Mistake {
+    LossesMistake {
         id: "actor_sum",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| {
@@ -150,27 +150,27 @@ pub const MISTAKES: &[Mistake] = &[
             surr1.minimum(&surr2)?.neg()?.sum_all()?
         }),
     },
-    Mistake {
+    LossesMistake {
         id: "ratio_detached",
         part: Part::Actor,
         answer: actor_mistake!(|r, p, a, o, adv, eps| clipped_loss(&r.detach(), adv, eps)?),
     },
-    Mistake {
+    LossesMistake {
         id: "target_not_detached",
         part: Part::Critic,
         answer: critic_mistake!(|v, td| (v - td)?.sqr()?.mean_all()?),
     },
-    Mistake {
+    LossesMistake {
         id: "critic_rms",
         part: Part::Critic,
         answer: critic_mistake!(|v, td| (v - td.detach())?.sqr()?.mean_all()?.sqrt()?),
     },
-    Mistake {
+    LossesMistake {
         id: "critic_sum",
         part: Part::Critic,
         answer: critic_mistake!(|v, td| (v - td.detach())?.sqr()?.sum_all()?),
     },
-    Mistake {
+    LossesMistake {
         id: "critic_half",
         part: Part::Critic,
         answer: critic_mistake!(|v, td| ((v - td.detach())?.sqr()?.mean_all()? * 0.5)?),

@@ -1,0 +1,79 @@
+//! The Gaussian policy's parameters by PyTorch name and shape: the one table the agent,
+//! its checkpoints and the replay share.
+
+use super::{ACTION_DIM, STATE_DIM};
+use crate::ppo::PpoError;
+use crate::ppo::model::NamedWeights;
+
+/// Every parameter's name and shape for hidden width `hidden_dim`, in PyTorch's order.
+#[must_use]
+pub fn parameter_shapes(hidden_dim: usize) -> [(&'static str, Vec<usize>); 10] {
+    let h = hidden_dim;
+    [
+        ("actor.fc1.weight", vec![h, STATE_DIM]),
+        ("actor.fc1.bias", vec![h]),
+        ("actor.fc_mu.weight", vec![ACTION_DIM, h]),
+        ("actor.fc_mu.bias", vec![ACTION_DIM]),
+        ("actor.fc_std.weight", vec![ACTION_DIM, h]),
+        ("actor.fc_std.bias", vec![ACTION_DIM]),
+        ("critic.fc1.weight", vec![h, STATE_DIM]),
+        ("critic.fc1.bias", vec![h]),
+        ("critic.fc2.weight", vec![1, h]),
+        ("critic.fc2.bias", vec![1]),
+    ]
+}
+
+/// The ten parameter names, in PyTorch's order.
+#[must_use]
+pub fn parameter_names() -> [&'static str; 10] {
+    parameter_shapes(0).map(|(name, _)| name)
+}
+
+/// Checks that `weights` holds exactly the ten parameters with the shapes `hidden_dim`
+/// gives, and finite values.
+///
+/// # Errors
+/// [`PpoError::MissingKey`] or [`PpoError::WrongShape`] naming the tensor in `source`.
+pub fn check_weights(
+    weights: &NamedWeights,
+    hidden_dim: usize,
+    source: &str,
+) -> Result<(), PpoError> {
+    for (name, shape) in parameter_shapes(hidden_dim) {
+        let Some(w) = weights.get(name) else {
+            return Err(PpoError::MissingKey {
+                file: source.into(),
+                key: name.into(),
+                expected: format!("an f32 tensor of shape {shape:?}"),
+            });
+        };
+        if w.shape != shape || w.data.len() != shape.iter().product::<usize>() {
+            return Err(PpoError::WrongShape {
+                file: source.into(),
+                key: name.into(),
+                expected: format!("shape {shape:?} (hidden width {hidden_dim})"),
+                got: format!("shape {:?}", w.shape),
+            });
+        }
+        if let Some(i) = w.data.iter().position(|x| !x.is_finite()) {
+            return Err(PpoError::WrongShape {
+                file: source.into(),
+                key: name.into(),
+                expected: "finite values".into(),
+                got: format!("{} at flat index {i}", w.data[i]),
+            });
+        }
+    }
+    if let Some(extra) = weights
+        .keys()
+        .find(|k| !parameter_names().contains(&k.as_str()))
+    {
+        return Err(PpoError::WrongShape {
+            file: source.into(),
+            key: extra.clone(),
+            expected: "only the ten actor./critic. parameters of the Gaussian policy".into(),
+            got: "an unknown tensor".into(),
+        });
+    }
+    Ok(())
+}
