@@ -3,7 +3,9 @@
 
 Runs the full default training of both programs for each seed, one after the other, and
 prints a Markdown table: wall time, env steps per second, peak resident memory (from wait4,
-the process and anything it waited for), and the mean return of the last episodes.
+the process and anything it waited for), and the mean return of the last episodes, then
+the ratios and the load average before and after (state it with the figures: a loaded
+machine slows PyTorch far more than ppo-tutor).
 
 - CartPole-v1 (default): the seed's PPO, 500 episodes, mean of the last 50 returns; the
   peer is seed_ppo.py.
@@ -55,6 +57,7 @@ def main():
     last = 100 if pendulum else 50
     peer_name = 'PyTorch book' if pendulum else 'PyTorch seed'
     rows, tmp = [], tempfile.mkdtemp()
+    load_before = os.getloadavg()  # others' work on the machine slows the two unequally
     for seed in seeds(a.seeds):
         for name, cmd in (
             ('ppo-tutor', [a.bin, 'train', '--quiet', '--env', a.env, '--episodes', str(episodes), '--seed', str(seed)]),
@@ -83,6 +86,8 @@ def main():
     print(f"\nppo-tutor is {speed:.1f}x faster in wall time per run and {sps:.1f}x in env steps/s "
           f"(mean over seeds {a.seeds}); peak RSS {statistics.fmean(r['peak_rss_mb'] for r in ours):.0f} MB "
           f"vs {statistics.fmean(r['peak_rss_mb'] for r in theirs):.0f} MB.")
+    load = ', '.join(f'{x:.2f}' for x in load_before + os.getloadavg())
+    print(f"Load average (1, 5, 15 min) before and after: {load} on {os.cpu_count()} CPUs.")
 
 
 if __name__ == '__main__':

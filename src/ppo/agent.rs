@@ -43,6 +43,7 @@ use super::trace::{EarlyStop, EpochTrace, UpdateTrace};
 use super::{ACTION_DIM, Algorithm, PpoConfig, PpoError, STATE_DIM};
 use crate::env::seeding::NumpyRng;
 
+pub(crate) mod kernels;
 mod lean;
 
 // ANCHOR: transition_dict

@@ -30,121 +30,22 @@
 //! hidden layers of 2 to 512 units (up to 512, every k-sum is one block of gemm's) and leaves
 //! the rest to the tensors. Its tests compare both, number for number, on batch sizes on
 //! either side of every switch of path.
+//!
+//! The matrix products, sums and the clipped surrogate are in
+//! [`kernels`](super::kernels), generic in the number of inputs, which the continuous
+//! agent's update on plain slices shares; this module has what is the discrete actor's own
+//! (softmax, `log(gather)`, the entropy, the 2-logit output layer).
 
+use super::kernels::{
+    CriticKernels, Grads, Isa, Params, Scratch, Surrogate, critic_loss, exp_exact,
+    fc1_backward_row, hidden_columns, hidden_layer, horizontal_columns, input_columns, isa, kernel,
+    shapes_fit, store_columns, take, vec_sum,
+};
 use super::{Agent, EpochTrace, Transitions, check_finite, explained_variance, mean};
-use crate::ppo::adam::Adam;
 use crate::ppo::advantage::{compute_advantage, normalize_advantage};
-use crate::ppo::model::{ActorSnapshot, Linear};
+use crate::ppo::model::ActorSnapshot;
 use crate::ppo::trace::{EarlyStop, UpdateTrace};
 use crate::ppo::{Algorithm, PpoConfig, PpoError, STATE_DIM};
-
-use candle_core::{Device, Tensor};
-
-/// Batch sizes and hidden widths this module handles, inclusive (see the module doc).
-const MIN_BATCH: usize = 3;
-const MAX_BATCH: usize = 512;
-const MIN_HIDDEN: usize = 2;
-const MAX_HIDDEN: usize = 512;
-
-/// The instruction set the kernels are compiled for: x86-64-v3 (AVX2 and FMA), where
-/// candle's kernels are the ones this module reproduces.
-#[cfg(target_arch = "x86_64")]
-type Isa = pulp::x86::V3;
-/// Elsewhere the tensor version runs ([`handles`] says no), so this is never built.
-#[cfg(not(target_arch = "x86_64"))]
-type Isa = pulp::Scalar;
-
-/// The instruction set, where this CPU has it.
-#[cfg(target_arch = "x86_64")]
-fn isa() -> Option<Isa> {
-    pulp::x86::V3::try_new()
-}
-
-/// Never: the module reproduces candle's x86-64 kernels only.
-#[cfg(not(target_arch = "x86_64"))]
-fn isa() -> Option<Isa> {
-    None
-}
-
-/// One network's parameters as plain data, in PyTorch's layouts.
-#[derive(Debug, Clone, Default)]
-struct Params {
-    /// `fc1.weight`, `(hidden, STATE_DIM)` row-major.
-    w1: Vec<f32>,
-    /// `fc1.bias`, `(hidden,)`.
-    b1: Vec<f32>,
-    /// `fc2.weight`, `(out, hidden)` row-major.
-    w2: Vec<f32>,
-    /// `fc2.bias`, `(out,)`.
-    b2: Vec<f32>,
-}
-
-impl Params {
-    fn read(fc1: &Linear, fc2: &Linear) -> candle_core::Result<Self> {
-        let flat = |t: &Tensor| t.flatten_all()?.to_vec1::<f32>();
-        Ok(Self {
-            w1: flat(fc1.weight.as_tensor())?,
-            b1: flat(fc1.bias.as_tensor())?,
-            w2: flat(fc2.weight.as_tensor())?,
-            b2: flat(fc2.bias.as_tensor())?,
-        })
-    }
-
-    fn write(&self, fc1: &Linear, fc2: &Linear) -> candle_core::Result<()> {
-        let dev = &Device::Cpu;
-        for (var, data) in [
-            (&fc1.weight, &self.w1),
-            (&fc1.bias, &self.b1),
-            (&fc2.weight, &self.w2),
-            (&fc2.bias, &self.b2),
-        ] {
-            var.set(&Tensor::from_vec(data.clone(), var.shape(), dev)?)?;
-        }
-        Ok(())
-    }
-
-    /// `W1ᵀ`, `(STATE_DIM, hidden)` row-major, for the forward pass.
-    fn w1_transposed(&self) -> Vec<f32> {
-        let hidden = self.b1.len();
-        let mut t = vec![0.0; self.w1.len()];
-        for (j, row) in self.w1.chunks_exact(STATE_DIM).enumerate() {
-            for (p, &w) in row.iter().enumerate() {
-                t[p * hidden + j] = w;
-            }
-        }
-        t
-    }
-
-    /// Adam's step on the four tensors, in the optimizer's order.
-    fn step(
-        &mut self,
-        adam: &mut Adam,
-        grads: Grads,
-        max_grad_norm: Option<f64>,
-    ) -> candle_core::Result<()> {
-        let mut grads = [
-            Some(grads.w1),
-            Some(grads.b1),
-            Some(grads.w2),
-            Some(grads.b2),
-        ];
-        let mut params = [
-            &mut self.w1[..],
-            &mut self.b1[..],
-            &mut self.w2[..],
-            &mut self.b2[..],
-        ];
-        adam.step_params(&mut grads, &mut params, max_grad_norm)
-    }
-}
-
-/// The gradients of one network's four tensors, laid out as [`Params`].
-struct Grads {
-    w1: Vec<f32>,
-    b1: Vec<f32>,
-    w2: Vec<f32>,
-    b2: Vec<f32>,
-}
 
 /// Buffers reused from update to update.
 #[derive(Clone, Default)]
@@ -172,12 +73,7 @@ pub(super) fn handles(config: &PpoConfig, batch: &Transitions) -> Option<Isa> {
     let hidden = config.hidden_dim;
     let seed_losses =
         config.algorithm == Algorithm::Ppo && !config.no_clip && config.entropy_coef == 0.0;
-    // gemm takes other paths for tiny products (n·hidden ≤ 256 in fc1, k ≤ 2 in the
-    // weight gradients), for hidden = 1, and splits sums longer than 512.
-    let shapes = (MIN_BATCH..=MAX_BATCH).contains(&n)
-        && (MIN_HIDDEN..=MAX_HIDDEN).contains(&hidden)
-        && n * hidden > 256;
-    if !(seed_losses && shapes) {
+    if !(seed_losses && shapes_fit(n, hidden)) {
         return None;
     }
     isa()
@@ -198,24 +94,6 @@ pub(super) fn update(
 #[derive(Clone, Copy)]
 struct Kernels(Isa);
 
-/// A kernel's arguments, run by `pulp` under the instruction set it was given.
-macro_rules! kernel {
-    ($name:ident { $($field:ident: $ty:ty),* $(,)? } -> $out:ty = $body:expr) => {
-        struct $name<'a> {
-            $($field: $ty,)*
-            _life: std::marker::PhantomData<&'a ()>,
-        }
-        impl pulp::WithSimd for $name<'_> {
-            type Output = $out;
-            #[inline(always)]
-            fn with_simd<S: pulp::Simd>(self, _: S) -> Self::Output {
-                let Self { $($field,)* .. } = self;
-                $body($($field),*)
-            }
-        }
-    };
-}
-
 kernel!(ActorForward {
     params: &'a Params,
     states: &'a [[f32; 4]],
@@ -223,27 +101,19 @@ kernel!(ActorForward {
     hidden: &'a mut [f32],
     scratch: &'a mut Scratch,
 } -> ActorPass = actor_pass);
-kernel!(CriticForward {
-    params: &'a Params,
-    states: &'a [[f32; 4]],
-    xt: &'a [Vec<f32>; STATE_DIM],
-    hidden: Option<&'a mut [f32]>,
-    scratch: &'a mut Scratch,
-} -> Vec<f32> = critic_values);
 kernel!(ActorBackward {
     params: &'a Params,
     states: &'a [[f32; 4]],
     hidden: &'a [f32],
     grad_logits: &'a [[f32; 2]],
 } -> Grads = actor_backward);
-kernel!(CriticBackward {
-    params: &'a Params,
-    states: &'a [[f32; 4]],
-    hidden: &'a [f32],
-    grad_values: &'a [f32],
-} -> Grads = critic_backward);
 
 impl Kernels {
+    /// The critic's kernels, under the same instruction set.
+    fn critic(self) -> CriticKernels {
+        CriticKernels(self.0)
+    }
+
     fn actor_forward(
         self,
         params: &Params,
@@ -256,28 +126,6 @@ impl Kernels {
         pulp::Simd::vectorize(
             self.0,
             ActorForward {
-                params,
-                states,
-                xt,
-                hidden,
-                scratch,
-                _life,
-            },
-        )
-    }
-
-    fn critic_forward(
-        self,
-        params: &Params,
-        states: &[[f32; 4]],
-        xt: &[Vec<f32>; STATE_DIM],
-        hidden: Option<&mut [f32]>,
-        scratch: &mut Scratch,
-    ) -> Vec<f32> {
-        let _life = std::marker::PhantomData;
-        pulp::Simd::vectorize(
-            self.0,
-            CriticForward {
                 params,
                 states,
                 xt,
@@ -303,26 +151,6 @@ impl Kernels {
                 states,
                 hidden,
                 grad_logits,
-                _life,
-            },
-        )
-    }
-
-    fn critic_backward(
-        self,
-        params: &Params,
-        states: &[[f32; 4]],
-        hidden: &[f32],
-        grad_values: &[f32],
-    ) -> Grads {
-        let _life = std::marker::PhantomData;
-        pulp::Simd::vectorize(
-            self.0,
-            CriticBackward {
-                params,
-                states,
-                hidden,
-                grad_values,
                 _life,
             },
         )
@@ -373,7 +201,7 @@ fn epochs(
         &batch.dones
     };
     // next_values = V(s'), its hidden layer not kept
-    let next_values = kernels.critic_forward(
+    let next_values = kernels.critic().forward(
         critic,
         &batch.next_states,
         &input_columns(&batch.next_states),
@@ -393,7 +221,7 @@ fn epochs(
             r + (v * gamma + 0.0) * not_done
         })
         .collect();
-    let values = kernels.critic_forward(
+    let values = kernels.critic().forward(
         critic,
         &batch.states,
         &xt,
@@ -456,7 +284,7 @@ fn epochs(
                 &mut ws.actor_hidden,
                 &mut ws.scratch,
             );
-            critic_out = kernels.critic_forward(
+            critic_out = kernels.critic().forward(
                 critic,
                 &batch.states,
                 &xt,
@@ -481,10 +309,10 @@ fn epochs(
         {
             let row = ActorRow::forward(*z, a, old, adv, lo, hi);
             log_probs.push(row.log_prob);
-            ratio.push(row.ratio);
-            surr1.push(row.surr1);
-            surr2.push(row.surr2);
-            neg_objective.push(-row.objective);
+            ratio.push(row.surrogate.ratio);
+            surr1.push(row.surrogate.surr1);
+            surr2.push(row.surrogate.surr2);
+            neg_objective.push(-row.surrogate.objective);
             neg_entropy_rows.push(row.neg_entropy);
             grad_logits.push(row.backward(inv_n, adv, lo, hi));
         }
@@ -507,17 +335,7 @@ fn epochs(
         let actor_loss = vec_sum(&neg_objective) * inv_n + 0.0;
         let entropy = vec_sum(&neg_entropy_rows) * inv_n + 0.0;
         // the critic's loss: mean((V(s) + b - target)²) and its gradient
-        let grad_square = 0.0 + (0.0 + (0.0 + (1.0 * inv_n + 0.0)));
-        let mut squares = Vec::with_capacity(n);
-        let mut grad_values = Vec::with_capacity(n);
-        for (&v, &target) in critic_out.iter().zip(&trace.td_target) {
-            let diff = v - target;
-            squares.push(diff * diff);
-            // sqr's backward: (diff * grad) * 2 + 0, grad = 0 + 1/N
-            let grad_diff = 0.0 + ((diff * grad_square) * 2.0 + 0.0);
-            grad_values.push(0.0 + grad_diff);
-        }
-        let critic_loss = vec_sum(&squares) * inv_n + 0.0;
+        let (critic_loss, grad_values) = critic_loss(&critic_out, &trace.td_target, inv_n);
 
         let clipped: Vec<bool> = ratio.iter().map(|r| (r - 1.0).abs() > eps as f32).collect();
         let record = EpochTrace {
@@ -541,7 +359,10 @@ fn epochs(
 
         let grads = kernels.actor_backward(actor, &batch.states, &ws.actor_hidden, &grad_logits);
         actor.step(&mut agent.actor_optimizer, grads, cfg.max_grad_norm)?;
-        let grads = kernels.critic_backward(critic, &batch.states, &ws.critic_hidden, &grad_values);
+        let grads =
+            kernels
+                .critic()
+                .backward(critic, &batch.states, &ws.critic_hidden, &grad_values);
         critic.step(&mut agent.critic_optimizer, grads, cfg.max_grad_norm)?;
     }
     Ok(trace)
@@ -574,12 +395,6 @@ impl Softmax {
     }
 }
 
-/// `d.exp()`, without calling `exp` where `d` is zero (`exp(±0) = 1` exactly).
-#[inline(always)]
-fn exp_exact(d: f32) -> f32 {
-    if d == 0.0 { 1.0 } else { d.exp() }
-}
-
 /// One row of the actor's epoch: `log π(a|s)`, the ratio, the clipped surrogate, and the
 /// row's part of the entropy.
 struct ActorRow {
@@ -589,15 +404,8 @@ struct ActorRow {
     /// `π(a|s)`, the gathered probability.
     prob: f32,
     log_prob: f32,
-    ratio: f32,
-    surr1: f32,
-    surr2: f32,
-    /// `max(ratio, 1 - ε)`.
-    above_lo: f32,
-    /// `min(above_lo, 1 + ε)`.
-    clamped: f32,
-    /// `min(surr1, surr2)`.
-    objective: f32,
+    /// The ratio and the clipped surrogate.
+    surrogate: Surrogate,
     /// `-Σ_a π log π` for this row, before the mean (`neg` of the row sum).
     neg_entropy: f32,
 }
@@ -615,13 +423,7 @@ impl ActorRow {
         let softmax = Softmax::of(z);
         let prob = softmax.probs[action];
         let log_prob = prob.ln();
-        let ratio = exp_exact(log_prob - old_log_prob);
-        let surr1 = ratio * advantage;
-        // clamp = maximum then minimum (candle's binary ops)
-        let above_lo = if ratio < lo { lo } else { ratio };
-        let clamped = if above_lo > hi { hi } else { above_lo };
-        let surr2 = clamped * advantage;
-        let objective = if surr1 > surr2 { surr2 } else { surr1 };
+        let surrogate = Surrogate::forward(log_prob, old_log_prob, advantage, lo, hi);
         // entropy: probs · log(clamp(probs, MIN_POSITIVE, 1)), summed over the row, negated
         let term = |c: usize| {
             let p = softmax.probs[c];
@@ -645,12 +447,7 @@ impl ActorRow {
             action,
             prob,
             log_prob,
-            ratio,
-            surr1,
-            surr2,
-            above_lo,
-            clamped,
-            objective,
+            surrogate,
             neg_entropy: -row_sum,
             softmax,
         }
@@ -661,27 +458,8 @@ impl ActorRow {
     #[inline(always)]
     fn backward(&self, inv_n: f32, advantage: f32, lo: f32, hi: f32) -> [f32; 2] {
         let eq = |a: f32, b: f32| f32::from(u8::from(a == b));
-        // mean_all: affine(1/N) then the sum's broadcast, each added to zeros
-        let grad_neg_objective = 0.0 + (0.0 + (0.0 + (1.0 * inv_n + 0.0)));
-        let grad_objective = 0.0 - grad_neg_objective; // neg: zeros - grad
-        // minimum(surr1, surr2): a tie splits the gradient in halves
-        let (on_surr1, on_surr2) = (
-            eq(self.objective, self.surr1),
-            eq(self.objective, self.surr2),
-        );
-        let grad_surr1 = 0.0 + (on_surr1 * grad_objective) / (on_surr2 * 1.0 + 1.0);
-        let grad_surr2 = 0.0 + (on_surr2 * grad_objective) / (on_surr1 * 1.0 + 1.0);
-        // surr2 = clamped * advantage; clamped = minimum(above_lo, hi); above_lo = maximum(ratio, lo)
-        let grad_clamped = 0.0 + grad_surr2 * advantage;
-        let grad_above_lo = 0.0
-            + (eq(self.clamped, self.above_lo) * grad_clamped) / (eq(self.clamped, hi) * 1.0 + 1.0);
-        // the ratio's two uses: the clamp is visited first, then surr1
-        let grad_ratio = 0.0
-            + (eq(self.above_lo, self.ratio) * grad_above_lo) / (eq(self.above_lo, lo) * 1.0 + 1.0);
-        let grad_ratio = grad_ratio + grad_surr1 * advantage;
-        // ratio = exp(log_prob - old); log_prob = log(prob)
-        let grad_log_ratio = 0.0 + grad_ratio * self.ratio;
-        let grad_log_prob = 0.0 + grad_log_ratio;
+        // log_prob = log(prob)
+        let grad_log_prob = self.surrogate.backward(inv_n, advantage, lo, hi);
         let grad_prob = 0.0 + grad_log_prob / self.prob;
         // gather's backward: scatter_add into zeros
         let mut grad_probs = [0.0_f32; 2];
@@ -701,73 +479,6 @@ impl ActorRow {
     }
 }
 
-/// `relu(x · W1ᵀ + b1)` for every row `x` of `states`, into `hidden` (`(N, hidden)`,
-/// row-major, as the backward pass reads it).
-#[inline(always)]
-fn hidden_layer(params: &Params, states: &[[f32; 4]], hidden: &mut [f32]) {
-    let h = params.b1.len();
-    let w1t = params.w1_transposed();
-    let (c0, rest) = w1t.split_at(h);
-    let (c1, rest) = rest.split_at(h);
-    let (c2, c3) = rest.split_at(h);
-    for (row, x) in hidden.chunks_exact_mut(h).zip(states) {
-        for (((((y, &w0), &w1), &w2), &w3), &b) in row
-            .iter_mut()
-            .zip(c0)
-            .zip(c1)
-            .zip(c2)
-            .zip(c3)
-            .zip(&params.b1)
-        {
-            *y = relu_fc1(x, [w0, w1, w2, w3], b);
-        }
-    }
-}
-
-/// One hidden unit: gemm's vertical kernel (an FMA chain from +0 over the 4 inputs), then
-/// add_bias and relu (`ops`).
-#[inline(always)]
-fn relu_fc1(x: &[f32; 4], w: [f32; 4], b: f32) -> f32 {
-    let acc = x[0].mul_add(w[0], 0.0);
-    let acc = x[1].mul_add(w[1], acc);
-    let acc = x[2].mul_add(w[2], acc);
-    let acc = x[3].mul_add(w[3], acc);
-    (acc + b).max(0.0)
-}
-
-/// The inputs column by column: `x_p` of every row, for each of the 4 inputs.
-fn input_columns(states: &[[f32; 4]]) -> [Vec<f32>; STATE_DIM] {
-    std::array::from_fn(|p| states.iter().map(|x| x[p]).collect())
-}
-
-/// [`hidden_layer`] column-major (`cols[j * N + i]`), so that the output layer's sums over
-/// `j` run on all rows at once.
-#[inline(always)]
-fn hidden_columns(params: &Params, xt: &[Vec<f32>; STATE_DIM], cols: &mut [f32]) {
-    let n = xt[0].len();
-    for ((col, w), &b) in cols
-        .chunks_exact_mut(n)
-        .zip(params.w1.chunks_exact(STATE_DIM))
-        .zip(&params.b1)
-    {
-        let (w0, w1, w2, w3) = (w[0], w[1], w[2], w[3]);
-        for ((((y, &x0), &x1), &x2), &x3) in col
-            .iter_mut()
-            .zip(&xt[0])
-            .zip(&xt[1])
-            .zip(&xt[2])
-            .zip(&xt[3])
-        {
-            // relu_fc1, one hidden unit over all rows
-            let acc = x0.mul_add(w0, 0.0);
-            let acc = x1.mul_add(w1, acc);
-            let acc = x2.mul_add(w2, acc);
-            let acc = x3.mul_add(w3, acc);
-            *y = (acc + b).max(0.0);
-        }
-    }
-}
-
 /// gemm's vertical kernel for two outputs over all rows: FMA chains from +0 in order of `j`.
 #[inline(always)]
 fn vertical2_columns(cols: &[f32], w0: &[f32], w1: &[f32], out0: &mut [f32], out1: &mut [f32]) {
@@ -778,111 +489,6 @@ fn vertical2_columns(cols: &[f32], w0: &[f32], w1: &[f32], out0: &mut [f32], out
         for ((o0, o1), &h) in out0.iter_mut().zip(out1.iter_mut()).zip(col) {
             *o0 = h.mul_add(y0, *o0);
             *o1 = h.mul_add(y1, *o1);
-        }
-    }
-}
-
-/// gemm's horizontal kernel over all rows: lane `l` sums the FMAs of `j = 8c + l` (the
-/// last block zero-padded), then `((l0 + l4) + (l2 + l6)) + ((l1 + l5) + (l3 + l7))`.
-/// `lanes` holds `8 N` values.
-#[inline(always)]
-fn horizontal_columns(cols: &[f32], w: &[f32], lanes: &mut [f32], out: &mut [f32]) {
-    let n = out.len();
-    let lanes = &mut lanes[..8 * n];
-    lanes.fill(0.0);
-    for (j, (col, &wj)) in cols.chunks_exact(n).zip(w).enumerate() {
-        let l = j % 8;
-        for (a, &h) in lanes[l * n..(l + 1) * n].iter_mut().zip(col) {
-            *a = h.mul_add(wj, *a);
-        }
-    }
-    let k = w.len().min(cols.len() / n.max(1));
-    if !k.is_multiple_of(8) {
-        // the padding of the last block: fma(0, 0, acc)
-        for a in &mut lanes[(k % 8) * n..] {
-            *a = 0.0_f32.mul_add(0.0, *a);
-        }
-    }
-    let lane = |l: usize| &lanes[l * n..(l + 1) * n];
-    let (l0, l1, l2, l3) = (lane(0), lane(1), lane(2), lane(3));
-    let (l4, l5, l6, l7) = (lane(4), lane(5), lane(6), lane(7));
-    for (i, o) in out.iter_mut().enumerate() {
-        *o = ((l0[i] + l4[i]) + (l2[i] + l6[i])) + ((l1[i] + l5[i]) + (l3[i] + l7[i]));
-    }
-}
-
-/// gemm's row-major gemv over all rows: lane `l` of accumulator `b` sums the FMAs of
-/// `j = 64t + 8b + l` over the blocks `t` of 64, the eight accumulators are combined as a
-/// tree, blocks of 8 go on into the lane, the lanes are summed in order, then the tail.
-/// `lanes` holds `8 N` values and `lane` `N`.
-#[inline(always)]
-fn gemv_columns(cols: &[f32], w: &[f32], lanes: &mut [f32], lane: &mut [f32], out: &mut [f32]) {
-    let n = out.len();
-    let k = w.len().min(cols.len() / n.max(1));
-    let (k64, k8) = (k / 64 * 64, k / 8 * 8);
-    let col = |j: usize| &cols[j * n..(j + 1) * n];
-    let (acc, lane) = (&mut lanes[..8 * n], &mut lane[..n]);
-    for l in 0..8 {
-        acc.fill(0.0);
-        for t in (0..k64).step_by(64) {
-            for (b, acc) in acc.chunks_exact_mut(n).enumerate() {
-                let j = t + 8 * b + l;
-                for (a, &h) in acc.iter_mut().zip(col(j)) {
-                    *a = h.mul_add(w[j], *a);
-                }
-            }
-        }
-        {
-            let c = |b: usize| &acc[b * n..(b + 1) * n];
-            let (c0, c1, c2, c3) = (c(0), c(1), c(2), c(3));
-            let (c4, c5, c6, c7) = (c(4), c(5), c(6), c(7));
-            for (i, v) in lane.iter_mut().enumerate() {
-                *v = ((c0[i] + c1[i]) + (c2[i] + c3[i])) + ((c4[i] + c5[i]) + (c6[i] + c7[i]));
-            }
-        }
-        for j in (k64..k8).step_by(8).map(|t| t + l) {
-            for (v, &h) in lane.iter_mut().zip(col(j)) {
-                *v = h.mul_add(w[j], *v);
-            }
-        }
-        if l == 0 {
-            out.copy_from_slice(lane);
-        } else {
-            for (o, &v) in out.iter_mut().zip(lane.iter()) {
-                *o += v;
-            }
-        }
-    }
-    for (j, &wj) in w.iter().enumerate().take(k).skip(k8) {
-        for (o, &h) in out.iter_mut().zip(col(j)) {
-            *o = h.mul_add(wj, *o);
-        }
-    }
-}
-
-/// Buffers of the forward passes, reused.
-#[derive(Clone, Default)]
-struct Scratch {
-    /// A hidden layer column-major, `hidden · N`.
-    cols: Vec<f32>,
-    /// Lane sums, `8 N`.
-    lanes: Vec<f32>,
-    /// One lane, `N`; then outputs.
-    lane: Vec<f32>,
-    out0: Vec<f32>,
-    out1: Vec<f32>,
-}
-
-impl Scratch {
-    fn fit(&mut self, n: usize, hidden: usize) {
-        for (buffer, len) in [
-            (&mut self.cols, hidden * n),
-            (&mut self.lanes, 8 * n),
-            (&mut self.lane, n),
-            (&mut self.out0, n),
-            (&mut self.out1, n),
-        ] {
-            buffer.resize(len, 0.0);
         }
     }
 }
@@ -924,64 +530,6 @@ fn actor_pass(
         .map(|(&z0, &z1)| [z0 + b0, z1 + b1])
         .collect();
     ActorPass { logits }
-}
-
-/// The critic's forward pass `V(s)`; with `hidden`, the hidden layer is left there too.
-#[inline(always)]
-fn critic_values(
-    params: &Params,
-    states: &[[f32; 4]],
-    xt: &[Vec<f32>; STATE_DIM],
-    hidden: Option<&mut [f32]>,
-    scratch: &mut Scratch,
-) -> Vec<f32> {
-    if let Some(hidden) = hidden {
-        hidden_layer(params, states, hidden);
-    }
-    let n = states.len();
-    let h = params.b1.len();
-    scratch.fit(n, h);
-    hidden_columns(params, xt, &mut scratch.cols);
-    let w = &params.w2[..h];
-    let Scratch {
-        cols,
-        lanes,
-        lane,
-        out0,
-        ..
-    } = scratch;
-    if n <= 256 {
-        horizontal_columns(cols, w, lanes, out0);
-    } else {
-        gemv_columns(cols, w, lanes, lane, out0);
-    }
-    let b = params.b2[0];
-    out0.iter().map(|&v| v + b).collect() // add_bias
-}
-
-/// candle's `vec_sum` (AVX): four 8-lane sums over blocks of 32, reduced as a tree, then the
-/// rest added in order.
-#[inline(always)]
-fn vec_sum(xs: &[f32]) -> f32 {
-    let blocks = xs.len() / 32 * 32;
-    let mut sum = [[0.0_f32; 8]; 4];
-    for chunk in xs[..blocks].chunks_exact(32) {
-        for (j, sum) in sum.iter_mut().enumerate() {
-            for (l, s) in sum.iter_mut().enumerate() {
-                *s += chunk[8 * j + l];
-            }
-        }
-    }
-    let mut x = [0.0_f32; 8];
-    for (l, x) in x.iter_mut().enumerate() {
-        *x = (sum[0][l] + sum[1][l]) + (sum[2][l] + sum[3][l]);
-    }
-    let t = [x[0] + x[4], x[1] + x[5], x[2] + x[6], x[3] + x[7]];
-    let mut total = (t[0] + t[1]) + (t[2] + t[3]);
-    for &v in &xs[blocks..] {
-        total += v;
-    }
-    total
 }
 
 /// The actor's parameter gradients from `∂loss/∂logits` (`grad_logits`, one pair per row).
@@ -1049,128 +597,6 @@ fn actor_columns<const L: usize>(
         fc1_backward_row(&hv, x, &grad_h, &mut gb1, &mut gw1t);
     }
     store_columns(grads, j0, gw1t, gb1, &[gw0, gw1]);
-}
-
-/// The critic's parameter gradients from `∂loss/∂V(s)` (`grad_values`, one per row).
-#[inline(always)]
-fn critic_backward(
-    params: &Params,
-    states: &[[f32; 4]],
-    hidden: &[f32],
-    grad_values: &[f32],
-) -> Grads {
-    let h = params.b1.len();
-    let mut grads = Grads {
-        w1: vec![0.0; STATE_DIM * h],
-        b1: vec![0.0; h],
-        w2: vec![0.0; h],
-        b2: vec![0.0],
-    };
-    let mut grad_b2 = 0.0_f32;
-    for &g in grad_values {
-        grad_b2 += g;
-    }
-    grads.b2 = vec![0.0 + grad_b2];
-    let blocks = h / 8 * 8;
-    for j in (0..blocks).step_by(8) {
-        critic_columns::<8>(params, states, hidden, grad_values, j, &mut grads);
-    }
-    for j in blocks..h {
-        critic_columns::<1>(params, states, hidden, grad_values, j, &mut grads);
-    }
-    grads
-}
-
-/// [`critic_backward`] for the `L` columns from `j0` of the hidden layer.
-#[inline(always)]
-fn critic_columns<const L: usize>(
-    params: &Params,
-    states: &[[f32; 4]],
-    hidden: &[f32],
-    grad_values: &[f32],
-    j0: usize,
-    grads: &mut Grads,
-) {
-    let h = params.b1.len();
-    let w: [f32; L] = take(&params.w2[j0..]);
-    let mut gw = [0.0_f32; L];
-    let mut gb1 = [0.0_f32; L];
-    let mut gw1t = [[0.0_f32; L]; STATE_DIM];
-    // Hᵀ · g is gemm's column-major gemv: the first row's product, then FMAs. Starting
-    // from fma(h, g, +0) instead differs only in the sign of a zero, and only while every
-    // product so far is zero; the `0 +` of the gradient's store makes both +0.
-    for ((row, x), &g) in hidden.chunks_exact(h).zip(states).zip(grad_values) {
-        let hv: [f32; L] = take(&row[j0..]);
-        let g = 0.0 + g; // fc2's input gradient: 0 + g
-        let mut grad_h = [0.0_f32; L];
-        for l in 0..L {
-            gw[l] = hv[l].mul_add(g, gw[l]);
-            grad_h[l] = 0.0 + g * w[l]; // g · w2 (gevv, k = 1)
-        }
-        fc1_backward_row(&hv, x, &grad_h, &mut gb1, &mut gw1t);
-    }
-    store_columns(grads, j0, gw1t, gb1, &[gw]);
-}
-
-/// One row's relu and fc1 part of the backward pass, for `L` hidden units: relu's gradient
-/// on `z1 > 0` (the same as `h > 0`), add_bias's sum, and `Xᵀ · G1` (vertical kernel).
-/// (The four rows of `Xᵀ · G1` are separate arrays so that the compiler vectorises over
-/// the units, not over the inputs.)
-#[inline(always)]
-fn fc1_backward_row<const L: usize>(
-    hv: &[f32; L],
-    x: &[f32; 4],
-    grad_h: &[f32; L],
-    gb1: &mut [f32; L],
-    gw1t: &mut [[f32; L]; STATE_DIM],
-) {
-    let mut grad_z1 = [0.0_f32; L];
-    for ((gz, &h), &gh) in grad_z1.iter_mut().zip(hv).zip(grad_h) {
-        *gz = 0.0 + if h > 0.0 { gh } else { 0.0 };
-    }
-    for (b, &gz) in gb1.iter_mut().zip(&grad_z1) {
-        *b += gz;
-    }
-    let [x0, x1, x2, x3] = *x;
-    let [d0, d1, d2, d3] = gw1t;
-    for l in 0..L {
-        d0[l] = x0.mul_add(grad_z1[l], d0[l]);
-        d1[l] = x1.mul_add(grad_z1[l], d1[l]);
-        d2[l] = x2.mul_add(grad_z1[l], d2[l]);
-        d3[l] = x3.mul_add(grad_z1[l], d3[l]);
-    }
-}
-
-/// Writes `L` columns of gradients from `j0`, each added to zeros as candle's backward
-/// adds it (`W1` through its transpose, `W2` row by row).
-#[inline(always)]
-fn store_columns<const L: usize>(
-    grads: &mut Grads,
-    j0: usize,
-    gw1t: [[f32; L]; STATE_DIM],
-    gb1: [f32; L],
-    gw2: &[[f32; L]],
-) {
-    let h = grads.b1.len();
-    for l in 0..L {
-        let j = j0 + l;
-        for (g, column) in grads.w1[j * STATE_DIM..(j + 1) * STATE_DIM]
-            .iter_mut()
-            .zip(&gw1t)
-        {
-            *g = 0.0 + column[l];
-        }
-        grads.b1[j] = 0.0 + gb1[l];
-        for (a, gw) in gw2.iter().enumerate() {
-            grads.w2[a * h + j] = 0.0 + gw[l];
-        }
-    }
-}
-
-/// The first `L` values of `xs`.
-#[inline(always)]
-fn take<const L: usize>(xs: &[f32]) -> [f32; L] {
-    std::array::from_fn(|l| xs[l])
 }
 
 #[cfg(test)]

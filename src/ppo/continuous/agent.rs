@@ -23,6 +23,13 @@
 //! The only differences from the discrete [`Agent`](crate::ppo::Agent): the rescaled
 //! rewards, and `log π` from the Gaussian density instead of `log(gather(softmax))`.
 //!
+//! The code below, on candle tensors, is the update the lessons show. For batches of 3 to
+//! 512 transitions (Pendulum's are 200) on x86-64 with AVX2 and FMA, `update` runs the same
+//! IEEE operations in the same order on plain `f32` slices instead (the private module
+//! `lean`, whose tests compare both number for number): the same traces and weights, bit
+//! for bit, about 20 times faster (measured on a loaded 2-core machine, release build: 300
+//! episodes in 6.0-6.7 s with the tensors, 0.31 s without; the book's 2000 in 1.4-1.8 s).
+//!
 //! Acting samples `a = μ + σ·z`, `z ~ N(0, 1)` from `rand_distr`'s `StandardNormal` fed by
 //! the agent's seeded PCG64 (numpy's generator, [`NumpyRng`]); μ and σ come from a plain-Rust
 //! copy of the actor ([`ContinuousActorSnapshot`]). PyTorch's own sampler cannot be
@@ -43,6 +50,8 @@ use crate::ppo::PpoError;
 use crate::ppo::adam::Adam;
 use crate::ppo::advantage::compute_advantage;
 use crate::ppo::model::{Linear, NamedWeights, ValueNet, WeightTensor};
+
+mod lean;
 
 // ANCHOR: continuous_transitions
 /// One episode's transitions, the book's `transition_dict`, column by column.
@@ -332,6 +341,18 @@ impl PpoContinuous {
         batch: &ContinuousTransitions,
     ) -> Result<ContinuousUpdateTrace, PpoError> {
         batch.check()?;
+        // the same operations on plain f32 slices where they are candle's (see `lean`)
+        if let Some(simd) = lean::handles(&self.config, batch) {
+            return lean::update(simd, self, batch);
+        }
+        self.update_with_tensors(batch)
+    }
+
+    /// The update on candle tensors (the code the lessons show), for a checked batch.
+    fn update_with_tensors(
+        &mut self,
+        batch: &ContinuousTransitions,
+    ) -> Result<ContinuousUpdateTrace, PpoError> {
         let cfg = &self.config;
         let n = batch.len();
         let dev = &Device::Cpu;

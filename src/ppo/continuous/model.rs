@@ -33,7 +33,7 @@ use crate::ppo::model::Linear;
 use crate::ppo::ops::relu;
 
 /// PyTorch's `F.softplus` threshold: above it, `softplus(x) = x`.
-const SOFTPLUS_THRESHOLD: f32 = 20.0;
+pub(crate) const SOFTPLUS_THRESHOLD: f32 = 20.0;
 
 // ANCHOR: policy_net_continuous
 /// The actor: `μ = 2 · tanh(fc_mu(h))`, `σ = softplus(fc_std(h))`, `h = relu(fc1(s))`.
@@ -204,6 +204,8 @@ pub struct ContinuousActorSnapshot {
     w_std: Vec<f32>,
     b_std: f32,
     state_dim: usize,
+    /// `w1` transposed, `(state_dim, hidden)`, for one state's units side by side.
+    w1t: Vec<f32>,
 }
 
 impl ContinuousActorSnapshot {
@@ -219,38 +221,81 @@ impl ContinuousActorSnapshot {
         };
         let first =
             |v: &Var| -> candle_core::Result<f32> { Ok(flat(v)?.first().copied().unwrap_or(0.0)) };
+        let state_dim = actor
+            .fc1
+            .weight
+            .as_tensor()
+            .dims()
+            .get(1)
+            .copied()
+            .unwrap_or(0);
+        let w1 = flat(&actor.fc1.weight)?;
+        let mut w1t = vec![0.0; w1.len()];
+        for (j, row) in w1.chunks_exact(state_dim.max(1)).enumerate() {
+            for (p, &w) in row.iter().enumerate() {
+                w1t[p * hidden + j] = w;
+            }
+        }
         Ok(Self {
-            w1: flat(&actor.fc1.weight)?,
+            w1,
             b1: flat(&actor.fc1.bias)?,
             w_mu: first_row(&actor.fc_mu.weight)?,
             b_mu: first(&actor.fc_mu.bias)?,
             w_std: first_row(&actor.fc_std.weight)?,
             b_std: first(&actor.fc_std.bias)?,
-            state_dim: actor
-                .fc1
-                .weight
-                .as_tensor()
-                .dims()
-                .get(1)
-                .copied()
-                .unwrap_or(0),
+            state_dim,
+            w1t,
         })
     }
 
     /// `(μ, σ)` for one state, in f32.
     #[must_use]
     pub fn mu_std(&self, state: &[f32]) -> (f32, f32) {
-        let hidden: Vec<f32> = self
-            .w1
-            .chunks_exact(self.state_dim.max(1))
-            .zip(&self.b1)
-            .map(|(row, b)| (dot(row, state) + b).max(0.0))
-            .collect();
-        let mu = 2.0 * (dot(&self.w_mu, &hidden) + self.b_mu).tanh();
-        let std = softplus_f32(dot(&self.w_std, &hidden) + self.b_std);
+        let h = self.b1.len();
+        if h > MAX_STACK_HIDDEN {
+            let mut hidden = vec![0.0; h];
+            return self.mu_std_in(state, &mut hidden);
+        }
+        // called once per environment step: the hidden layer stays on the stack
+        let mut buffer = [0.0_f32; MAX_STACK_HIDDEN];
+        self.mu_std_in(state, &mut buffer[..h])
+    }
+
+    /// [`ContinuousActorSnapshot::mu_std`] with the hidden layer in `hidden`. Every sum runs
+    /// over its inputs in order from `-0.0` (as `Iterator::sum`); the two heads' sums run
+    /// side by side.
+    fn mu_std_in(&self, state: &[f32], hidden: &mut [f32]) -> (f32, f32) {
+        let h = hidden.len();
+        if let ([s0, s1, s2], true) = (state, self.w1t.len() == 3 * h && self.b1.len() == h) {
+            // Pendulum's 3 inputs: the same sums, the units side by side (W1 transposed)
+            let (c0, rest) = self.w1t.split_at(h);
+            let (c1, c2) = rest.split_at(h);
+            for j in 0..h {
+                let dot = ((-0.0 + c0[j] * s0) + c1[j] * s1) + c2[j] * s2;
+                hidden[j] = (dot + self.b1[j]).max(0.0);
+            }
+        } else {
+            for ((y, row), b) in hidden
+                .iter_mut()
+                .zip(self.w1.chunks_exact(self.state_dim.max(1)))
+                .zip(&self.b1)
+            {
+                *y = (dot(row, state) + b).max(0.0);
+            }
+        }
+        let (mut z_mu, mut z_std) = (-0.0_f32, -0.0_f32);
+        for ((&a, &b), &x) in self.w_mu.iter().zip(&self.w_std).zip(hidden.iter()) {
+            z_mu += a * x;
+            z_std += b * x;
+        }
+        let mu = 2.0 * (z_mu + self.b_mu).tanh();
+        let std = softplus_f32(z_std + self.b_std);
         (mu, std)
     }
 }
+
+/// The widest hidden layer [`ContinuousActorSnapshot::mu_std`] keeps on the stack.
+const MAX_STACK_HIDDEN: usize = 512;
 
 fn dot(a: &[f32], b: &[f32]) -> f32 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
@@ -273,6 +318,31 @@ mod tests {
         let want_std = std.flatten_all()?.to_vec1::<f32>()?[0];
         assert!((m - want_mu).abs() < 1e-6, "{m} vs {want_mu}");
         assert!((s - want_std).abs() < 1e-6, "{s} vs {want_std}");
+        Ok(())
+    }
+
+    /// `mu_std` is the formula with `Iterator::sum`'s dot products, bit for bit, on the
+    /// stack and off it.
+    #[test]
+    fn mu_std_is_the_formula_with_iterator_sums() -> candle_core::Result<()> {
+        for hidden in [1, 7, 128, 600] {
+            let net = PolicyNetContinuous::new(3, hidden, 1, &mut NumpyRng::from_seed(4))?;
+            let snap = ContinuousActorSnapshot::of(&net)?;
+            let mut rng = NumpyRng::from_seed(5);
+            for _ in 0..200 {
+                let state = [0.0_f32; 3].map(|_| rng.uniform(-8.0, 8.0) as f32);
+                let h: Vec<f32> = snap
+                    .w1
+                    .chunks_exact(3)
+                    .zip(&snap.b1)
+                    .map(|(row, b)| (dot(row, &state) + b).max(0.0))
+                    .collect();
+                let mu = 2.0 * (dot(&snap.w_mu, &h) + snap.b_mu).tanh();
+                let std = softplus_f32(dot(&snap.w_std, &h) + snap.b_std);
+                let (m, s) = snap.mu_std(&state);
+                assert_eq!((m.to_bits(), s.to_bits()), (mu.to_bits(), std.to_bits()));
+            }
+        }
         Ok(())
     }
 

@@ -27,7 +27,7 @@
 use candle_core::Tensor;
 
 /// `log √(2π)` in f64, as Python's `math.log(math.sqrt(2 * math.pi))`.
-const LOG_SQRT_2PI: f64 = 0.918_938_533_204_672_7;
+pub(crate) const LOG_SQRT_2PI: f64 = 0.918_938_533_204_672_7;
 
 // ANCHOR: log_prob
 /// `Normal(mu, std).log_prob(value)`, elementwise over tensors of one shape.
