@@ -29,7 +29,7 @@ pub mod kernel;
 use std::fmt::Write as _;
 
 use crate::grade::{CheckStatus, Report};
-use crate::lesson::{Mark, Session, Snapshot, TensorView};
+use crate::lesson::{Mark, RunConfig, Session, Snapshot, TensorView};
 use crate::plot::{PlotError, return_plot_svg};
 use crate::ppo::lab::{Experiment, LabResult};
 use crate::ppo::{EpochTrace, PpoConfig};
@@ -285,6 +285,16 @@ impl Snapshot {
         cartpole_svg(&last.map(f64::from))
     }
 
+    /// The pendulum at the latest episode's first state, with the torque drawn there (a
+    /// hanging rod before any episode).
+    #[must_use]
+    pub fn pendulum(&self) -> Svg {
+        let (theta, torque) = self
+            .pendulum_frame(0)
+            .unwrap_or((std::f64::consts::PI, 0.0));
+        pendulum_svg(theta, torque)
+    }
+
     /// The clip chart of the latest update's last epoch (see [`clip_chart_svg`]).
     #[must_use]
     pub fn clip_chart(&self) -> Svg {
@@ -297,14 +307,20 @@ impl Snapshot {
     }
 }
 
-/// Trains `episodes` episodes of the seed's PPO with `config` and `seed` in a live
+/// Trains `episodes` episodes of the seed's PPO (or, given a
+/// [`PpoContinuousConfig`](crate::ppo::PpoContinuousConfig), the book's `PPOContinuous` on
+/// Pendulum) with `config` and `seed` in a live
 /// [`Session`], and returns what the terminal app would show after them: the latest batch
 /// and every intermediate of its update, the probabilities, the weights, the return curve
 /// and its moving average.
 ///
 /// # Errors
 /// Invalid settings, or a diverged run.
-pub fn snapshot(config: PpoConfig, seed: u64, episodes: usize) -> anyhow::Result<Snapshot> {
+pub fn snapshot(
+    config: impl Into<RunConfig>,
+    seed: u64,
+    episodes: usize,
+) -> anyhow::Result<Snapshot> {
     hint_candle_threads();
     Ok(Session::run(config, seed, episodes)?)
 }
@@ -468,6 +484,110 @@ pub fn cartpole_svg(state: &[f64; 4]) -> Svg {
         state[0],
         theta,
         theta.to_degrees()
+    );
+    Svg(svg)
+}
+
+/// The pendulum as Gymnasium draws Pendulum-v1 (400x400, the pivot at the centre, the rod
+/// at angle `theta` from straight up, counter-clockwise positive), with the torque `torque`
+/// written below it and drawn as an arc around the pivot (counter-clockwise for u > 0).
+#[must_use]
+pub fn pendulum_svg(theta: f64, torque: f64) -> Svg {
+    let (size, centre, length) = (400.0, 200.0, 140.0);
+    let tip_x = centre - length * theta.sin();
+    let tip_y = centre - length * theta.cos();
+    let u = torque.clamp(
+        -crate::env::pendulum::MAX_TORQUE,
+        crate::env::pendulum::MAX_TORQUE,
+    );
+    let sweep = u / crate::env::pendulum::MAX_TORQUE * 1.5 * std::f64::consts::PI;
+    let radius = 40.0;
+    let mut arc = String::new();
+    let n = (sweep.abs() * 12.0).ceil() as usize;
+    for k in 0..=n {
+        let phi = std::f64::consts::FRAC_PI_2 + sweep * k as f64 / n.max(1) as f64;
+        let _ = write!(
+            arc,
+            "{}{:.2},{:.2}",
+            if k == 0 { "" } else { " " },
+            centre + radius * phi.cos(),
+            centre - radius * phi.sin()
+        );
+    }
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{size}\" height=\"{size}\" viewBox=\"0 0 {size} {size}\">\n\
+         <rect width=\"{size}\" height=\"{size}\" fill=\"white\"/>\n\
+         <line x1=\"{centre}\" y1=\"{centre}\" x2=\"{tip_x:.2}\" y2=\"{tip_y:.2}\" stroke=\"#cc4c4c\" stroke-width=\"16\" stroke-linecap=\"round\"/>\n\
+         <circle cx=\"{centre}\" cy=\"{centre}\" r=\"6\" fill=\"black\"/>\n"
+    );
+    if n > 0 {
+        let _ = writeln!(
+            svg,
+            "<polyline points=\"{arc}\" fill=\"none\" stroke=\"#e0a000\" stroke-width=\"4\"/>"
+        );
+    }
+    let _ = writeln!(
+        svg,
+        "<text x=\"10\" y=\"24\" font-family=\"monospace\" font-size=\"14\">θ = {theta:.4} rad ({:.1}° from upright)  torque = {torque:.4}</text>\n</svg>",
+        crate::env::pendulum::angle_normalize(theta).to_degrees()
+    );
+    Svg(svg)
+}
+
+/// `μ(θ, θ̇)` of a [`PolicyMap`](crate::lesson::PolicyMap) as a picture: one square per grid
+/// point, red for a positive torque (counter-clockwise), blue for a negative one, the
+/// stronger the colour the nearer |μ| is to 2; θ from −π (left) to π (right), θ̇ from 8
+/// (top) to −8 (bottom), the value written in each square.
+#[must_use]
+pub fn policy_map_svg(map: &crate::lesson::PolicyMap) -> Svg {
+    let (rows, cols) = (map.theta_dots.len(), map.thetas.len());
+    let (cell, left, top) = (52.0, 70.0, 40.0);
+    let width = left + cell * cols as f64 + 20.0;
+    let height = top + cell * rows as f64 + 50.0;
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"monospace\" font-size=\"12\">\n\
+         <rect width=\"{width}\" height=\"{height}\" fill=\"white\"/>\n\
+         <text x=\"{left}\" y=\"24\" font-size=\"14\">μ(θ, θ̇): red pushes counter-clockwise, blue clockwise</text>\n"
+    );
+    for (i, dot) in map.theta_dots.iter().enumerate() {
+        let y = top + cell * i as f64;
+        let _ = writeln!(
+            svg,
+            "<text x=\"8\" y=\"{:.1}\">θ̇ {dot:+.0}</text>",
+            y + cell / 2.0 + 4.0
+        );
+        for (j, _) in map.thetas.iter().enumerate() {
+            let mu = f64::from(map.mu.get(i * cols + j).copied().unwrap_or(0.0));
+            let strength = (mu.abs() / 2.0).clamp(0.0, 1.0);
+            let fade = (255.0 * (1.0 - strength)).round();
+            let colour = if mu >= 0.0 {
+                format!("rgb(255,{fade},{fade})")
+            } else {
+                format!("rgb({fade},{fade},255)")
+            };
+            let x = left + cell * j as f64;
+            let _ = writeln!(
+                svg,
+                "<rect x=\"{x:.1}\" y=\"{y:.1}\" width=\"{cell}\" height=\"{cell}\" fill=\"{colour}\" stroke=\"#888\"/>\n\
+                 <text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{mu:+.2}</text>",
+                x + cell / 2.0,
+                y + cell / 2.0 + 4.0
+            );
+        }
+    }
+    let axis_y = top + cell * rows as f64 + 20.0;
+    for (j, theta) in map.thetas.iter().enumerate() {
+        let _ = writeln!(
+            svg,
+            "<text x=\"{:.1}\" y=\"{axis_y:.1}\" text-anchor=\"middle\">{:+.0}°</text>",
+            left + cell * j as f64 + cell / 2.0,
+            f64::from(*theta).to_degrees()
+        );
+    }
+    let _ = writeln!(
+        svg,
+        "<text x=\"{left}\" y=\"{:.1}\">θ from −180° to 180° (0° upright)</text>\n</svg>",
+        axis_y + 20.0
     );
     Svg(svg)
 }

@@ -72,7 +72,7 @@ pub fn run() -> anyhow::Result<()> {
     let (tx, rx) = mpsc::channel::<Event>();
     let (cmd_tx, cmd_rx) = mpsc::channel::<Command>();
     let (worker_tx, worker_rx) = mpsc::channel::<WorkerEvent>();
-    let worker = worker::spawn(app.config.clone(), app.seed, cmd_rx, worker_tx);
+    let worker = worker::spawn(app.run_config(), app.seed, cmd_rx, worker_tx);
     forward(worker_rx, tx.clone());
     spawn_input(tx.clone());
     spawn_ticker(tx.clone());

@@ -683,3 +683,147 @@ fn the_surrogate_gradient_is_the_policy_gradient_at_theta_old() -> TestResult {
     );
     Ok(())
 }
+
+// ---- Lessons 16 (continuous-actions) and 17 (pendulum): the book's PPOContinuous. ----
+
+const CONTINUOUS: &str = include_str!("../lessons/16-continuous-actions/lesson.md");
+const PENDULUM: &str = include_str!("../lessons/17-pendulum/lesson.md");
+
+fn pendulum_session(seed: u64) -> Result<ppo_tutor::lesson::Session, Box<dyn std::error::Error>> {
+    Ok(ppo_tutor::lesson::Session::new(
+        ppo_tutor::ppo::PpoContinuousConfig::default(),
+        seed,
+    )?)
+}
+
+fn min_max(xs: &[f32]) -> (f32, f32) {
+    xs.iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &x| {
+            (lo.min(x), hi.max(x))
+        })
+}
+
+/// The untrained policy (its first episode, played before any update) over seeds 0–4, and
+/// the ratios of the first 30 updates' last epochs.
+#[test]
+fn the_continuous_lesson_states_what_the_first_episodes_show() -> TestResult {
+    let (mut mu, mut std) = (
+        (f32::INFINITY, f32::NEG_INFINITY),
+        (f32::INFINITY, f32::NEG_INFINITY),
+    );
+    let (mut updates, mut outside) = (0, 0);
+    for seed in 0..SEEDS {
+        let mut session = pendulum_session(seed)?;
+        for episode in 0..30 {
+            let s = session.next_episode()?.ok_or("the run has 2000 episodes")?;
+            let c = s.continuous.as_ref().ok_or("a Pendulum snapshot")?;
+            if episode == 0 {
+                let (lo, hi) = min_max(&c.mu);
+                mu = (mu.0.min(lo), mu.1.max(hi));
+                let (lo, hi) = min_max(&c.std);
+                std = (std.0.min(lo), std.1.max(hi));
+            }
+            let last = c.last_epoch().ok_or("ten epochs")?;
+            updates += 1;
+            if last.ratio.iter().any(|r| !(0.8..=1.2).contains(r)) {
+                outside += 1;
+            }
+            let first = c.epochs.first().ok_or("ten epochs")?;
+            assert!(first.ratio.iter().all(|&r| r == 1.0), "epoch 1: π = π_old");
+        }
+    }
+    eprintln!(
+        "untrained μ in [{:.3}, {:.3}], σ in [{:.3}, {:.3}]; {outside} of {updates} last epochs \
+         with a ratio outside [0.8, 1.2]",
+        mu.0, mu.1, std.0, std.1
+    );
+    let file = "lessons/16-continuous-actions/lesson.md";
+    assert!(mu.0 < -1.7 && mu.1 > 1.7, "μ beyond ±1.7: {mu:?}");
+    says(CONTINUOUS, file, "from below −1.7 to above 1.7");
+    says(
+        CONTINUOUS,
+        file,
+        &format!("between about {:.2} and {:.2}", std.0, std.1),
+    );
+    says(
+        CONTINUOUS,
+        file,
+        &format!(
+            "{} of the last epochs hold a ratio outside [0.8, 1.2]",
+            percent(outside, updates)
+        ),
+    );
+    Ok(())
+}
+
+/// The mean of `r`.
+fn mean(r: &[f64]) -> f64 {
+    r.iter().sum::<f64>() / r.len() as f64
+}
+
+/// The first 20 episodes of seeds 0–2: the untrained policy's returns.
+#[test]
+fn the_pendulum_lesson_states_where_the_return_curve_starts() -> TestResult {
+    for seed in 0..3 {
+        let mut session = pendulum_session(seed)?;
+        for _ in 0..20 {
+            session.next_episode()?.ok_or("the run has 2000 episodes")?;
+        }
+        let first = mean(&session.snapshot().returns);
+        eprintln!("seed {seed}: mean of the first 20 returns {first:.1}");
+        assert!((-1500.0..=-1100.0).contains(&first), "seed {seed}: {first}");
+    }
+    says(
+        PENDULUM,
+        "lessons/17-pendulum/lesson.md",
+        "first 20 episodes average between about −1100 and −1500 (seeds 0 to 2)",
+    );
+    Ok(())
+}
+
+/// The book's full run (2000 episodes) on seeds 0 and 1: the trained policy map brakes near
+/// the top, restores a quarter turn away, pumps hanging down, is mostly saturated, and its
+/// σ has shrunk.
+#[test]
+fn the_pendulum_lesson_states_what_a_trained_map_shows() -> TestResult {
+    let file = "lessons/17-pendulum/lesson.md";
+    for seed in [0, 1] {
+        let mut session = pendulum_session(seed)?;
+        let first = session.next_episode()?.ok_or("2000 episodes")?;
+        let first_map = first.policy_map.clone().ok_or("a map")?;
+        while session.next_episode()?.is_some() {}
+        let m = session.snapshot().policy_map.clone().ok_or("a map")?;
+        // Rows: θ̇ = 8, 6, ..., −8; columns: θ = −π, −3π/4, ..., π (4 is upright).
+        let at = |row: usize, col: usize| m.mu[row * 9 + col];
+        let mean_std = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
+        let (before, after) = (mean_std(&first_map.std), mean_std(&m.std));
+        eprintln!("seed {seed}: mean σ over the grid {before:.3} -> {after:.3}");
+        for row in 0..3 {
+            assert!(
+                at(row, 4) < -1.5,
+                "seed {seed}: brakes θ̇ > 0: {}",
+                at(row, 4)
+            );
+            assert!(
+                at(8 - row, 4) > 1.5,
+                "seed {seed}: brakes θ̇ < 0: {}",
+                at(8 - row, 4)
+            );
+        }
+        assert!(at(4, 3) > 1.5 && at(4, 5) < -1.5, "seed {seed}: restores");
+        for col in [0, 8] {
+            assert!(at(2, col) > 1.5 && at(6, col) < -1.5, "seed {seed}: pumps");
+        }
+        let saturated = m.mu.iter().filter(|v| v.abs() > 1.5).count();
+        assert!(
+            saturated * 2 > m.mu.len(),
+            "seed {seed}: {saturated} of 81 near ±2"
+        );
+        assert!(
+            (0.85..=1.1).contains(&before),
+            "seed {seed}: about 1 at first: {before}"
+        );
+        says(PENDULUM, file, &format!("{after:.2} on seed {seed}"));
+    }
+    Ok(())
+}

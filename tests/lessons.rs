@@ -4,16 +4,16 @@
 use std::collections::BTreeSet;
 use std::process::Command;
 
-use ppo_tutor::lesson::{Course, VIEWS, anchor, live};
+use ppo_tutor::lesson::{Course, Environment, VIEWS, anchor, live};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 #[test]
 fn the_course_is_complete_and_consistent() -> TestResult {
     let course = Course::embedded()?;
-    assert_eq!(course.lessons.len(), 15, "the outline has 15 lessons");
+    assert_eq!(course.lessons.len(), 17, "the outline has 17 lessons");
     let orders: Vec<u32> = course.lessons.iter().map(|l| l.order).collect();
-    assert_eq!(orders, (1..=15).collect::<Vec<_>>());
+    assert_eq!(orders, (1..=17).collect::<Vec<_>>());
     // A course's order: the environment and the loop before the networks, the derivation
     // before the mechanics, the lab after them, the recap of settings near the end.
     let ids: Vec<&str> = course.lessons.iter().map(|l| l.id.as_str()).collect();
@@ -34,9 +34,16 @@ fn the_course_is_complete_and_consistent() -> TestResult {
             "clip-lab",
             "training",
             "hyperparameters",
-            "beyond-the-seed"
+            "beyond-the-seed",
+            "continuous-actions",
+            "pendulum"
         ]
     );
+    // The last two lessons run the book's PPOContinuous on Pendulum, the rest CartPole.
+    for l in &course.lessons {
+        let pendulum = ["continuous-actions", "pendulum"].contains(&l.id.as_str());
+        assert_eq!(l.env == Environment::Pendulum, pendulum, "{}: env", l.id);
+    }
     let unique: BTreeSet<&str> = ids.iter().copied().collect();
     assert_eq!(unique.len(), course.lessons.len(), "ids are unique");
     for l in &course.lessons {
@@ -409,6 +416,31 @@ fn show_prints_live_values_that_obey_the_td_target_formula() -> TestResult {
 }
 
 #[test]
+fn show_runs_a_pendulum_lesson_on_pendulum() -> TestResult {
+    let out = run(&[
+        "show",
+        "continuous-actions",
+        "--step",
+        "1",
+        "--episodes",
+        "1",
+    ])?;
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout)?;
+    assert!(text.contains("## mu (200, 1) float32"), "{text}");
+    let sigma = column(&text, "std");
+    assert!(
+        !sigma.is_empty() && sigma.iter().all(|s| *s > 0.0),
+        "{text}"
+    );
+    Ok(())
+}
+
+#[test]
 fn show_rejects_unknown_lessons_and_steps() -> TestResult {
     for args in [
         &["show", "no-such-lesson"][..],
@@ -442,15 +474,19 @@ fn without_a_terminal_the_tutor_says_so_in_one_line() -> TestResult {
 /// tolerance, in runs of three seeds after 3 and after 12 episodes.
 #[test]
 fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResult {
+    use ppo_tutor::lesson::RunConfig;
     use ppo_tutor::lesson::Session;
     use ppo_tutor::lesson::quiz::QuestionKind;
-    use ppo_tutor::ppo::PpoConfig;
     let course = Course::embedded()?;
-    let mut snapshots = Vec::new();
-    for seed in [0, 1, 2] {
-        for episodes in [3, 12] {
-            snapshots.push(Session::run(PpoConfig::default(), seed, episodes)?);
+    let mut runs = std::collections::BTreeMap::new();
+    for env in Environment::ALL {
+        let mut snapshots = Vec::new();
+        for seed in [0, 1, 2] {
+            for episodes in [3, 12] {
+                snapshots.push(Session::run(RunConfig::default_for(env), seed, episodes)?);
+            }
         }
+        runs.insert(env, snapshots);
     }
     let mut predictions = 0;
     for lesson in &course.lessons {
@@ -468,7 +504,7 @@ fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResul
                 continue;
             };
             predictions += 1;
-            let values: Vec<f64> = snapshots
+            let values: Vec<f64> = runs[&lesson.env]
                 .iter()
                 .map(|s| (measure.value)(s).ok_or(format!("{}: no {}", lesson.id, measure.name)))
                 .collect::<Result<_, _>>()?;

@@ -5,8 +5,8 @@
 use std::sync::mpsc;
 use std::time::Duration;
 
-use ppo_tutor::lesson::{Course, Progress, Session};
-use ppo_tutor::ppo::PpoConfig;
+use ppo_tutor::lesson::{Course, Environment, Progress, RunConfig, Session};
+use ppo_tutor::ppo::{PpoConfig, PpoContinuousConfig};
 use ppo_tutor::tui::app::{App, Overlay, TrainState};
 use ppo_tutor::tui::keys::Action;
 use ppo_tutor::tui::sandbox::Field;
@@ -51,6 +51,7 @@ fn every_step_of_every_lesson() -> TestResult {
         if i + 1 < total {
             app.update(Action::Next);
         }
+        show_pendulum_run(&mut app)?;
         // After a lesson's last step come its questions: the first one's screen, then on.
         if let Overlay::Quiz(0) = app.overlay {
             let lesson = app.current_lesson().ok_or("no lesson")?;
@@ -60,9 +61,81 @@ fn every_step_of_every_lesson() -> TestResult {
             for _ in 0..questions {
                 app.update(Action::Next);
             }
+            show_pendulum_run(&mut app)?;
         }
     }
     assert_eq!(app.position(), (total, total));
+    Ok(())
+}
+
+/// A Pendulum lesson starts a fresh Pendulum run: the screens show a real 3-episode one
+/// (seed 0), as CartPole lessons show a 3-episode CartPole run.
+fn show_pendulum_run(app: &mut App) -> TestResult {
+    if app.env == Environment::Pendulum && app.snapshot.episodes == 0 {
+        app.show(Session::run(PpoContinuousConfig::default(), 0, 3)?);
+    }
+    Ok(())
+}
+
+#[test]
+fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "continuous-actions")?;
+    assert_eq!(app.env, Environment::Pendulum);
+    let sent: Vec<Command> = app.outbox.drain(..).collect();
+    assert!(
+        sent.iter()
+            .any(|c| matches!(c, Command::Reset { config, seed: 0 }
+            if config.as_ref() == &RunConfig::Pendulum(PpoContinuousConfig::default()))),
+        "{sent:?}"
+    );
+    assert_eq!(
+        app.snapshot
+            .hyper
+            .iter()
+            .find(|(k, _)| k == "env_name")
+            .map(|(_, v)| v.as_str()),
+        Some("Pendulum-v1")
+    );
+    app.show(Session::run(PpoContinuousConfig::default(), 0, 2)?);
+    let frames = app.snapshot.observation_count();
+    assert_eq!(frames, 201, "200 steps and where the episode ended");
+    app.tick();
+    assert_eq!(app.frame, 1);
+    let text = screen(&app, 140, 45)?;
+    assert!(text.contains("the latest episode, step 1/200"), "{text}");
+    assert!(text.contains("mu (200, 1) float32"), "{text}");
+    open(&mut app, "pendulum")?;
+    assert!(app.outbox.is_empty(), "the same environment keeps the run");
+    open(&mut app, "beyond-the-seed")?;
+    assert_eq!(app.env, Environment::CartPole);
+    assert!(matches!(
+        app.outbox.pop(),
+        Some(Command::Reset { config, .. }) if matches!(config.as_ref(), RunConfig::CartPole(_))
+    ));
+    Ok(())
+}
+
+#[test]
+fn the_sandbox_switches_the_environment_to_pendulum() -> TestResult {
+    let mut app = app()?;
+    app.update(Action::Sandbox);
+    while app.sandbox.selected != Field::Env {
+        app.update(Action::Down);
+    }
+    app.update(Action::Increase); // CartPole-v1 -> CartPole-v0
+    app.update(Action::Increase); // -> Pendulum-v1, the book's defaults
+    assert_eq!(app.sandbox.env, Environment::Pendulum);
+    insta::assert_snapshot!("sandbox_pendulum", screen(&app, 140, 45)?);
+    app.update(Action::Enter);
+    assert_eq!(app.env, Environment::Pendulum);
+    let sent: Vec<Command> = app.outbox.drain(..).collect();
+    assert!(
+        matches!(sent.first(), Some(Command::Reset { config, .. })
+            if config.as_ref() == &RunConfig::Pendulum(PpoContinuousConfig::default())),
+        "{sent:?}"
+    );
+    assert_eq!(sent.last(), Some(&Command::Run));
     Ok(())
 }
 
@@ -170,9 +243,8 @@ fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
         Some(old_curve)
     );
     let sent: Vec<Command> = app.outbox.drain(..).collect();
-    assert!(
-        matches!(sent.first(), Some(Command::Reset { config, .. }) if (config.eps - 0.25).abs() < 1e-12)
-    );
+    assert!(matches!(sent.first(), Some(Command::Reset { config, .. })
+            if matches!(config.as_ref(), RunConfig::CartPole(c) if (c.eps - 0.25).abs() < 1e-12)));
     assert_eq!(sent.last(), Some(&Command::Run));
     Ok(())
 }

@@ -8,8 +8,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 
-use crate::lesson::{Course, Session, Snapshot, anchor};
-use crate::ppo::PpoConfig;
+use crate::lesson::{Course, RunConfig, Session, Snapshot, anchor};
 
 /// Arguments of `ppo-tutor show`.
 #[derive(Debug, Args)]
@@ -60,7 +59,12 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
     let body = s.text(crate::lesson::face::Face::Terminal);
     let _ = writeln!(out, "{}\n", crate::lesson::details::fold(&body, true));
     if !s.python.is_empty() {
-        let _ = writeln!(out, "## The seed (PyTorch)\n{}\n", s.python);
+        let _ = writeln!(
+            out,
+            "## The {} (PyTorch)\n{}\n",
+            l.env.python_source(),
+            s.python
+        );
     }
     if let Some((path, code)) = (!s.code.is_empty())
         .then(|| anchor::find(&s.code))
@@ -128,7 +132,10 @@ pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
         Some(n) => n - 1..n,
         None => 0..steps,
     };
-    let snapshot = Session::run(PpoConfig::default(), args.seed, args.episodes.max(1))?;
+    // The lesson's environment: CartPole with the seed's PPO, or Pendulum with the book's
+    // PPOContinuous.
+    let run = RunConfig::default_for(course.lessons[index].env);
+    let snapshot = Session::run(run, args.seed, args.episodes.max(1))?;
     let mut out = std::io::stdout();
     for step in range {
         write!(out, "{}", render_step(&course, index, step, &snapshot))?;

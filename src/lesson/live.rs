@@ -15,9 +15,13 @@ pub mod session;
 pub mod values;
 
 pub use session::Session;
-pub use values::{LIVE, LiveValue, NAMES, is_known, lookup};
+pub use values::{IN_BOTH, LIVE, LiveValue, NAMES, PENDULUM_ONLY, is_known, lookup};
 
-use crate::ppo::{NamedWeights, PpoConfig, SurrogateGradients, UpdateTrace};
+use super::Environment;
+use crate::ppo::{
+    ContinuousUpdateTrace, NamedWeights, PpoConfig, PpoContinuousConfig, SurrogateGradients,
+    UpdateTrace,
+};
 
 /// How an entry is highlighted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -77,9 +81,9 @@ impl TensorView {
         )
     }
 
-    fn rows(name: &str, rows: &[[f32; 4]]) -> Self {
+    fn rows<const N: usize>(name: &str, rows: &[[f32; N]]) -> Self {
         let values = rows.iter().flatten().map(|&v| f64::from(v)).collect();
-        Self::new(name, vec![rows.len(), 4], "float32", values)
+        Self::new(name, vec![rows.len(), N], "float32", values)
     }
 
     fn flags(name: &str, flags: &[bool]) -> Self {
@@ -173,6 +177,61 @@ pub struct Snapshot {
     /// The latest batch's two policy gradients at θ_old, PPO's surrogate and REINFORCE's
     /// `log π · Â` (the policy-gradient lesson shows them side by side).
     pub gradients: Option<SurrogateGradients>,
+    /// The environment of the run (CartPole: [`Self::trace`]; Pendulum: [`Self::continuous`]).
+    pub env: Environment,
+    /// Pendulum runs: the latest update's batch and intermediates.
+    pub continuous: Option<ContinuousUpdateTrace>,
+    /// Pendulum runs: the Gaussian policy's `(μ, σ)` over a grid of states, after the latest
+    /// update.
+    pub policy_map: Option<PolicyMap>,
+}
+
+/// The Gaussian policy's `μ(θ, θ̇)` and `σ(θ, θ̇)` over a grid of Pendulum states.
+///
+/// Rows run over the angular velocity θ̇ from +8 (row 0) down to −8, columns over the angle
+/// θ from −π to π (0 is upright); the state fed to the actor is `(cos θ, sin θ, θ̇)`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PolicyMap {
+    /// The angles of the columns, in radians.
+    pub thetas: Vec<f32>,
+    /// The angular velocities of the rows, in rad/s.
+    pub theta_dots: Vec<f32>,
+    /// `μ` row by row (`theta_dots.len() × thetas.len()`).
+    pub mu: Vec<f32>,
+    /// `σ` row by row.
+    pub std: Vec<f32>,
+}
+
+impl PolicyMap {
+    /// Rows and columns of the grid the sessions compute.
+    pub const SIZE: (usize, usize) = (9, 9);
+
+    /// The grid of [`Self::SIZE`] under `policy`, a function of the state `(cos θ, sin θ, θ̇)`
+    /// giving `(μ, σ)`.
+    #[must_use]
+    pub fn of(policy: impl Fn(&[f32; 3]) -> (f32, f32)) -> Self {
+        let (rows, cols) = Self::SIZE;
+        let pi = std::f32::consts::PI;
+        let thetas: Vec<f32> = (0..cols)
+            .map(|j| -pi + 2.0 * pi * j as f32 / (cols - 1) as f32)
+            .collect();
+        let theta_dots: Vec<f32> = (0..rows)
+            .map(|i| 8.0 - 16.0 * i as f32 / (rows - 1) as f32)
+            .collect();
+        let mut map = Self {
+            thetas,
+            theta_dots,
+            ..Self::default()
+        };
+        for &dot in &map.theta_dots {
+            for &theta in &map.thetas {
+                let (mu, std) = policy(&[theta.cos(), theta.sin(), dot]);
+                map.mu.push(mu);
+                map.std.push(std);
+            }
+        }
+        map
+    }
 }
 
 impl Snapshot {
@@ -188,6 +247,19 @@ impl Snapshot {
         }
     }
 
+    /// What the tutor shows before the first episode of a Pendulum run with `config` and
+    /// `seed`: the hyper-parameters and nothing else.
+    #[must_use]
+    pub fn new_pendulum(config: &PpoContinuousConfig, seed: u64) -> Self {
+        Self {
+            hyper: hyper_table_continuous(config, seed),
+            eps: config.eps as f32,
+            gamma: config.gamma,
+            env: Environment::Pendulum,
+            ..Self::default()
+        }
+    }
+
     /// The view of live value `name`, `None` if it is not a live value (see [`LIVE`]) or
     /// nothing has been computed for it yet.
     #[must_use]
@@ -199,9 +271,28 @@ impl Snapshot {
     /// the one it ended in (0 before the first episode). The frames of the cart-pole animation.
     #[must_use]
     pub fn observation_count(&self) -> usize {
+        if let Some(c) = &self.continuous {
+            return c.states.len() + usize::from(!c.next_states.is_empty());
+        }
         self.trace.as_ref().map_or(0, |t| {
             t.states.len() + usize::from(!t.next_states.is_empty())
         })
+    }
+
+    /// A Pendulum run's frame `i` of the latest episode: the angle θ (0 upright) of
+    /// observation `i` and the torque chosen there (0 for the observation the episode ended
+    /// in); `None` past the end or in a CartPole run.
+    #[must_use]
+    pub fn pendulum_frame(&self, i: usize) -> Option<(f64, f64)> {
+        let c = self.continuous.as_ref()?;
+        let state = match c.states.get(i) {
+            Some(state) => *state,
+            None if i == c.states.len() => *c.next_states.last()?,
+            None => return None,
+        };
+        let theta = f64::from(state[1]).atan2(f64::from(state[0]));
+        let torque = c.actions.get(i).map_or(0.0, |&a| f64::from(a));
+        Some((theta, torque))
     }
 
     /// The latest episode's observation `i` (0 is the reset, [`Self::observation_count`]
@@ -240,6 +331,22 @@ fn hyper_table(c: &PpoConfig, seed: u64) -> Vec<(String, String)> {
         ),
         ("no_clip".into(), c.no_clip.to_string()),
         ("algorithm".into(), c.algorithm.as_str().into()),
+    ]
+}
+
+/// The hyper-parameter table of a Pendulum run, in the book's order.
+fn hyper_table_continuous(c: &PpoContinuousConfig, seed: u64) -> Vec<(String, String)> {
+    vec![
+        ("actor_lr".into(), format!("{}", c.actor_lr)),
+        ("critic_lr".into(), format!("{}", c.critic_lr)),
+        ("num_episodes".into(), c.num_episodes.to_string()),
+        ("hidden_dim".into(), c.hidden_dim.to_string()),
+        ("gamma".into(), c.gamma.to_string()),
+        ("lmbda".into(), c.lmbda.to_string()),
+        ("epochs".into(), c.epochs.to_string()),
+        ("eps".into(), c.eps.to_string()),
+        ("env_name".into(), Environment::Pendulum.as_str().into()),
+        ("seed".into(), seed.to_string()),
     ]
 }
 

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::Deserialize;
 
-use super::{Exercise, Lesson, Step, VIEWS, anchor};
+use super::{Environment, Exercise, Lesson, Step, VIEWS, anchor};
 
 /// A lesson file that cannot be used, with where and how to fix it.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -80,6 +80,8 @@ struct FrontMatter {
     title: String,
     #[serde(default)]
     summary: String,
+    #[serde(default)]
+    env: Option<String>,
     #[serde(default)]
     steps: Vec<StepMeta>,
 }
@@ -296,6 +298,15 @@ pub fn parse_lesson(dir: &str, text: &str) -> Result<Lesson, LessonError> {
             reason: format!("id '{}' must equal the folder's slug '{slug}'", meta.id),
         });
     }
+    let env = match meta.env.as_deref() {
+        None => Environment::default(),
+        Some(name) => Environment::from_name(name).ok_or_else(|| LessonError::FrontMatter {
+            dir: dir.into(),
+            reason: format!(
+                "env = '{name}' is not an environment; write \"CartPole-v1\" or \"Pendulum-v1\""
+            ),
+        })?,
+    };
     let bodies = split_steps(body);
     if bodies.len() != meta.steps.len() {
         return Err(LessonError::StepMismatch {
@@ -313,7 +324,7 @@ pub fn parse_lesson(dir: &str, text: &str) -> Result<Lesson, LessonError> {
         .into_iter()
         .zip(bodies)
         .enumerate()
-        .map(|(i, (m, (heading, body)))| check_step(dir, i + 1, m, &heading, body))
+        .map(|(i, (m, (heading, body)))| check_step(dir, i + 1, env, m, &heading, body))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Lesson {
         id: meta.id,
@@ -323,12 +334,14 @@ pub fn parse_lesson(dir: &str, text: &str) -> Result<Lesson, LessonError> {
         steps,
         exercise: None,
         quiz: Vec::new(),
+        env,
     })
 }
 
 fn check_step(
     dir: &str,
     index: usize,
+    env: Environment,
     meta: StepMeta,
     heading: &str,
     body: String,
@@ -368,6 +381,24 @@ fn check_step(
             index,
             kind: "live value",
             name: bad.clone(),
+        });
+    }
+    let view_env = |view: &str| match view {
+        "cartpole" | "clip_chart" | "lab" => Some(Environment::CartPole),
+        "pendulum" => Some(Environment::Pendulum),
+        _ => None,
+    };
+    if let Some(bad) = meta.show.iter().find(|n| {
+        super::live::lookup(n).is_some_and(|v| !v.runs_on(env))
+            || view_env(n).is_some_and(|e| e != env)
+    }) {
+        return Err(LessonError::StepMismatch {
+            dir: dir.into(),
+            index,
+            reason: format!(
+                "'{bad}' has no value in a {} run; show it in a lesson of the other environment",
+                env.as_str()
+            ),
         });
     }
     let lab = if meta.lab.is_empty() {

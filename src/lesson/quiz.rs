@@ -79,7 +79,10 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "batch_rows",
         about: "transitions in the latest episode's batch",
-        value: |s| Some(s.trace.as_ref()?.rewards.len() as f64),
+        value: |s| match &s.continuous {
+            Some(c) => Some(c.rewards.len() as f64),
+            None => Some(s.trace.as_ref()?.rewards.len() as f64),
+        },
     },
     Measure {
         name: "episode_return",
@@ -89,7 +92,13 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "dones_count",
         about: "rows of the latest batch with done = 1",
-        value: |s| Some(s.trace.as_ref()?.dones.iter().filter(|d| **d).count() as f64),
+        value: |s| {
+            let dones = match &s.continuous {
+                Some(c) => &c.dones,
+                None => &s.trace.as_ref()?.dones,
+            };
+            Some(dones.iter().filter(|d| **d).count() as f64)
+        },
     },
     Measure {
         name: "obs_dim",
@@ -152,12 +161,12 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "ratio_epoch1_min",
         about: "the smallest ratio in epoch 1",
-        value: |s| first_epoch(s, |e| min(&e.ratio)),
+        value: |s| first_ratios(s).map(min),
     },
     Measure {
         name: "ratio_epoch1_max",
         about: "the largest ratio in epoch 1",
-        value: |s| first_epoch(s, |e| max(&e.ratio)),
+        value: |s| first_ratios(s).map(max),
     },
     Measure {
         name: "clipped_rows_epoch1",
@@ -239,6 +248,14 @@ fn parameters(s: &Snapshot, prefix: &str) -> Option<f64> {
 
 fn first_epoch(s: &Snapshot, f: impl Fn(&crate::ppo::EpochTrace) -> f64) -> Option<f64> {
     s.trace.as_ref()?.epochs.first().map(f)
+}
+
+/// The ratios of the latest update's first epoch, in either run.
+fn first_ratios(s: &Snapshot) -> Option<&[f32]> {
+    match &s.continuous {
+        Some(c) => c.epochs.first().map(|e| e.ratio.as_slice()),
+        None => s.trace.as_ref()?.epochs.first().map(|e| e.ratio.as_slice()),
+    }
 }
 
 fn max(xs: &[f32]) -> f64 {

@@ -391,13 +391,17 @@ fn parse_recipe(text: &str) -> Vec<Piece> {
 
 /// The notebook's first cell.
 fn title_markdown(lesson: &Lesson) -> String {
+    let engine = match lesson.env {
+        crate::lesson::Environment::CartPole => "the real PPO and CartPole",
+        crate::lesson::Environment::Pendulum => "the real PPOContinuous and Pendulum",
+    };
     format!(
         "# Lesson {}: {}\n\n{}\n\nThis notebook mirrors lesson {} of the terminal app \
          (`cargo run --release`), on the [evcxr](https://github.com/evcxr/evcxr) Rust \
-         kernel. Every number below comes from the real PPO and CartPole of the \
-         `ppo-tutor` crate. The first cell compiles the crate: the very first time, with \
-         candle, in a few minutes; in later kernels, once evcxr's cache (`:cache`) holds \
-         candle, in under a minute. After that each cell takes a second or two.",
+         kernel. Every number below comes from {engine} of the `ppo-tutor` crate. The \
+         first cell compiles the crate: the very first time, with candle, in a few \
+         minutes; in later kernels, once evcxr's cache (`:cache`) holds candle, in under \
+         a minute. After that each cell takes a second or two.",
         lesson.order, lesson.title, lesson.summary, lesson.order
     )
 }
@@ -415,7 +419,8 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
     if !step.python.is_empty() {
         let _ = write!(
             md,
-            "\n**The seed (PyTorch):**\n\n```python\n{}\n```\n",
+            "\n**The {} (PyTorch):**\n\n```python\n{}\n```\n",
+            lesson.env.python_source(),
             step.python.trim()
         );
     }
@@ -479,9 +484,11 @@ fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
             continue;
         }
         match view.as_str() {
-            "plot" => cells.push(Cell::Code(
-                "snap.return_plot(\"PPO on CartPole-v1\")?".to_string(),
-            )),
+            "plot" => cells.push(Cell::Code(format!(
+                "snap.return_plot(\"PPO on {}\")?",
+                lesson.env.as_str()
+            ))),
+            "pendulum" => cells.push(Cell::Code("snap.pendulum()".to_string())),
             "cartpole" => cells.push(Cell::Code("snap.cartpole()".to_string())),
             "clip_chart" => cells.push(Cell::Code("snap.clip_chart()".to_string())),
             "lab" => {
@@ -662,6 +669,7 @@ mod tests {
             steps,
             exercise: None,
             quiz: Vec::new(),
+            env: crate::lesson::Environment::CartPole,
         }
     }
 

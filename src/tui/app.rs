@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use crate::grade::Report;
 use crate::lesson::quiz::QuestionKind;
-use crate::lesson::{Course, Lesson, Progress, Snapshot, Step};
-use crate::ppo::PpoConfig;
+use crate::lesson::{Course, Environment, Lesson, Progress, RunConfig, Snapshot, Step};
 use crate::ppo::lab::Experiment;
+use crate::ppo::{PpoConfig, PpoContinuousConfig};
 
 use super::keys::Action;
 use super::sandbox::{Outcome, Sandbox};
@@ -130,8 +130,13 @@ pub struct App {
     pub frame: usize,
     /// The previous run's curve, overlaid on the plot after a sandbox retrain.
     pub previous: Option<PreviousCurve>,
-    /// Hyper-parameters of the current run.
+    /// Hyper-parameters of the current CartPole run (or of the next one, in a Pendulum
+    /// lesson).
     pub config: PpoConfig,
+    /// Hyper-parameters of the current Pendulum run (or of the next one).
+    pub pendulum: PpoContinuousConfig,
+    /// The environment of the current run: the open lesson's.
+    pub env: Environment,
     /// Seed of the current run.
     pub seed: u64,
     /// The sandbox overlay's settings being edited.
@@ -156,6 +161,17 @@ pub struct App {
     pub quiz: QuizState,
 }
 
+/// A return as the app prints it: CartPole's whole numbers as they are, Pendulum's to one
+/// decimal.
+#[must_use]
+pub fn return_text(r: f64) -> String {
+    if r.fract() == 0.0 {
+        format!("{r}")
+    } else {
+        format!("{r:.1}")
+    }
+}
+
 /// Seeds every clip-lab experiment runs in the app (as `ppo-tutor lab`'s default).
 pub const LAB_SEEDS: [u64; 5] = [0, 1, 2, 3, 4];
 
@@ -167,7 +183,15 @@ impl App {
         let lesson = course.index_of(&progress.lesson).unwrap_or(0);
         let steps = course.lessons.get(lesson).map_or(1, |l| l.steps.len());
         let step = progress.step.min(steps.saturating_sub(1));
-        let snapshot = Snapshot::new(&config, 0);
+        let env = course
+            .lessons
+            .get(lesson)
+            .map_or_else(Environment::default, |l| l.env);
+        let pendulum = PpoContinuousConfig::default();
+        let snapshot = match env {
+            Environment::CartPole => Snapshot::new(&config, 0),
+            Environment::Pendulum => Snapshot::new_pendulum(&pendulum, 0),
+        };
         Self {
             course,
             lesson,
@@ -182,6 +206,8 @@ impl App {
             previous: None,
             sandbox: Sandbox::new(config.clone(), 0),
             config,
+            pendulum,
+            env,
             seed: 0,
             status: String::new(),
             progress,
@@ -246,7 +272,7 @@ impl App {
             Action::Lessons => self.overlay = Overlay::Lessons(self.lesson),
             Action::Help => self.overlay = Overlay::Help,
             Action::Sandbox => {
-                self.sandbox = Sandbox::new(self.config.clone(), self.seed);
+                self.sandbox = Sandbox::for_run(&self.run_config(), &self.config, self.seed);
                 self.overlay = Overlay::Sandbox;
             }
             Action::TrainToggle => self.toggle_training(),
@@ -257,7 +283,7 @@ impl App {
                     self.status = "training one episode".into();
                 }
             }
-            Action::ResetAgent => self.reset_agent(self.config.clone(), self.seed, false),
+            Action::ResetAgent => self.reset_agent(self.run_config(), self.seed, false),
             Action::Grade => self.request_grade(),
             Action::Hint => self.reveal_hint(),
             Action::RunLab => self.request_lab(),
@@ -587,7 +613,7 @@ impl App {
                         values,
                     });
                 }
-                self.reset_agent(self.sandbox.config.clone(), self.sandbox.seed, true);
+                self.reset_agent(self.sandbox.run_config(), self.sandbox.seed, true);
             }
         }
     }
@@ -607,20 +633,33 @@ impl App {
             TrainState::Finished => {
                 self.status = format!(
                     "all {} episodes done: r resets the agent, s opens the sandbox",
-                    self.config.num_episodes
+                    self.run_config().num_episodes()
                 );
             }
         }
     }
 
-    fn reset_agent(&mut self, config: PpoConfig, seed: u64, run: bool) {
+    /// The current run's environment and settings, as the worker's session was started.
+    #[must_use]
+    pub fn run_config(&self) -> RunConfig {
+        match self.env {
+            Environment::CartPole => RunConfig::CartPole(self.config.clone()),
+            Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
+        }
+    }
+
+    fn reset_agent(&mut self, config: RunConfig, seed: u64, run: bool) {
         self.outbox.push(Command::Reset {
             config: Box::new(config.clone()),
             seed,
         });
-        self.config = config;
+        self.show(config.first_snapshot(seed));
+        self.env = config.env();
+        match config {
+            RunConfig::CartPole(c) => self.config = c,
+            RunConfig::Pendulum(p) => self.pendulum = p,
+        }
         self.seed = seed;
-        self.show(Snapshot::new(&self.config, seed));
         self.train = TrainState::Paused;
         if run {
             self.outbox.push(Command::Run);
@@ -652,7 +691,11 @@ impl App {
             && !self.status.starts_with(WARNING)
             && let Some(r) = self.snapshot.returns.last()
         {
-            self.status = format!("episode {}: return {r}", self.snapshot.episodes);
+            self.status = format!(
+                "episode {}: return {}",
+                self.snapshot.episodes,
+                return_text(*r)
+            );
         }
     }
 
@@ -712,7 +755,8 @@ impl App {
 
     fn go_to(&mut self, lesson: usize, step: usize) {
         let lesson = lesson.min(self.course.lessons.len().saturating_sub(1));
-        if lesson != self.lesson {
+        let changed = lesson != self.lesson;
+        if changed {
             let grading = self.exercise.grading;
             self.exercise = ExerciseState {
                 grading,
@@ -728,6 +772,31 @@ impl App {
         }
         self.progress.step = self.step;
         self.save_progress();
+        if changed {
+            self.follow_lesson_env();
+        }
+    }
+
+    /// A lesson on the other environment starts a fresh run there (paused), with that
+    /// environment's settings in force; the previous run's curve is not overlaid.
+    fn follow_lesson_env(&mut self) {
+        let Some(env) = self.current_lesson().map(|l| l.env) else {
+            return;
+        };
+        if env == self.env {
+            return;
+        }
+        self.previous = None;
+        let run = match env {
+            Environment::CartPole => RunConfig::CartPole(self.config.clone()),
+            Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
+        };
+        self.reset_agent(run, self.seed, false);
+        self.status = format!(
+            "a {} lesson: fresh agent, seed {} (t trains, e one episode)",
+            env.as_str(),
+            self.seed
+        );
     }
 
     /// Writes the progress file (atomically); a failure becomes a status message.

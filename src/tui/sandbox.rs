@@ -2,7 +2,8 @@
 //! highlighted field. Enter retrains with the copy; nothing changes before that.
 
 use crate::env::EnvId;
-use crate::ppo::{Algorithm, PpoConfig};
+use crate::lesson::{Environment, RunConfig};
+use crate::ppo::{Algorithm, PpoConfig, PpoContinuousConfig};
 
 use super::keys::Action;
 
@@ -26,7 +27,7 @@ pub enum Field {
     BootstrapOnTruncation,
     /// Whether the advantage is normalised per batch.
     NormalizeAdvantage,
-    /// CartPole-v1 or v0.
+    /// CartPole-v1, CartPole-v0 or Pendulum-v1 (with the book's continuous defaults).
     Env,
     /// The entropy bonus: off (the seed) or CleanRL's 0.01.
     EntropyCoef,
@@ -111,23 +112,71 @@ pub enum Outcome {
 /// The settings being edited and the highlighted field.
 #[derive(Debug, Clone, Default)]
 pub struct Sandbox {
-    /// The hyper-parameters of the next run.
+    /// The hyper-parameters of the next CartPole run.
     pub config: PpoConfig,
+    /// The hyper-parameters of the next Pendulum run.
+    pub pendulum: PpoContinuousConfig,
+    /// The environment of the next run.
+    pub env: Environment,
     /// The seed of the next run.
     pub seed: u64,
     /// The highlighted field.
     pub selected: Field,
 }
 
+/// What the sandbox shows for a CartPole-only switch while Pendulum is chosen.
+pub const CARTPOLE_ONLY: &str = "(CartPole only)";
+
 impl Sandbox {
-    /// A sandbox starting from the current run's settings, first field highlighted.
+    /// A sandbox starting from the current CartPole run's settings, first field highlighted.
     #[must_use]
     pub fn new(config: PpoConfig, seed: u64) -> Self {
         Self {
             config,
             seed,
-            selected: Field::default(),
+            ..Self::default()
         }
+    }
+
+    /// A sandbox starting from the settings of `run` (the other environment's from its
+    /// defaults, or from `cartpole` when `run` is a Pendulum run).
+    #[must_use]
+    pub fn for_run(run: &RunConfig, cartpole: &PpoConfig, seed: u64) -> Self {
+        match run {
+            RunConfig::CartPole(c) => Self::new(c.clone(), seed),
+            RunConfig::Pendulum(p) => Self {
+                pendulum: p.clone(),
+                env: Environment::Pendulum,
+                ..Self::new(cartpole.clone(), seed)
+            },
+        }
+    }
+
+    /// The run the sandbox's settings describe.
+    #[must_use]
+    pub fn run_config(&self) -> RunConfig {
+        match self.env {
+            Environment::CartPole => RunConfig::CartPole(self.config.clone()),
+            Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
+        }
+    }
+
+    /// Whether `field` applies to the chosen environment (the discrete PPO's switches do
+    /// not apply to Pendulum's).
+    #[must_use]
+    pub fn applies(&self, field: Field) -> bool {
+        self.env == Environment::CartPole
+            || matches!(
+                field,
+                Field::Eps
+                    | Field::Gamma
+                    | Field::Lmbda
+                    | Field::ActorLr
+                    | Field::CriticLr
+                    | Field::Seed
+                    | Field::Env
+                    | Field::Epochs
+            )
     }
 
     /// Applies one key's action: move the highlight, change the highlighted value, or ask
@@ -153,6 +202,9 @@ impl Sandbox {
     /// The value of `field` as the sandbox shows it.
     #[must_use]
     pub fn value(&self, field: Field) -> String {
+        if self.env == Environment::Pendulum {
+            return self.pendulum_value(field);
+        }
         let c = &self.config;
         match field {
             Field::Eps => c.eps.to_string(),
@@ -173,8 +225,91 @@ impl Sandbox {
         }
     }
 
+    fn pendulum_value(&self, field: Field) -> String {
+        let p = &self.pendulum;
+        match field {
+            Field::Eps => p.eps.to_string(),
+            Field::Gamma => p.gamma.to_string(),
+            Field::Lmbda => p.lmbda.to_string(),
+            Field::ActorLr => format!("{:.2e}", p.actor_lr),
+            Field::CriticLr => format!("{:.2e}", p.critic_lr),
+            Field::Seed => self.seed.to_string(),
+            Field::Env => Environment::Pendulum.as_str().into(),
+            Field::Epochs => p.epochs.to_string(),
+            _ => CARTPOLE_ONLY.into(),
+        }
+    }
+
+    /// The environment after `self.env`/`env_id` in the cycle CartPole-v1 → CartPole-v0 →
+    /// Pendulum-v1 → CartPole-v1 (or back, for `up == false`). Choosing Pendulum starts
+    /// from the book's continuous defaults.
+    fn cycle_env(&mut self, up: bool) {
+        const CYCLE: [(Environment, EnvId); 3] = [
+            (Environment::CartPole, EnvId::CartPoleV1),
+            (Environment::CartPole, EnvId::CartPoleV0),
+            (Environment::Pendulum, EnvId::CartPoleV1),
+        ];
+        let at = match self.env {
+            Environment::Pendulum => 2,
+            Environment::CartPole if self.config.env_id == EnvId::CartPoleV0 => 1,
+            Environment::CartPole => 0,
+        };
+        let to = if up { (at + 1) % 3 } else { (at + 2) % 3 };
+        let (env, id) = CYCLE[to];
+        if env == Environment::Pendulum && self.env != Environment::Pendulum {
+            self.pendulum = PpoContinuousConfig::default();
+        }
+        self.env = env;
+        if env == Environment::CartPole {
+            self.config.env_id = id;
+        }
+    }
+
+    /// Changes a Pendulum setting one notch up or down (the CartPole-only ones stay).
+    fn nudge_pendulum(&mut self, field: Field, up: bool) {
+        let p = &mut self.pendulum;
+        let step = |v: f64, by: f64, lo: f64, hi: f64| {
+            round3((v + if up { by } else { -by }).clamp(lo, hi))
+        };
+        let scale = |v: f64| (if up { v * 2.0 } else { v / 2.0 }).clamp(1e-6, 1.0);
+        match field {
+            Field::Eps => p.eps = step(p.eps, 0.05, 0.05, 0.95),
+            Field::Gamma => p.gamma = step(p.gamma, 0.01, 0.5, 1.0),
+            Field::Lmbda => p.lmbda = step(p.lmbda, 0.05, 0.0, 1.0),
+            Field::ActorLr => p.actor_lr = scale(p.actor_lr),
+            Field::CriticLr => p.critic_lr = scale(p.critic_lr),
+            Field::Epochs => {
+                const LADDER: [usize; 7] = [1, 2, 3, 5, 10, 20, 40];
+                let at = LADDER.iter().position(|&e| e >= p.epochs).unwrap_or(4);
+                let to = if up {
+                    (at + 1).min(LADDER.len() - 1)
+                } else {
+                    at.saturating_sub(1)
+                };
+                p.epochs = LADDER[to];
+            }
+            _ => {}
+        }
+    }
+
     /// Changes `field` one notch up or down, within its valid range.
     fn nudge(&mut self, field: Field, up: bool) {
+        if field == Field::Env {
+            self.cycle_env(up);
+            return;
+        }
+        if field == Field::Seed {
+            self.seed = if up {
+                self.seed.saturating_add(1)
+            } else {
+                self.seed.saturating_sub(1)
+            };
+            return;
+        }
+        if self.env == Environment::Pendulum {
+            self.nudge_pendulum(field, up);
+            return;
+        }
         let c = &mut self.config;
         let step = |v: f64, by: f64, lo: f64, hi: f64| {
             round3((v + if up { by } else { -by }).clamp(lo, hi))
@@ -186,23 +321,11 @@ impl Sandbox {
             Field::Lmbda => c.lmbda = step(c.lmbda, 0.05, 0.0, 1.0),
             Field::ActorLr => c.actor_lr = scale(c.actor_lr),
             Field::CriticLr => c.critic_lr = scale(c.critic_lr),
-            Field::Seed => {
-                self.seed = if up {
-                    self.seed.saturating_add(1)
-                } else {
-                    self.seed.saturating_sub(1)
-                };
-            }
+            Field::Seed | Field::Env => {}
             Field::BootstrapOnTruncation => {
                 c.bootstrap_on_truncation = !c.bootstrap_on_truncation;
             }
             Field::NormalizeAdvantage => c.normalize_advantage = !c.normalize_advantage,
-            Field::Env => {
-                c.env_id = match c.env_id {
-                    EnvId::CartPoleV1 => EnvId::CartPoleV0,
-                    EnvId::CartPoleV0 => EnvId::CartPoleV1,
-                };
-            }
             // The three switches toggle between off and the value their source uses.
             Field::EntropyCoef => {
                 c.entropy_coef = if c.entropy_coef > 0.0 { 0.0 } else { 0.01 };
@@ -308,6 +431,44 @@ mod tests {
         assert!(
             c.validate().is_ok(),
             "the sandbox's lower ends are valid settings"
+        );
+    }
+
+    #[test]
+    fn the_env_field_switches_to_pendulum_with_the_books_defaults() {
+        let mut s = Sandbox::new(PpoConfig::default(), 3);
+        s.pendulum.eps = 0.5;
+        s.selected = Field::Env;
+        let mut seen = Vec::new();
+        for _ in 0..3 {
+            s.update(Action::Increase);
+            seen.push(s.value(Field::Env));
+        }
+        assert_eq!(seen, ["CartPole-v0", "Pendulum-v1", "CartPole-v1"]);
+        s.update(Action::Decrease);
+        assert_eq!(s.env, Environment::Pendulum);
+        assert_eq!(
+            s.pendulum,
+            PpoContinuousConfig::default(),
+            "the book's defaults"
+        );
+        assert_eq!(s.value(Field::Gamma), "0.9");
+        assert_eq!(s.value(Field::EntropyCoef), CARTPOLE_ONLY);
+        assert!(!s.applies(Field::NoClip) && s.applies(Field::Eps));
+        s.selected = Field::Eps;
+        s.update(Action::Increase);
+        assert!((s.pendulum.eps - 0.25).abs() < 1e-12);
+        assert_eq!(
+            s.config,
+            PpoConfig::default(),
+            "CartPole's settings are kept"
+        );
+        assert_eq!(
+            s.run_config(),
+            RunConfig::Pendulum(PpoContinuousConfig {
+                eps: 0.25,
+                ..PpoContinuousConfig::default()
+            })
         );
     }
 

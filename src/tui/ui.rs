@@ -10,9 +10,14 @@ use super::keys::HELP;
 use super::sandbox::Field;
 use super::theme::Theme;
 use super::widgets::{
-    cartpole::CartPoleView, clip::ClipChart, lab::LabPanel, plot::ReturnPlot, tensors, text,
+    cartpole::CartPoleView, clip::ClipChart, lab::LabPanel, pendulum::PendulumView,
+    plot::ReturnPlot, tensors, text,
 };
-use crate::lesson::{TensorView, VIEWS};
+use crate::lesson::{Environment, TensorView, VIEWS};
+
+/// The bottom of the return plot's y-axis in a Pendulum run (returns are negative; a
+/// random policy scores around −1200).
+const PENDULUM_PLOT_FLOOR: f64 = -1800.0;
 
 /// The smallest terminal the layout fits.
 pub const MIN_SIZE: (u16, u16) = (80, 24);
@@ -75,11 +80,9 @@ fn draw_header(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         TrainState::Paused => "paused",
         TrainState::Finished => "finished",
     };
-    let last = app
-        .snapshot
-        .returns
-        .last()
-        .map_or(String::new(), |r| format!(" · last return {r}"));
+    let last = app.snapshot.returns.last().map_or(String::new(), |r| {
+        format!(" · last return {}", super::app::return_text(*r))
+    });
     let right = format!(
         "episode {}{last} · {train} · {pos}/{total} ",
         app.snapshot.episodes
@@ -115,7 +118,10 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         .wrap(Wrap { trim: false })
         .scroll((app.text_scroll, 0))
         .render(left, buf);
-    let code = code_lines(step, theme);
+    let env = app
+        .current_lesson()
+        .map_or_else(Default::default, |l| l.env);
+    let code = code_lines(step, env, theme);
     let code_height = (code.len() as u16 + 2).min(right.height / 3).max(5);
     let [code_area, live] =
         Layout::vertical([Constraint::Length(code_height), Constraint::Min(0)]).areas(right);
@@ -125,10 +131,17 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     draw_live(app, theme, step, live, buf);
 }
 
-fn code_lines(step: &crate::lesson::Step, theme: Theme) -> Vec<Line<'static>> {
+fn code_lines(
+    step: &crate::lesson::Step,
+    env: crate::lesson::Environment,
+    theme: Theme,
+) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
     if !step.python.is_empty() {
-        lines.push(Line::styled("# the seed (PyTorch)", theme.dim()));
+        lines.push(Line::styled(
+            format!("# the {} (PyTorch)", env.python_source()),
+            theme.dim(),
+        ));
         lines.extend(
             step.python
                 .lines()
@@ -216,8 +229,21 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
                 .previous
                 .as_ref()
                 .map(|p| (p.label.as_str(), p.values.as_slice())),
-            max_return: f64::from(app.config.env_id.max_episode_steps()),
-            block: panel(&format!("PPO on {}", app.config.env_id), theme),
+            max_return: match app.env {
+                Environment::CartPole => f64::from(app.config.env_id.max_episode_steps()),
+                Environment::Pendulum => 0.0,
+            },
+            min_return: match app.env {
+                Environment::CartPole => 0.0,
+                Environment::Pendulum => PENDULUM_PLOT_FLOOR,
+            },
+            block: panel(
+                &match app.env {
+                    Environment::CartPole => format!("PPO on {}", app.config.env_id),
+                    Environment::Pendulum => format!("PPO on {}", Environment::Pendulum.as_str()),
+                },
+                theme,
+            ),
             theme,
         }
         .render(area, buf),
@@ -230,6 +256,23 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             );
             CartPoleView {
                 obs,
+                block: panel(&title, theme),
+                color: theme.color,
+            }
+            .render(area, buf);
+        }
+        "pendulum" => {
+            let (theta, torque) = s
+                .pendulum_frame(app.frame)
+                .unwrap_or((std::f64::consts::PI, 0.0));
+            let title = format!(
+                "the latest episode, step {}/{}",
+                app.frame,
+                s.observation_count().saturating_sub(1)
+            );
+            PendulumView {
+                theta,
+                torque,
                 block: panel(&title, theme),
                 color: theme.color,
             }
@@ -386,8 +429,10 @@ fn draw_sandbox(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
             let text = format!(" {:<26} {}", field.name(), sandbox.value(field));
             if field == sandbox.selected {
                 Line::styled(text, theme.highlight())
-            } else {
+            } else if sandbox.applies(field) {
                 Line::raw(text)
+            } else {
+                Line::styled(text, theme.dim())
             }
         })
         .collect();

@@ -10,8 +10,7 @@
 use std::sync::mpsc::{Receiver, Sender, TryRecvError};
 use std::thread::JoinHandle;
 
-use crate::lesson::{Session, Snapshot};
-use crate::ppo::PpoConfig;
+use crate::lesson::{RunConfig, Session, Snapshot};
 
 /// What the UI asks of the worker.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,8 +23,8 @@ pub enum Command {
     OneEpisode,
     /// Start over with a fresh agent from `config` and `seed` (paused).
     Reset {
-        /// The hyper-parameters of the new run.
-        config: Box<PpoConfig>,
+        /// The environment and hyper-parameters of the new run.
+        config: Box<RunConfig>,
         /// Seeds the agent's weights, its sampling and the environment's first reset.
         seed: u64,
     },
@@ -52,15 +51,16 @@ pub enum WorkerEvent {
 /// Starts the worker thread with a fresh agent from `config` and `seed`.
 #[must_use]
 pub fn spawn(
-    config: PpoConfig,
+    config: impl Into<RunConfig>,
     seed: u64,
     commands: Receiver<Command>,
     events: Sender<WorkerEvent>,
 ) -> JoinHandle<()> {
+    let config = config.into();
     std::thread::spawn(move || run(config, seed, &commands, &events))
 }
 
-fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Sender<WorkerEvent>) {
+fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Sender<WorkerEvent>) {
     let mut session = start(config, seed, events);
     let mut running = false;
     let mut one_more = false;
@@ -121,7 +121,7 @@ fn run(config: PpoConfig, seed: u64, commands: &Receiver<Command>, events: &Send
 }
 
 /// A fresh session, or `None` after sending the reason it could not start.
-fn start(config: PpoConfig, seed: u64, events: &Sender<WorkerEvent>) -> Option<Session> {
+fn start(config: RunConfig, seed: u64, events: &Sender<WorkerEvent>) -> Option<Session> {
     match Session::new(config, seed) {
         Ok(session) => Some(session),
         Err(e) => {

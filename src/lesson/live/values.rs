@@ -14,7 +14,8 @@
 //! ```
 
 use super::{Mark, Snapshot, TensorView};
-use crate::ppo::{EpochTrace, UpdateTrace};
+use crate::lesson::Environment;
+use crate::ppo::{ContinuousEpochTrace, ContinuousUpdateTrace, EpochTrace, UpdateTrace};
 
 /// One live value: its name in lessons and how to view it in a snapshot.
 #[derive(Debug, Clone, Copy)]
@@ -26,12 +27,55 @@ pub struct LiveValue {
 }
 
 impl LiveValue {
+    /// Whether a run on `env` has this value: the Gaussian policy's values only exist in
+    /// Pendulum runs, the discrete policy's (probabilities, gradients, diagnostics) only
+    /// in CartPole runs, the rest in both.
+    #[must_use]
+    pub fn runs_on(&self, env: Environment) -> bool {
+        if PENDULUM_ONLY.contains(&self.name) {
+            env == Environment::Pendulum
+        } else {
+            env == Environment::CartPole || IN_BOTH.contains(&self.name)
+        }
+    }
+
     /// This value in `snapshot`, `None` if nothing has been computed for it yet.
     #[must_use]
     pub fn view(&self, snapshot: &Snapshot) -> Option<TensorView> {
         (self.view)(self.name, snapshot)
     }
 }
+
+/// Live values of the Gaussian policy, shown in Pendulum runs only.
+pub const PENDULUM_ONLY: [&str; 5] = ["scaled_rewards", "mu", "std", "mu_map", "std_map"];
+
+/// Live values with the same meaning in both runs: a Pendulum snapshot views them from the
+/// continuous update's trace.
+pub const IN_BOTH: [&str; 23] = [
+    "hyper",
+    "weights",
+    "states",
+    "actions",
+    "rewards",
+    "next_states",
+    "dones",
+    "values",
+    "next_values",
+    "td_target",
+    "td_delta",
+    "advantage",
+    "old_log_probs",
+    "log_probs",
+    "ratio",
+    "surr1",
+    "surr2",
+    "actor_loss",
+    "critic_loss",
+    "ratio_min",
+    "ratio_max",
+    "returns",
+    "moving_average",
+];
 
 /// Every live value a lesson may show, in the seed's order (views such as `plot` are listed
 /// in [`crate::lesson::VIEWS`]).
@@ -54,7 +98,10 @@ pub const LIVE: &[LiveValue] = &[
     },
     LiveValue {
         name: "states",
-        view: |n, s| Some(TensorView::rows(n, &trace(s)?.states)),
+        view: |n, s| match cont(s) {
+            Some(c) => Some(TensorView::rows(n, &c.states)),
+            None => Some(TensorView::rows(n, &trace(s)?.states)),
+        },
     },
     LiveValue {
         name: "actions",
@@ -62,15 +109,21 @@ pub const LIVE: &[LiveValue] = &[
     },
     LiveValue {
         name: "rewards",
-        view: |n, s| Some(TensorView::column(n, &trace(s)?.rewards)),
+        view: |n, s| column(n, s, |t| &t.rewards, |c| &c.rewards),
     },
     LiveValue {
         name: "next_states",
-        view: |n, s| Some(TensorView::rows(n, &trace(s)?.next_states)),
+        view: |n, s| match cont(s) {
+            Some(c) => Some(TensorView::rows(n, &c.next_states)),
+            None => Some(TensorView::rows(n, &trace(s)?.next_states)),
+        },
     },
     LiveValue {
         name: "dones",
-        view: |n, s| Some(TensorView::flags(n, &trace(s)?.dones)),
+        view: |n, s| match cont(s) {
+            Some(c) => Some(TensorView::flags(n, &c.dones)),
+            None => Some(TensorView::flags(n, &trace(s)?.dones)),
+        },
     },
     LiveValue {
         name: "terminated",
@@ -82,23 +135,23 @@ pub const LIVE: &[LiveValue] = &[
     },
     LiveValue {
         name: "values",
-        view: |n, s| Some(TensorView::column(n, &trace(s)?.values)),
+        view: |n, s| column(n, s, |t| &t.values, |c| &c.values),
     },
     LiveValue {
         name: "next_values",
-        view: |n, s| Some(TensorView::column(n, &trace(s)?.next_values)),
+        view: |n, s| column(n, s, |t| &t.next_values, |c| &c.next_values),
     },
     LiveValue {
         name: "td_target",
-        view: |n, s| Some(TensorView::column(n, &trace(s)?.td_target)),
+        view: |n, s| column(n, s, |t| &t.td_target, |c| &c.td_target),
     },
     LiveValue {
         name: "td_delta",
-        view: |n, s| Some(signed(TensorView::column(n, &trace(s)?.td_delta))),
+        view: |n, s| column(n, s, |t| &t.td_delta, |c| &c.td_delta).map(signed),
     },
     LiveValue {
         name: "advantage",
-        view: |n, s| Some(signed(TensorView::column(n, &trace(s)?.advantage))),
+        view: |n, s| column(n, s, |t| &t.advantage, |c| &c.advantage).map(signed),
     },
     LiveValue {
         name: "return_to_go",
@@ -117,11 +170,11 @@ pub const LIVE: &[LiveValue] = &[
     },
     LiveValue {
         name: "old_log_probs",
-        view: |n, s| Some(TensorView::column(n, &trace(s)?.old_log_probs)),
+        view: |n, s| column(n, s, |t| &t.old_log_probs, |c| &c.old_log_probs),
     },
     LiveValue {
         name: "log_probs",
-        view: |n, s| Some(TensorView::column(n, &last_epoch(s)?.log_probs)),
+        view: |n, s| epoch_column(n, s, |e| &e.log_probs, |e| &e.log_probs),
     },
     LiveValue {
         name: "ratio",
@@ -129,11 +182,11 @@ pub const LIVE: &[LiveValue] = &[
     },
     LiveValue {
         name: "surr1",
-        view: |n, s| Some(TensorView::column(n, &last_epoch(s)?.surr1)),
+        view: |n, s| epoch_column(n, s, |e| &e.surr1, |e| &e.surr1),
     },
     LiveValue {
         name: "surr2",
-        view: |n, s| Some(TensorView::column(n, &last_epoch(s)?.surr2)),
+        view: |n, s| epoch_column(n, s, |e| &e.surr2, |e| &e.surr2),
     },
     LiveValue {
         name: "clipped",
@@ -141,11 +194,17 @@ pub const LIVE: &[LiveValue] = &[
     },
     LiveValue {
         name: "actor_loss",
-        view: |n, s| epoch_series(n, s, |e| e.actor_loss),
+        view: |n, s| match cont(s) {
+            Some(c) => Some(continuous_series(n, c, |e| e.actor_loss)),
+            None => epoch_series(n, s, |e| e.actor_loss),
+        },
     },
     LiveValue {
         name: "critic_loss",
-        view: |n, s| epoch_series(n, s, |e| e.critic_loss),
+        view: |n, s| match cont(s) {
+            Some(c) => Some(continuous_series(n, c, |e| e.critic_loss)),
+            None => epoch_series(n, s, |e| e.critic_loss),
+        },
     },
     LiveValue {
         name: "approx_kl",
@@ -157,18 +216,24 @@ pub const LIVE: &[LiveValue] = &[
     },
     LiveValue {
         name: "ratio_min",
-        view: |n, s| {
-            epoch_series(n, s, |e| {
+        view: |n, s| match cont(s) {
+            Some(c) => Some(continuous_series(n, c, |e| {
                 e.ratio.iter().copied().fold(f32::INFINITY, f32::min)
-            })
+            })),
+            None => epoch_series(n, s, |e| {
+                e.ratio.iter().copied().fold(f32::INFINITY, f32::min)
+            }),
         },
     },
     LiveValue {
         name: "ratio_max",
-        view: |n, s| {
-            epoch_series(n, s, |e| {
+        view: |n, s| match cont(s) {
+            Some(c) => Some(continuous_series(n, c, |e| {
                 e.ratio.iter().copied().fold(f32::NEG_INFINITY, f32::max)
-            })
+            })),
+            None => epoch_series(n, s, |e| {
+                e.ratio.iter().copied().fold(f32::NEG_INFINITY, f32::max)
+            }),
         },
     },
     LiveValue {
@@ -219,6 +284,26 @@ pub const LIVE: &[LiveValue] = &[
         },
     },
     LiveValue {
+        name: "scaled_rewards",
+        view: |n, s| Some(TensorView::column(n, &cont(s)?.scaled_rewards)),
+    },
+    LiveValue {
+        name: "mu",
+        view: |n, s| Some(TensorView::column(n, &cont(s)?.mu)),
+    },
+    LiveValue {
+        name: "std",
+        view: |n, s| Some(TensorView::column(n, &cont(s)?.std)),
+    },
+    LiveValue {
+        name: "mu_map",
+        view: |n, s| policy_map(n, s, |m| &m.mu),
+    },
+    LiveValue {
+        name: "std_map",
+        view: |n, s| policy_map(n, s, |m| &m.std),
+    },
+    LiveValue {
         name: "returns",
         view: |n, s| curve(n, &s.returns),
     },
@@ -257,6 +342,62 @@ fn trace(s: &Snapshot) -> Option<&UpdateTrace> {
 
 fn last_epoch(s: &Snapshot) -> Option<&EpochTrace> {
     trace(s)?.epochs.last()
+}
+
+fn cont(s: &Snapshot) -> Option<&ContinuousUpdateTrace> {
+    s.continuous.as_ref()
+}
+
+/// A float32 column of the latest update, from whichever trace the run keeps.
+fn column(
+    name: &'static str,
+    s: &Snapshot,
+    discrete: impl Fn(&UpdateTrace) -> &Vec<f32>,
+    continuous: impl Fn(&ContinuousUpdateTrace) -> &Vec<f32>,
+) -> Option<TensorView> {
+    match cont(s) {
+        Some(c) => Some(TensorView::column(name, continuous(c))),
+        None => Some(TensorView::column(name, discrete(trace(s)?))),
+    }
+}
+
+/// A float32 column of the latest update's last epoch, from whichever trace the run keeps.
+fn epoch_column(
+    name: &'static str,
+    s: &Snapshot,
+    discrete: impl Fn(&EpochTrace) -> &Vec<f32>,
+    continuous: impl Fn(&ContinuousEpochTrace) -> &Vec<f32>,
+) -> Option<TensorView> {
+    match cont(s) {
+        Some(c) => Some(TensorView::column(name, continuous(c.last_epoch()?))),
+        None => Some(TensorView::column(name, discrete(last_epoch(s)?))),
+    }
+}
+
+/// A per-epoch scalar of a Pendulum update as a vector over epochs.
+fn continuous_series(
+    name: &'static str,
+    c: &ContinuousUpdateTrace,
+    f: impl Fn(&ContinuousEpochTrace) -> f32,
+) -> TensorView {
+    let values: Vec<f64> = c.epochs.iter().map(|e| f64::from(f(e))).collect();
+    TensorView::new(name, vec![values.len()], "float32", values)
+}
+
+/// `μ` or `σ` over the policy map's grid, `(θ̇ rows, θ columns)`.
+fn policy_map(
+    name: &'static str,
+    s: &Snapshot,
+    pick: impl Fn(&super::PolicyMap) -> &Vec<f32>,
+) -> Option<TensorView> {
+    let map = s.policy_map.as_ref()?;
+    let values = pick(map).iter().map(|&v| f64::from(v)).collect();
+    Some(TensorView::new(
+        name,
+        vec![map.theta_dots.len(), map.thetas.len()],
+        "float32",
+        values,
+    ))
 }
 
 /// The hyper-parameters as `name = value` rows (shown even before the first episode).
@@ -303,6 +444,9 @@ fn probs(name: &'static str, s: &Snapshot) -> Option<TensorView> {
 }
 
 fn actions(name: &'static str, s: &Snapshot) -> Option<TensorView> {
+    if let Some(c) = cont(s) {
+        return Some(TensorView::column(name, &c.actions));
+    }
     let actions = &trace(s)?.actions;
     Some(TensorView::new(
         name,
@@ -314,6 +458,13 @@ fn actions(name: &'static str, s: &Snapshot) -> Option<TensorView> {
 
 /// The last epoch's ratio, clipped entries marked.
 fn ratio(name: &'static str, s: &Snapshot) -> Option<TensorView> {
+    if let Some(epoch) = cont(s).and_then(ContinuousUpdateTrace::last_epoch) {
+        let mut t = TensorView::column(name, &epoch.ratio);
+        let (lo, hi) = (1.0 - s.eps, 1.0 + s.eps);
+        let outside: Vec<bool> = epoch.ratio.iter().map(|&r| r < lo || r > hi).collect();
+        t.marks = clip_marks(&outside);
+        return Some(t);
+    }
     let epoch = last_epoch(s)?;
     let mut t = TensorView::column(name, &epoch.ratio);
     t.marks = clip_marks(&epoch.clipped);

@@ -16,8 +16,11 @@ pub struct ReturnPlot<'a> {
     pub average: &'a [f64],
     /// A previous run to overlay: label and returns' moving average or raw returns.
     pub previous: Option<(&'a str, &'a [f64])>,
-    /// The time limit (500 for v1), the y-axis top.
+    /// The y-axis top: the time limit for CartPole (500 for v1), 0 for Pendulum.
     pub max_return: f64,
+    /// The y-axis bottom: 0 for CartPole, a poor return for Pendulum (whose returns are
+    /// negative).
+    pub min_return: f64,
     /// The surrounding block.
     pub block: Block<'a>,
     /// Styles.
@@ -72,7 +75,12 @@ impl Widget for ReturnPlot<'_> {
                     .data(&avg),
             );
         }
-        let y_top = self.max_return.max(10.0);
+        let y_bottom = self.min_return;
+        let y_top = if y_bottom < 0.0 {
+            self.max_return
+        } else {
+            self.max_return.max(10.0)
+        };
         Chart::new(datasets)
             .block(self.block)
             // Keep the legend (it names the overlaid previous run) unless it would cover half the plot.
@@ -87,10 +95,10 @@ impl Widget for ReturnPlot<'_> {
             .y_axis(
                 Axis::default()
                     .title("Returns")
-                    .bounds([0.0, y_top])
+                    .bounds([y_bottom, y_top])
                     .labels([
-                        Span::raw("0"),
-                        Span::raw(format!("{:.0}", y_top / 2.0)),
+                        Span::raw(format!("{y_bottom:.0}")),
+                        Span::raw(format!("{:.0}", (y_bottom + y_top) / 2.0)),
                         Span::raw(format!("{y_top:.0}")),
                     ])
                     .style(self.theme.dim()),
