@@ -40,6 +40,8 @@ mod sol_clip_lab;
 #[allow(clippy::needless_range_loop)]
 #[path = "../lessons/15-beyond-the-seed/solution.rs"]
 mod sol15;
+#[path = "../lessons/16-continuous-actions/solution.rs"]
+mod sol16;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/11-losses/exercise_candle.rs"]
 mod starter11_candle;
@@ -72,6 +74,9 @@ mod w_critic_loss;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "wrong_answers/gae_rollout/resets_only_on_termination.rs"]
 mod w_gae_rollout;
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "wrong_answers/gaussian_log_prob/sigma_as_variance.rs"]
+mod w_gaussian_log_prob;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "wrong_answers/log_prob_of_actions/no_log.rs"]
 mod w_log_prob;
@@ -120,6 +125,7 @@ fn every_reference_solution_passes_in_place() {
         in_process::td_target_truncation(sol15::td_target_truncation),
         in_process::gae_rollout(sol15::gae_rollout),
         in_process::normalize_advantage(sol15::normalize_advantage),
+        in_process::gaussian_log_prob(sol16::gaussian_log_prob),
     ];
     for r in &reports {
         assert!(r.passed(), "{}", r.render());
@@ -232,6 +238,11 @@ fn wrong_answers_get_the_same_diagnosis_and_messages_as_from_a_file() -> TestRes
         "normalize_advantage",
         "biased_std",
         &in_process::normalize_advantage(w_normalize_advantage::normalize_advantage),
+    )?;
+    compare(
+        "gaussian_log_prob",
+        "sigma_as_variance",
+        &in_process::gaussian_log_prob(w_gaussian_log_prob::gaussian_log_prob),
     )?;
     Ok(())
 }

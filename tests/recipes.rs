@@ -40,6 +40,7 @@ const SPOILS: &[(&str, &[&str])] = &[
     ("td_target_truncation", &["td_target"]),
     ("gae_rollout", &["advantage"]),
     ("normalize_advantage", &["advantage"]),
+    ("gaussian_log_prob", &["old_log_probs", "log_probs"]),
 ];
 
 /// The code of a recipe before its `// %% exercise` marker (the header and markers

@@ -40,4 +40,5 @@ registry! {
     td_target_truncation,
     gae_rollout,
     normalize_advantage,
+    gaussian_log_prob,
 }

@@ -34,3 +34,6 @@ pub mod clip_lab;
 #[allow(clippy::needless_range_loop)]
 #[path = "../../lessons/15-beyond-the-seed/solution.rs"]
 pub mod beyond;
+
+#[path = "../../lessons/16-continuous-actions/solution.rs"]
+pub mod continuous;
