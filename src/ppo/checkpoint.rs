@@ -228,18 +228,40 @@ pub fn check_weights(
     hidden_dim: usize,
     source: &str,
 ) -> Result<(), PpoError> {
-    for (name, shape) in parameter_shapes(hidden_dim) {
-        let Some(w) = weights.get(name) else {
+    check_against(
+        weights,
+        &parameter_shapes(hidden_dim),
+        hidden_dim,
+        source,
+        "only the eight actor./critic. parameters",
+    )
+}
+
+/// Checks that `weights` holds exactly the tensors of `shapes` (name, shape for hidden width
+/// `hidden_dim`), with finite values; `only` says what an unknown tensor should have been.
+/// Both agents' checkpoints are checked with it.
+///
+/// # Errors
+/// [`PpoError::MissingKey`] or [`PpoError::WrongShape`] naming the tensor in `source`.
+pub(crate) fn check_against(
+    weights: &NamedWeights,
+    shapes: &[(&'static str, Vec<usize>)],
+    hidden_dim: usize,
+    source: &str,
+    only: &str,
+) -> Result<(), PpoError> {
+    for (name, shape) in shapes {
+        let Some(w) = weights.get(*name) else {
             return Err(PpoError::MissingKey {
                 file: source.into(),
-                key: name.into(),
+                key: (*name).into(),
                 expected: format!("an f32 tensor of shape {shape:?}"),
             });
         };
-        if w.shape != shape || w.data.len() != shape.iter().product::<usize>() {
+        if w.shape != *shape || w.data.len() != shape.iter().product::<usize>() {
             return Err(PpoError::WrongShape {
                 file: source.into(),
-                key: name.into(),
+                key: (*name).into(),
                 expected: format!("shape {shape:?} (hidden width {hidden_dim})"),
                 got: format!("shape {:?}", w.shape),
             });
@@ -247,20 +269,17 @@ pub fn check_weights(
         if let Some(i) = w.data.iter().position(|x| !x.is_finite()) {
             return Err(PpoError::WrongShape {
                 file: source.into(),
-                key: name.into(),
+                key: (*name).into(),
                 expected: "finite values".into(),
                 got: format!("{} at flat index {i}", w.data[i]),
             });
         }
     }
-    if let Some(extra) = weights
-        .keys()
-        .find(|k| !parameter_shapes(0).iter().any(|(n, _)| n == k))
-    {
+    if let Some(extra) = weights.keys().find(|k| !shapes.iter().any(|(n, _)| n == k)) {
         return Err(PpoError::WrongShape {
             file: source.into(),
             key: extra.clone(),
-            expected: "only the eight actor./critic. parameters".into(),
+            expected: only.into(),
             got: "an unknown tensor".into(),
         });
     }

@@ -3,6 +3,7 @@
 
 use super::{ACTION_DIM, STATE_DIM};
 use crate::ppo::PpoError;
+use crate::ppo::checkpoint::check_against;
 use crate::ppo::model::NamedWeights;
 
 /// Every parameter's name and shape for hidden width `hidden_dim`, in PyTorch's order.
@@ -39,41 +40,11 @@ pub fn check_weights(
     hidden_dim: usize,
     source: &str,
 ) -> Result<(), PpoError> {
-    for (name, shape) in parameter_shapes(hidden_dim) {
-        let Some(w) = weights.get(name) else {
-            return Err(PpoError::MissingKey {
-                file: source.into(),
-                key: name.into(),
-                expected: format!("an f32 tensor of shape {shape:?}"),
-            });
-        };
-        if w.shape != shape || w.data.len() != shape.iter().product::<usize>() {
-            return Err(PpoError::WrongShape {
-                file: source.into(),
-                key: name.into(),
-                expected: format!("shape {shape:?} (hidden width {hidden_dim})"),
-                got: format!("shape {:?}", w.shape),
-            });
-        }
-        if let Some(i) = w.data.iter().position(|x| !x.is_finite()) {
-            return Err(PpoError::WrongShape {
-                file: source.into(),
-                key: name.into(),
-                expected: "finite values".into(),
-                got: format!("{} at flat index {i}", w.data[i]),
-            });
-        }
-    }
-    if let Some(extra) = weights
-        .keys()
-        .find(|k| !parameter_names().contains(&k.as_str()))
-    {
-        return Err(PpoError::WrongShape {
-            file: source.into(),
-            key: extra.clone(),
-            expected: "only the ten actor./critic. parameters of the Gaussian policy".into(),
-            got: "an unknown tensor".into(),
-        });
-    }
-    Ok(())
+    check_against(
+        weights,
+        &parameter_shapes(hidden_dim),
+        hidden_dim,
+        source,
+        "only the ten actor./critic. parameters of the Gaussian policy",
+    )
 }
