@@ -477,10 +477,7 @@ impl Agent {
             early_stop: None,
             explained_variance: None,
         };
-        trace.explained_variance = explained_variance(&trace.td_target, &trace.values);
-        check_finite("td_target", &trace.td_target)?;
-        check_finite("advantage", &trace.advantage)?;
-        check_finite("old_log_probs", &trace.old_log_probs)?;
+        check_batch(&mut trace)?;
 
         let batch = EpochInputs {
             states: &states,
@@ -677,6 +674,18 @@ fn to_vec(t: &Tensor) -> candle_core::Result<Vec<f32>> {
 fn mean(xs: impl Iterator<Item = f32>) -> f32 {
     let (sum, n) = xs.fold((0.0_f32, 0_usize), |(s, n), x| (s + x, n + 1));
     if n == 0 { 0.0 } else { sum / n as f32 }
+}
+
+/// The batch half of an update's trace, before any epoch: the critic's explained variance,
+/// and the check that targets, advantages and old log-probs are finite (both update paths).
+///
+/// # Errors
+/// [`PpoError::NonFinite`] naming the first non-finite column.
+fn check_batch(trace: &mut UpdateTrace) -> Result<(), PpoError> {
+    trace.explained_variance = explained_variance(&trace.td_target, &trace.values);
+    check_finite("td_target", &trace.td_target)?;
+    check_finite("advantage", &trace.advantage)?;
+    check_finite("old_log_probs", &trace.old_log_probs)
 }
 
 fn check_finite(name: &str, values: &[f32]) -> Result<(), PpoError> {

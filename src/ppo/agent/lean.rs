@@ -41,7 +41,7 @@ use super::kernels::{
     fc1_backward_row, hidden_columns, hidden_layer, horizontal_columns, input_columns, isa, kernel,
     shapes_fit, store_columns, take, vec_sum,
 };
-use super::{Agent, EpochTrace, Transitions, check_finite, explained_variance, mean};
+use super::{Agent, EpochTrace, Transitions, check_batch, mean};
 use crate::ppo::advantage::{compute_advantage, normalize_advantage};
 use crate::ppo::model::ActorSnapshot;
 use crate::ppo::trace::{EarlyStop, UpdateTrace};
@@ -265,10 +265,7 @@ fn epochs(
         early_stop: None,
         explained_variance: None,
     };
-    trace.explained_variance = explained_variance(&trace.td_target, &trace.values);
-    check_finite("td_target", &trace.td_target)?;
-    check_finite("advantage", &trace.advantage)?;
-    check_finite("old_log_probs", &trace.old_log_probs)?;
+    check_batch(&mut trace)?;
 
     // mean_all's `sum / N` is candle's affine with mul = 1/N rounded to f32
     let inv_n = (1.0 / n as f64) as f32;
