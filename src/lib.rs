@@ -23,6 +23,7 @@
 #[cfg(feature = "app")]
 pub mod cli;
 pub mod env;
+#[cfg(feature = "exercises")]
 pub mod grade;
 pub mod lesson;
 pub mod notebook;

@@ -21,13 +21,16 @@
 //! `notebook-runner`) executes them on evcxr (`ppo-tutor dev notebooks`,
 //! `tests/notebooks.rs`).
 
+#[cfg(feature = "app")]
 pub mod build;
+#[cfg(feature = "app")]
 pub mod ipynb;
 #[cfg(feature = "notebook-runner")]
 pub mod kernel;
 
 use std::fmt::Write as _;
 
+#[cfg(feature = "exercises")]
 use crate::grade::{CheckStatus, Report};
 use crate::lesson::{Mark, RunConfig, Session, Snapshot, TensorView};
 use crate::plot::{PlotError, return_plot_svg};
@@ -397,6 +400,7 @@ const CANDLE_THREADS_HINT: &str = "note: RAYON_NUM_THREADS is unset, so candle u
     `RAYON_NUM_THREADS=1 jupyter lab notebooks/` (the kernel inherits it).";
 
 /// A grading report as in `ppo-tutor grade`: the same text, with its marks coloured.
+#[cfg(feature = "exercises")]
 #[must_use]
 pub fn report_html(report: &Report) -> Html {
     let text = report.render();
@@ -434,6 +438,7 @@ pub fn report_html(report: &Report) -> Html {
     Html { html, text }
 }
 
+#[cfg(feature = "exercises")]
 impl Report {
     /// evcxr's display hook: the report, marks coloured.
     pub fn evcxr_display(&self) {

@@ -47,6 +47,23 @@ pub const REGENERATE: &str = "cargo run --features notebook-runner -- dev notebo
 pub const DEP_CELL: &str =
     ":cache 4000\n:dep ppo-tutor = { path = \"..\", default-features = false }";
 
+/// The first cell of `lesson`'s notebook: [`DEP_CELL`], with the lesson's exercises
+/// (feature `exercises-NN`) when it has any, so that a notebook compiles only the graders
+/// it calls.
+#[must_use]
+pub fn dep_cell(lesson: &Lesson) -> String {
+    if lesson.exercise.is_none() {
+        return DEP_CELL.to_string();
+    }
+    DEP_CELL.replace(
+        "default-features = false }",
+        &format!(
+            "default-features = false, features = [\"exercises-{:02}\"] }}",
+            lesson.order
+        ),
+    )
+}
+
 /// One cell of a generated notebook.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Cell {
@@ -232,7 +249,7 @@ pub fn cells_from_recipe(
 ) -> Result<Vec<Cell>, BuildError> {
     let mut cells = vec![
         Cell::Markdown(title_markdown(lesson)),
-        Cell::Code(DEP_CELL.to_string()),
+        Cell::Code(dep_cell(lesson)),
     ];
     let mut next_step = 0;
     // The step whose live values are shown before the next marker, and what the notebook
@@ -911,7 +928,7 @@ mod tests {
         assert_eq!(folders.len(), course.lessons.len());
         for l in &course.lessons {
             let cells = notebook_cells(root(), l)?;
-            assert_eq!(cells[1], Cell::Code(DEP_CELL.into()), "{}", folder(l));
+            assert_eq!(cells[1], Cell::Code(dep_cell(l)), "{}", folder(l));
         }
         Ok(())
     }
