@@ -25,6 +25,7 @@ pub mod cli;
 pub mod env;
 #[cfg(feature = "exercises")]
 pub mod grade;
+pub mod i18n;
 pub mod lesson;
 pub mod notebook;
 pub mod plot;

@@ -62,10 +62,19 @@ pub trait Exercise: Sync {
         format!("lessons/{}/{}", m.lesson, m.solution)
     }
 
-    /// The embedded starter's text.
+    /// The embedded starter's text in the current language: for Chinese its twin with
+    /// Chinese comments (`exercise.zh.rs` beside `exercise.rs`; the code is the same).
     fn starter(&self) -> Option<&'static str> {
         let m = self.meta();
-        crate::lesson::files::embedded_file(&format!("{}/{}", m.lesson, m.starter))
+        let english = format!("{}/{}", m.lesson, m.starter);
+        let chinese = english
+            .strip_suffix(".rs")
+            .map(|stem| format!("{stem}.zh.rs"));
+        match (crate::i18n::Lang::current(), chinese) {
+            (crate::i18n::Lang::Zh, Some(zh)) => crate::lesson::files::embedded_file(&zh)
+                .or_else(|| crate::lesson::files::embedded_file(&english)),
+            _ => crate::lesson::files::embedded_file(&english),
+        }
     }
 
     /// The embedded reference solution (shown after a pass).

@@ -6,7 +6,8 @@ use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
 use super::error::GradeError;
-use crate::lesson::loader::{ExerciseText, embedded_exercises};
+use crate::i18n::Lang;
+use crate::lesson::loader::{ExerciseText, embedded_exercises_in};
 
 /// One exercise's prose.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -18,30 +19,35 @@ pub struct Prose {
 }
 
 impl Prose {
-    /// Every exercise's prose, parsed once per process, by exercise name.
+    /// Every exercise's prose in the current language ([`Lang::current`]), parsed once
+    /// per process and language, by exercise name.
     ///
     /// # Errors
-    /// [`GradeError::Content`] if an embedded `exercise.toml` does not parse (a broken
-    /// build: the content tests catch it first).
+    /// [`GradeError::Content`] if an embedded `exercise.toml` (or its `exercise.zh.toml`)
+    /// does not parse (a broken build: the content tests catch it first).
     pub fn all() -> Result<&'static BTreeMap<String, Prose>, GradeError> {
-        static ALL: OnceLock<Result<BTreeMap<String, Prose>, String>> = OnceLock::new();
-        ALL.get_or_init(|| {
-            let files = embedded_exercises().map_err(|e| e.to_string())?;
-            Ok(files
-                .into_iter()
-                .flat_map(|(lesson, texts)| {
-                    texts.into_iter().map(move |text| {
-                        let prose = Prose {
-                            lesson: lesson.clone(),
-                            text,
-                        };
-                        (prose.text.name.clone(), prose)
+        type Table = OnceLock<Result<BTreeMap<String, Prose>, String>>;
+        static EN: Table = OnceLock::new();
+        static ZH: Table = OnceLock::new();
+        let lang = Lang::current();
+        lang.pick(&EN, &ZH)
+            .get_or_init(|| {
+                let files = embedded_exercises_in(lang).map_err(|e| e.to_string())?;
+                Ok(files
+                    .into_iter()
+                    .flat_map(|(lesson, texts)| {
+                        texts.into_iter().map(move |text| {
+                            let prose = Prose {
+                                lesson: lesson.clone(),
+                                text,
+                            };
+                            (prose.text.name.clone(), prose)
+                        })
                     })
-                })
-                .collect())
-        })
-        .as_ref()
-        .map_err(|e| GradeError::Content(e.clone()))
+                    .collect())
+            })
+            .as_ref()
+            .map_err(|e| GradeError::Content(e.clone()))
     }
 
     /// The prose of exercise `name`.

@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 
 use super::{Environment, Exercise, Lesson, Step, VIEWS, anchor};
+use crate::i18n::Lang;
 
 /// A lesson file that cannot be used, with where and how to fix it.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -58,6 +59,17 @@ pub enum LessonError {
         /// The folder.
         dir: String,
         /// What is wrong, from the TOML parser.
+        reason: String,
+    },
+    /// A Chinese twin (`lesson.zh.md`, `quiz.zh.toml`, `exercise.zh.toml`) does not match
+    /// its English file.
+    #[error("lessons/{dir}/{file}: {reason}")]
+    Translation {
+        /// The folder.
+        dir: String,
+        /// The translated file.
+        file: &'static str,
+        /// What differs, and the fix.
         reason: String,
     },
     /// `quiz.toml` is not valid.
@@ -125,23 +137,87 @@ pub fn parse_exercises(dir: &str, text: &str) -> Result<Vec<ExerciseText>, Lesso
         })
 }
 
-/// Every embedded `exercise.toml`, as `(lesson folder, exercises)` in course order.
+/// Every embedded `exercise.toml`, as `(lesson folder, exercises)` in course order, in the
+/// current language ([`Lang::current`]).
 ///
 /// # Errors
 /// The first file that fails to parse.
 pub fn embedded_exercises() -> Result<Vec<(String, Vec<ExerciseText>)>, LessonError> {
+    embedded_exercises_in(Lang::current())
+}
+
+/// [`embedded_exercises`] in `lang`: for Chinese each `exercise.zh.toml`, which must name
+/// the same exercises, hints and mistakes as its English file.
+///
+/// # Errors
+/// The first file that fails to parse, or a Chinese file that does not match.
+pub fn embedded_exercises_in(lang: Lang) -> Result<Vec<(String, Vec<ExerciseText>)>, LessonError> {
     let mut out: Vec<(String, Vec<ExerciseText>)> = Vec::new();
     for d in super::files::root().dirs() {
         let name = d.path().file_name().and_then(|n| n.to_str()).unwrap_or("");
-        let file = d
-            .get_file(d.path().join("exercise.toml"))
-            .and_then(|f| f.contents_utf8());
-        if let Some(text) = file {
-            out.push((name.to_string(), parse_exercises(name, text)?));
+        let file = |f: &str| d.get_file(d.path().join(f)).and_then(|f| f.contents_utf8());
+        if let Some(text) = file("exercise.toml") {
+            let english = parse_exercises(name, text)?;
+            let texts = match (lang, file("exercise.zh.toml")) {
+                (Lang::Zh, Some(zh)) => {
+                    let chinese = parse_exercises(name, zh)
+                        .map_err(|e| translation(name, "exercise.zh.toml", e.to_string()))?;
+                    same_exercises(name, &english, &chinese)?;
+                    chinese
+                }
+                _ => english,
+            };
+            out.push((name.to_string(), texts));
         }
     }
     out.sort_by(|a, b| a.0.cmp(&b.0));
     Ok(out)
+}
+
+fn translation(dir: &str, file: &'static str, reason: String) -> LessonError {
+    LessonError::Translation {
+        dir: dir.into(),
+        file,
+        reason,
+    }
+}
+
+/// Checks that `zh` translates `en` item for item: the same functions in the same order,
+/// as many hints, the same mistake and situation keys.
+fn same_exercises(dir: &str, en: &[ExerciseText], zh: &[ExerciseText]) -> Result<(), LessonError> {
+    let bad = |reason: String| Err(translation(dir, "exercise.zh.toml", reason));
+    let names = |t: &[ExerciseText]| t.iter().map(|e| e.name.clone()).collect::<Vec<_>>();
+    if names(en) != names(zh) {
+        return bad(format!(
+            "exercises {:?}, but exercise.toml has {:?}; translate the same ones in the same order",
+            names(zh),
+            names(en)
+        ));
+    }
+    for (e, z) in en.iter().zip(zh) {
+        if e.hints.len() != z.hints.len() {
+            return bad(format!(
+                "{}: {} hints, but exercise.toml has {}",
+                e.name,
+                z.hints.len(),
+                e.hints.len()
+            ));
+        }
+        for (what, a, b) in [
+            ("mistakes", &e.mistakes, &z.mistakes),
+            ("other", &e.other, &z.other),
+        ] {
+            let ka: Vec<&String> = a.keys().collect();
+            let kb: Vec<&String> = b.keys().collect();
+            if ka != kb {
+                return bad(format!(
+                    "{}: [exercise.{what}] has keys {kb:?}, but exercise.toml has {ka:?}",
+                    e.name
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The lesson's exercise as the tutor presents it: every function of `texts` in order,
@@ -177,11 +253,23 @@ pub struct Course {
 }
 
 impl Course {
-    /// The course embedded in the binary at build time.
+    /// The course embedded in the binary at build time, in the current language
+    /// ([`Lang::current`]).
     ///
     /// # Errors
     /// The first lesson file that fails to parse (the content test catches this first).
     pub fn embedded() -> Result<Self, LessonError> {
+        Self::embedded_in(Lang::current())
+    }
+
+    /// The embedded course in `lang`. The structure (steps, code anchors, live values,
+    /// exercises, quiz answers) always comes from the English files; Chinese takes its prose
+    /// from each folder's `lesson.zh.md`, `quiz.zh.toml` and `exercise.zh.toml`, which must
+    /// match them step for step. A lesson without a Chinese twin stays English.
+    ///
+    /// # Errors
+    /// The first lesson file that fails to parse, or a translation that does not match.
+    pub fn embedded_in(lang: Lang) -> Result<Self, LessonError> {
         let mut folders: Vec<(&str, Option<&str>)> = super::files::root()
             .dirs()
             .map(|d| {
@@ -197,11 +285,17 @@ impl Course {
             .into_iter()
             .map(|(dir, text)| {
                 let text = text.ok_or_else(|| LessonError::MissingFile { dir: dir.into() })?;
-                parse_lesson(dir, text)
+                let mut lesson = parse_lesson(dir, text)?;
+                if lang == Lang::Zh
+                    && let Some(zh) = super::files::embedded_file(&format!("{dir}/lesson.zh.md"))
+                {
+                    translate_lesson(&mut lesson, dir, zh)?;
+                }
+                Ok(lesson)
             })
-            .collect::<Result<Vec<_>, _>>()?;
+            .collect::<Result<Vec<_>, LessonError>>()?;
         let mut lessons = lessons;
-        for (dir, texts) in embedded_exercises()? {
+        for (dir, texts) in embedded_exercises_in(lang)? {
             if let Some(lesson) = lessons
                 .iter_mut()
                 .find(|l| format!("{:02}-{}", l.order, l.id) == dir)
@@ -210,7 +304,7 @@ impl Course {
             }
         }
         for lesson in &mut lessons {
-            lesson.quiz = super::quiz::questions(&lesson.id)?;
+            lesson.quiz = super::quiz::questions_in(&lesson.id, lang)?;
         }
         let course = Self { lessons };
         course.check_ids()?;
@@ -273,6 +367,98 @@ fn split_steps(body: &str) -> Vec<(String, String)> {
         *text = text.trim().to_string();
     }
     steps
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TranslatedFront {
+    title: String,
+    #[serde(default)]
+    summary: String,
+    #[serde(default)]
+    steps: Vec<TranslatedStep>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TranslatedStep {
+    title: String,
+}
+
+/// Replaces `lesson`'s prose (title, summary, step titles and bodies) with that of its
+/// translation `text` (a `lesson.zh.md`: front matter with `title`, `summary` and one
+/// `[[steps]]` table per step holding only its `title`, then one `## ` section per step).
+///
+/// # Errors
+/// [`LessonError::Translation`] when the steps, their `<app>`/`<notebook>` passages or
+/// `<details>` blocks do not match the English lesson's.
+pub fn translate_lesson(lesson: &mut Lesson, dir: &str, text: &str) -> Result<(), LessonError> {
+    const FILE: &str = "lesson.zh.md";
+    let bad = |reason: String| translation(dir, FILE, reason);
+    let (front, body) = split_front_matter(text).ok_or_else(|| {
+        bad("the file must start with a '+++' line and close it with another".into())
+    })?;
+    let meta: TranslatedFront = toml::from_str(front).map_err(|e| {
+        bad(format!(
+            "front matter: {} (a translation holds only title, summary and [[steps]] titles)",
+            e.message()
+        ))
+    })?;
+    let bodies = split_steps(body);
+    if meta.steps.len() != lesson.steps.len() || bodies.len() != lesson.steps.len() {
+        return Err(bad(format!(
+            "{} [[steps]] tables and {} '## ' headings, but lesson.md has {} steps",
+            meta.steps.len(),
+            bodies.len(),
+            lesson.steps.len()
+        )));
+    }
+    let mut translated = Vec::with_capacity(bodies.len());
+    for (i, ((step, m), (heading, zh))) in
+        lesson.steps.iter().zip(meta.steps).zip(bodies).enumerate()
+    {
+        let n = i + 1;
+        if m.title != heading {
+            return Err(bad(format!(
+                "step {n}: title '{}' but heading '## {heading}'",
+                m.title
+            )));
+        }
+        super::face::check(&zh).map_err(|e| bad(format!("step {n}: {e}")))?;
+        for face in super::face::Face::ALL {
+            let (en_text, zh_text) = (
+                super::face::text(&step.body, face),
+                super::face::text(&zh, face),
+            );
+            let en = super::details::parts(&en_text).map_err(|e| bad(format!("step {n}: {e}")))?;
+            let ours =
+                super::details::parts(&zh_text).map_err(|e| bad(format!("step {n}: {e}")))?;
+            if en.len() != ours.len() {
+                return Err(bad(format!(
+                    "step {n} ({face:?}): {} parts (text and <details> blocks), but lesson.md has {}",
+                    ours.len(),
+                    en.len()
+                )));
+            }
+        }
+        for tag in ["<app>", "<notebook>"] {
+            if step.body.matches(tag).count() != zh.matches(tag).count() {
+                return Err(bad(format!(
+                    "step {n}: {tag} appears {} times, but {} times in lesson.md",
+                    zh.matches(tag).count(),
+                    step.body.matches(tag).count()
+                )));
+            }
+        }
+        translated.push((m.title, zh));
+    }
+    lesson.title = meta.title;
+    lesson.summary = meta.summary;
+    for (step, (title, body)) in lesson.steps.iter_mut().zip(translated) {
+        step.title = title;
+        step.body = body;
+    }
+    Ok(())
 }
 
 /// Parses one `lesson.md` from folder `dir` and checks its references.

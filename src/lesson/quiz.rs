@@ -24,6 +24,7 @@ use serde::Deserialize;
 
 use super::Snapshot;
 use super::files::embedded_file;
+use crate::i18n::Lang;
 
 /// One question.
 #[derive(Debug, Clone, PartialEq)]
@@ -422,14 +423,96 @@ pub fn parse(dir: &str, text: &str) -> Result<Vec<Question>, QuizError> {
 /// # Errors
 /// [`QuizError::UnknownLesson`], or [`QuizError::File`] for a malformed file.
 pub fn questions(id: &str) -> Result<Vec<Question>, QuizError> {
+    questions_in(id, Lang::current())
+}
+
+/// [`questions`] in `lang`: for Chinese, the prompts, choices and explanations of
+/// `quiz.zh.toml`, with the answers, measures and tolerances of `quiz.toml`.
+///
+/// # Errors
+/// As [`questions`], or [`QuizError::File`] when `quiz.zh.toml` does not match `quiz.toml`.
+pub fn questions_in(id: &str, lang: Lang) -> Result<Vec<Question>, QuizError> {
     let dir = super::files::lesson_dirs()
         .into_iter()
         .find(|d| d.split_once('-').is_some_and(|(_, slug)| slug == id))
         .ok_or_else(|| QuizError::UnknownLesson(id.to_string()))?;
-    match embedded_file(&format!("{dir}/quiz.toml")) {
-        Some(text) => parse(&dir, text),
-        None => Ok(Vec::new()),
+    let Some(text) = embedded_file(&format!("{dir}/quiz.toml")) else {
+        return Ok(Vec::new());
+    };
+    let mut questions = parse(&dir, text)?;
+    if lang == Lang::Zh
+        && let Some(zh) = embedded_file(&format!("{dir}/quiz.zh.toml"))
+    {
+        translate(&dir, &mut questions, zh)?;
     }
+    Ok(questions)
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TranslatedFile {
+    question: Vec<TranslatedQuestion>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TranslatedQuestion {
+    prompt: String,
+    #[serde(default)]
+    choices: Vec<String>,
+    explain: Explain,
+}
+
+/// Replaces the prose of `questions` with that of `text` (a `quiz.zh.toml`: per question
+/// only `prompt`, `choices` and `explain`, as many as in `quiz.toml`).
+///
+/// # Errors
+/// [`QuizError::File`] naming the question that does not match.
+pub fn translate(dir: &str, questions: &mut [Question], text: &str) -> Result<(), QuizError> {
+    let bad = |reason: String| QuizError::File {
+        dir: dir.to_string(),
+        reason: format!("quiz.zh.toml: {reason}"),
+    };
+    let file: TranslatedFile = toml::from_str(text).map_err(|e| {
+        bad(format!(
+            "{} (a translation holds only prompt, choices and explain)",
+            e.message()
+        ))
+    })?;
+    if file.question.len() != questions.len() {
+        return Err(bad(format!(
+            "{} questions, but quiz.toml has {}",
+            file.question.len(),
+            questions.len()
+        )));
+    }
+    for (i, (q, t)) in questions.iter_mut().zip(file.question).enumerate() {
+        let n = i + 1;
+        match (&mut q.kind, t.explain) {
+            (
+                QuestionKind::Choice {
+                    choices, explain, ..
+                },
+                Explain::PerChoice(zh_explain),
+            ) if t.choices.len() == choices.len() && zh_explain.len() == explain.len() => {
+                *choices = t.choices;
+                *explain = zh_explain;
+            }
+            (QuestionKind::Predict { explain, .. }, Explain::One(zh_explain))
+                if t.choices.is_empty() =>
+            {
+                *explain = zh_explain;
+            }
+            _ => {
+                return Err(bad(format!(
+                    "question {n}: give the same kind of question as quiz.toml, with as many \
+                     choices and explanations"
+                )));
+            }
+        }
+        q.prompt = t.prompt;
+    }
+    Ok(())
 }
 
 /// `0` for `a`, `1` for `b`, ... (either case).
