@@ -5,11 +5,15 @@
 //! - [`file`](mod@file): the seed's matplotlib figure drawn with plotters, to PNG or SVG.
 //!
 //! - [`file::clip_chart_svg`]: the clip chart (`L^CLIP` against the ratio) as SVG.
+//! - [`labels`]: every word they show, in English or Chinese (the current
+//!   [`Lang`](crate::i18n::Lang)); Chinese figures are set in a bundled subset of Noto Sans
+//!   CJK SC (`assets/fonts/`).
 //!
 //! Both take the returns and the smoothed curve from
 //! [`moving_average`](crate::ppo::moving_average()) (window [`SMOOTHING_WINDOW`], the seed's 9).
 
 pub mod file;
+pub mod labels;
 pub mod terminal;
 
 pub use crate::ppo::moving_average::{SMOOTHING_WINDOW, smoothed_returns};
@@ -17,7 +21,7 @@ pub use file::{
     PlotError, clip_chart_svg, lab_plot_svg, return_plot_svg, save_band_plot, save_lab_plot,
     save_return_plot,
 };
-pub use terminal::{ascii_band_plot, ascii_return_plot, ascii_versus_plot};
+pub use terminal::{ascii_band_plot, ascii_return_plot, ascii_versus_plot, display_width};
 
 /// `L^CLIP(r)` for advantage `a`: `min(r·a, clip(r, 1−ε, 1+ε)·a)`, one row of the seed's
 /// `torch.min(surr1, surr2)`.

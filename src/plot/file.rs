@@ -1,8 +1,11 @@
 //! The seed's figure (`plt.plot(episodes_list, return_list)`, then the moving average,
 //! xlabel "Episodes", ylabel "Returns", title "PPO on CartPole-v1") drawn with plotters.
 //!
-//! The format follows the file extension: `.svg` or `.png`. Text is set in DejaVu Sans,
-//! shipped in `assets/` and compiled in, so no system font is needed.
+//! The format follows the file extension: `.svg` or `.png`. The labels come from
+//! [`labels`] in the current language. English text is set in DejaVu Sans, Chinese text in
+//! PPO Tutor Sans SC (a subset of Noto Sans CJK SC with the labels' characters, see
+//! `assets/fonts/README.md`), both shipped in `assets/` and compiled in, so no system font
+//! is needed.
 
 use std::path::Path;
 use std::sync::Once;
@@ -10,10 +13,19 @@ use std::sync::Once;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
+use super::labels;
+use crate::i18n::Lang;
 use crate::ppo::seeds::Band;
 
-/// The font every label uses (DejaVu Sans, Bitstream Vera license: assets/DejaVuSans-LICENSE.txt).
+/// The font of English labels (DejaVu Sans, Bitstream Vera license: assets/DejaVuSans-LICENSE.txt).
 static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+/// The font of Chinese labels: PPO Tutor Sans SC, a subset of Noto Sans CJK SC with the
+/// characters of the Chinese labels (SIL OFL 1.1: assets/fonts/OFL.txt).
+pub static FONT_ZH: &[u8] = include_bytes!("../../assets/fonts/PpoTutorSansSC-Regular.otf");
+/// The family Chinese figures name: the bundled font is registered under it for PNGs, and
+/// in an SVG it is a CSS font list, so a browser picks a Chinese font the reader has.
+const FAMILY_ZH: &str =
+    "Noto Sans CJK SC, Source Han Sans SC, PingFang SC, Microsoft YaHei, sans-serif";
 static REGISTER: Once = Once::new();
 
 /// What can go wrong writing a figure.
@@ -39,7 +51,13 @@ fn register_font() {
     REGISTER.call_once(|| {
         // The bytes are a valid TrueType file compiled in; a failure would only lose text.
         let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+        let _ = plotters::style::register_font(FAMILY_ZH, FontStyle::Normal, FONT_ZH);
     });
+}
+
+/// The font family of the current language's labels.
+fn family() -> &'static str {
+    Lang::current().pick("sans-serif", FAMILY_ZH)
 }
 
 /// Writes the return curve and its moving average to `path` (`.png`, 1000x600, or `.svg`).
@@ -193,16 +211,10 @@ fn draw_clip<DB: DrawingBackend>(
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     use super::l_clip;
     root.fill(&WHITE)?;
+    let font = family();
     let shown = rows.iter().filter(|(_, a)| *a != 0.0).count();
     let mut chart = ChartBuilder::on(root)
-        .caption(
-            // ε usually comes from an f32 (0.2 reads 0.20000000298...): show 6 decimals at most.
-            format!(
-                "L^CLIP for a unit advantage, ε = {}; {shown} rows of the batch",
-                (eps * 1e6).round() / 1e6
-            ),
-            ("sans-serif", 18),
-        )
+        .caption(labels::clip_caption(eps, shown), (font, 18))
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(55)
@@ -213,10 +225,10 @@ fn draw_clip<DB: DrawingBackend>(
     )))?;
     chart
         .configure_mesh()
-        .x_desc("ratio r = π_θ(a|s) / π_θ_old(a|s)")
-        .y_desc("min(surr1, surr2) / |A|")
-        .label_style(("sans-serif", 14))
-        .axis_desc_style(("sans-serif", 15))
+        .x_desc(labels::ratio_axis())
+        .y_desc(labels::clip_axis())
+        .label_style((font, 14))
+        .axis_desc_style((font, 15))
         .draw()?;
     let green = RGBColor(43, 138, 62);
     let red = RGBColor(201, 42, 42);
@@ -238,7 +250,7 @@ fn draw_clip<DB: DrawingBackend>(
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::UpperLeft)
-        .label_font(("sans-serif", 14))
+        .label_font((font, 14))
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()?;
@@ -251,6 +263,7 @@ fn draw<DB: DrawingBackend>(
     figure: Figure<'_>,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     root.fill(&WHITE)?;
+    let font = family();
     let (len, values): (usize, Vec<f64>) = match figure {
         Figure::Curve { returns, smoothed } => (
             returns.len(),
@@ -275,19 +288,19 @@ fn draw<DB: DrawingBackend>(
     let y_max = highest * 1.05;
     let y_min = lowest * 1.05;
     let mut chart = ChartBuilder::on(root)
-        .caption(title, ("sans-serif", 28))
+        .caption(title, (font, 28))
         .margin(20)
         .x_label_area_size(50)
         .y_label_area_size(70)
         .build_cartesian_2d(0.0..x_max, y_min..y_max)?;
     chart
         .configure_mesh()
-        .x_desc("Episodes")
+        .x_desc(labels::episodes())
         .x_label_formatter(&|x| format!("{x:.0}"))
         .y_label_formatter(&|y| format!("{y:.0}"))
-        .y_desc("Returns")
-        .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 20))
+        .y_desc(labels::returns_axis())
+        .label_style((font, 16))
+        .axis_desc_style((font, 20))
         .draw()?;
     let blue = RGBColor(31, 119, 180); // matplotlib's first colour
     let orange = RGBColor(255, 127, 14);
@@ -301,11 +314,11 @@ fn draw<DB: DrawingBackend>(
         Figure::Curve { returns, smoothed } => {
             chart
                 .draw_series(LineSeries::new(points(returns), blue.stroke_width(1)))?
-                .label("returns")
+                .label(labels::returns())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], blue));
             chart
                 .draw_series(LineSeries::new(points(smoothed), orange.stroke_width(2)))?
-                .label("moving average (9)")
+                .label(labels::moving_average())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], orange));
         }
         Figure::Band { band, seeds } => {
@@ -317,13 +330,13 @@ fn draw<DB: DrawingBackend>(
                     outline,
                     blue.mix(0.2).filled(),
                 )))?
-                .label(format!("lowest to highest of {seeds} seeds"))
+                .label(labels::band(seeds))
                 .legend(move |(x, y)| {
                     Rectangle::new([(x, y - 5), (x + 20, y + 5)], blue.mix(0.2).filled())
                 });
             chart
                 .draw_series(LineSeries::new(points(&band.mean), blue.stroke_width(2)))?
-                .label("mean over seeds")
+                .label(labels::mean_over_seeds())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], blue));
         }
         Figure::Arms { arms, seeds } => {
@@ -339,7 +352,7 @@ fn draw<DB: DrawingBackend>(
                 )))?;
                 chart
                     .draw_series(LineSeries::new(points(&band.mean), colour.stroke_width(2)))?
-                    .label(format!("{label} (mean of {seeds} seeds, band min–max)"))
+                    .label(labels::arm(label, seeds))
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
             }
         }
@@ -347,7 +360,7 @@ fn draw<DB: DrawingBackend>(
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::LowerRight)
-        .label_font(("sans-serif", 16))
+        .label_font((font, 16))
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()?;

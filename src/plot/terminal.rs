@@ -9,6 +9,9 @@
 //! assert!(lines.iter().any(|l| l.contains('*')));
 //! ```
 
+use unicode_width::UnicodeWidthStr;
+
+use super::labels;
 use crate::ppo::seeds::Band;
 
 /// Draws `returns` (`.`) and `smoothed` (`*`, drawn over) in a `width` x `height` grid of
@@ -33,7 +36,7 @@ pub fn ascii_return_plot(
             grid.put(i, v, mark);
         }
     }
-    grid.lines("Returns  (. per episode, * moving average)")
+    grid.lines(labels::ascii_returns())
 }
 
 /// Draws several seeds' curves as a band (`:` from the lowest to the highest seed at each
@@ -52,9 +55,7 @@ pub fn ascii_band_plot(band: &Band, seeds: usize, width: usize, height: usize) -
     for (i, &v) in band.mean.iter().enumerate() {
         grid.put(i, v, '*');
     }
-    grid.lines(&format!(
-        "Moving average of the returns over {seeds} seeds  (* mean, : lowest to highest seed)"
-    ))
+    grid.lines(&labels::ascii_band(seeds))
 }
 
 /// Draws one arm of an experiment against the base arm on the same axes: the arm's band
@@ -83,10 +84,7 @@ pub fn ascii_versus_plot(
     for (i, &v) in base.1.mean.iter().enumerate() {
         grid.put(i, v, 'o');
     }
-    grid.lines(&format!(
-        "{} (* mean, : lowest to highest of {seeds} seeds) against {} (o mean)",
-        arm.0, base.0
-    ))
+    grid.lines(&labels::ascii_versus(arm.0, base.0, seeds))
 }
 
 /// A character grid with a y axis from 0 to a round maximum (or from a round minimum, for
@@ -183,8 +181,9 @@ impl Grid {
         }
         lines.push(format!("{:>label_width$} +{}", "", "-".repeat(width)));
         let last = format!("{}", n.saturating_sub(1));
-        let middle = "Episodes";
-        let gap = width.saturating_sub(1 + last.len() + middle.len());
+        let middle = labels::episodes();
+        // Display columns, not bytes: 回合 is two characters of two columns each.
+        let gap = width.saturating_sub(1 + last.len() + display_width(middle));
         let (left, right) = (gap / 2, gap - gap / 2);
         lines.push(format!(
             "{:>label_width$}  0{}{middle}{}{last}",
@@ -194,6 +193,13 @@ impl Grid {
         ));
         lines
     }
+}
+
+/// The columns `text` takes in a terminal (`unicode-width`): 2 for a CJK character, 1 for
+/// ASCII.
+#[must_use]
+pub fn display_width(text: &str) -> usize {
+    UnicodeWidthStr::width(text)
 }
 
 /// The smallest of 1, 2, 5 times a power of ten that is at least `x` (at least 1).
