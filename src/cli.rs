@@ -9,6 +9,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use crate::i18n::{Lang, t};
+
 pub mod args;
 pub mod cartpole;
 pub mod dev;
@@ -23,11 +25,33 @@ pub mod train;
 /// Learn Proximal Policy Optimization by running it: a terminal tutor over a native
 /// CartPole-v1 and a candle PPO identical to the seed's PyTorch code.
 #[derive(Debug, Parser)]
-#[command(name = "ppo-tutor", version, about, long_about = None)]
+#[command(
+    name = "ppo-tutor",
+    version,
+    about,
+    long_about = None,
+    after_help = "Language / 语言: `--lang en` or `--lang zh` (on any command), else \
+PPO_TUTOR_LANG=en|zh, else the locale (LC_ALL, LC_MESSAGES, LANG: zh_CN.UTF-8 and other zh* \
+give Chinese); English otherwise.\n\
+界面语言：任何命令都可加 `--lang zh` 或 `--lang en`；否则看 PPO_TUTOR_LANG=zh|en；再否则跟随系统语言\
+（LC_ALL、LC_MESSAGES、LANG 以 zh 开头即为中文）。"
+)]
 pub struct Cli {
+    /// The language of everything printed for people: en or zh (default: PPO_TUTOR_LANG,
+    /// else the locale: LC_ALL, LC_MESSAGES, LANG starting with zh give Chinese).
+    #[arg(long, global = true, value_name = "LANG", value_parser = parse_lang)]
+    pub lang: Option<Lang>,
     /// What to do; with none, the tutor starts.
     #[command(subcommand)]
     pub command: Option<Command>,
+}
+
+/// Parses `--lang`: exactly `en` or `zh`.
+fn parse_lang(s: &str) -> Result<Lang, String> {
+    // clap names the flag and the value itself: only the fix, in both languages (the
+    // language is what is wrong).
+    s.parse::<Lang>()
+        .map_err(|_| "expected en or zh / 应为 en 或 zh".to_string())
 }
 
 /// The subcommands.
@@ -73,15 +97,40 @@ pub(crate) fn episodes_bar(
     if quiet || !std::io::stderr().is_terminal() {
         return None;
     }
-    let style = indicatif::ProgressStyle::with_template(
+    let style = indicatif::ProgressStyle::with_template(t(
         "{prefix}: {percent:>3}%|{bar:30}| {pos}/{len} episodes [{elapsed}<{eta}]",
-    )
+        "{prefix}：{percent:>3}%|{bar:30}| {pos}/{len} 个回合 [{elapsed}<{eta}]",
+    ))
     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
     Some(
         indicatif::ProgressBar::new(total as u64)
             .with_style(style.progress_chars("█▉▊▋▌▍▎▏ "))
             .with_prefix(prefix),
     )
+}
+
+/// How many terminal columns `text` takes (a Chinese character takes two).
+#[must_use]
+pub fn width(text: &str) -> usize {
+    ratatui::text::Span::raw(text).width()
+}
+
+/// `text` followed by spaces up to `columns` terminal columns (`{:<n}` by width).
+#[must_use]
+pub fn pad(text: &str, columns: usize) -> String {
+    format!("{text}{}", " ".repeat(columns.saturating_sub(width(text))))
+}
+
+/// `text` after spaces up to `columns` terminal columns (`{:>n}` by width).
+#[must_use]
+pub fn pad_left(text: &str, columns: usize) -> String {
+    format!("{}{text}", " ".repeat(columns.saturating_sub(width(text))))
+}
+
+/// ` (see --help)` in the current language, after a usage error.
+#[must_use]
+pub fn see_help() -> &'static str {
+    t(" (see --help)", "（见 --help）")
 }
 
 /// Exit code for bad command-line input (as clap uses).
@@ -93,19 +142,61 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
-    let cli = match Cli::try_parse_from(args) {
+    let args: Vec<OsString> = args.into_iter().map(Into::into).collect();
+    // Usage errors are reported before the language is settled: guess it from the raw
+    // arguments and the environment, so even they speak it.
+    guess_lang(&args).set_current();
+    let cli = match Cli::try_parse_from(&args) {
         Ok(cli) => cli,
         Err(err) => return report_clap_error(&err),
     };
+    let lang = match cli.lang {
+        Some(lang) => lang,
+        None => match Lang::detect() {
+            Ok(lang) => lang,
+            Err(err) => {
+                eprintln!("error: {err}");
+                return ExitCode::from(EXIT_USAGE);
+            }
+        },
+    };
+    lang.set_current();
     match run(cli) {
         Ok(code) => code,
         // The reader went away (`ppo-tutor cartpole ... | head`): nothing left to say.
         Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
         Err(err) => {
-            eprintln!("error: {err:#}");
+            eprintln!("{}{err:#}", error_prefix());
             ExitCode::FAILURE
         }
     }
+}
+
+/// The language before the command line is parsed: a well-formed `--lang en|zh` among
+/// `args`, else what the environment says, else English (a bad value is reported later).
+fn guess_lang(args: &[OsString]) -> Lang {
+    let mut flag = None;
+    let mut iter = args.iter().skip(1).filter_map(|a| a.to_str());
+    while let Some(arg) = iter.next() {
+        if arg == "--" {
+            break;
+        }
+        let value = match arg.strip_prefix("--lang") {
+            Some("") => iter.next(),
+            Some(rest) => rest.strip_prefix('='),
+            None => None,
+        };
+        if let Some(lang) = value.and_then(|v| v.parse::<Lang>().ok()) {
+            flag = Some(lang);
+        }
+    }
+    flag.or_else(|| Lang::detect().ok()).unwrap_or_default()
+}
+
+/// `error: ` in the current language, before an error's sentence.
+#[must_use]
+pub fn error_prefix() -> &'static str {
+    t("error: ", "错误：")
 }
 
 /// Whether `err` comes from writing to a closed pipe.
@@ -133,7 +224,7 @@ fn report_clap_error(err: &clap::Error) -> ExitCode {
                 .lines()
                 .find(|l| !l.trim().is_empty())
                 .unwrap_or("error: invalid arguments");
-            eprintln!("{line} (see --help)");
+            eprintln!("{line}{}", see_help());
             ExitCode::from(EXIT_USAGE)
         }
     }
@@ -206,5 +297,47 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             crate::tui::run()?;
             Ok(ExitCode::SUCCESS)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(list: &[&str]) -> Vec<OsString> {
+        list.iter().map(OsString::from).collect()
+    }
+
+    #[test]
+    fn the_language_is_guessed_from_a_well_formed_flag_anywhere() {
+        for (given, want) in [
+            (&["ppo-tutor", "--lang", "zh", "lessons"][..], Lang::Zh),
+            (&["ppo-tutor", "lessons", "--lang=zh"][..], Lang::Zh),
+            (
+                &["ppo-tutor", "--lang", "zh", "grade", "--lang", "en"][..],
+                Lang::En,
+            ),
+        ] {
+            assert_eq!(guess_lang(&args(given)), want, "{given:?}");
+        }
+    }
+
+    #[test]
+    fn the_flag_parses_on_every_subcommand() {
+        for line in [
+            &["ppo-tutor", "--lang", "zh", "lessons"][..],
+            &["ppo-tutor", "lessons", "--lang", "zh"][..],
+            &["ppo-tutor", "grade", "td_target", "--lang=zh"][..],
+            &["ppo-tutor", "--lang", "zh"][..],
+        ] {
+            let cli = Cli::try_parse_from(line);
+            assert!(
+                cli.as_ref().is_ok_and(|c| c.lang == Some(Lang::Zh)),
+                "{line:?}: {cli:?}"
+            );
+        }
+        let bad = Cli::try_parse_from(["ppo-tutor", "--lang", "fr", "lessons"]);
+        let message = bad.err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(message.contains("expected en or zh"), "{message}");
     }
 }

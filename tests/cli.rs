@@ -4,10 +4,31 @@ use std::process::{Command, Output};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
+/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
+/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
+/// English tests read).
+fn english() -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    cmd.env("PPO_TUTOR_LANG", "en")
+        .env_remove("LC_ALL")
+        .env_remove("LC_MESSAGES")
+        .env("LANG", "C.UTF-8");
+    cmd
+}
+
+/// The binary with no language setting at all but `env` (the locale variables and
+/// `PPO_TUTOR_LANG` are removed first).
+fn with_env(env: &[(&str, &str)]) -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    for key in ["PPO_TUTOR_LANG", "LC_ALL", "LC_MESSAGES", "LANG"] {
+        cmd.env_remove(key);
+    }
+    cmd.envs(env.iter().copied());
+    cmd
+}
+
 fn run(args: &[&str]) -> std::io::Result<Output> {
-    Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
-        .args(args)
-        .output()
+    english().args(args).output()
 }
 
 #[test]
@@ -135,7 +156,7 @@ fn a_closed_pipe_is_not_an_error() -> TestResult {
     use std::io::Read;
     use std::process::Stdio;
     // Far more output than a pipe holds (about 430 kB), so the writer meets the closed end.
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+    let mut child = english()
         .args([
             "cartpole",
             "--seed",
@@ -157,5 +178,289 @@ fn a_closed_pipe_is_not_an_error() -> TestResult {
     let stderr = String::from_utf8(out.stderr)?;
     assert!(out.status.success(), "exit {:?}: {stderr}", out.status);
     assert!(stderr.is_empty(), "{stderr}");
+    Ok(())
+}
+
+/// The TOML front matter of a lesson file (between the `+++` lines).
+fn front_matter(path: &std::path::Path) -> Result<toml::Table, Box<dyn std::error::Error>> {
+    let text = std::fs::read_to_string(path)?;
+    let body = text
+        .strip_prefix("+++\n")
+        .and_then(|t| t.split_once("\n+++"))
+        .map(|(front, _)| front)
+        .ok_or_else(|| format!("{} has no +++ front matter", path.display()))?;
+    Ok(body.parse::<toml::Table>()?)
+}
+
+/// `id<TAB>title` of every lesson, in course order (folder order), with the title of
+/// `file` (`lesson.md` or `lesson.zh.md`); the id is always `lesson.md`'s.
+fn listing(file: &str) -> Result<String, Box<dyn std::error::Error>> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    let mut folders: Vec<_> = std::fs::read_dir(&root)?
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.join("lesson.md").is_file())
+        .collect();
+    folders.sort();
+    let mut out = String::new();
+    for folder in folders {
+        let en = front_matter(&folder.join("lesson.md"))?;
+        let id = en.get("id").and_then(toml::Value::as_str).ok_or("no id")?;
+        let ours = front_matter(&folder.join(file))?;
+        let title = ours
+            .get("title")
+            .and_then(toml::Value::as_str)
+            .ok_or_else(|| format!("{}: no title in {file}", folder.display()))?;
+        out.push_str(&format!("{id}\t{title}\n"));
+    }
+    Ok(out)
+}
+
+fn stdout_of(out: &Output) -> Result<String, Box<dyn std::error::Error>> {
+    assert!(
+        out.status.success(),
+        "exit {:?}: {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    Ok(String::from_utf8(out.stdout.clone())?)
+}
+
+/// `--lang zh`, `PPO_TUTOR_LANG=zh` and a Chinese locale each list the Chinese titles
+/// (before or after the subcommand); English stays the default.
+#[test]
+fn lessons_are_listed_in_the_language_asked_for() -> TestResult {
+    let zh = listing("lesson.zh.md")?;
+    let en = listing("lesson.md")?;
+    assert_ne!(zh, en);
+    for (how, cmd) in [
+        (
+            "--lang zh first",
+            with_env(&[]).args(["--lang", "zh", "lessons"]).output(),
+        ),
+        (
+            "--lang zh after",
+            with_env(&[]).args(["lessons", "--lang=zh"]).output(),
+        ),
+        (
+            "PPO_TUTOR_LANG=zh",
+            with_env(&[("PPO_TUTOR_LANG", "zh")])
+                .arg("lessons")
+                .output(),
+        ),
+        (
+            "LANG=zh_CN.UTF-8",
+            with_env(&[("LANG", "zh_CN.UTF-8")]).arg("lessons").output(),
+        ),
+        (
+            "LC_ALL=zh_CN.UTF-8",
+            with_env(&[("LC_ALL", "zh_CN.UTF-8"), ("LANG", "en_US.UTF-8")])
+                .arg("lessons")
+                .output(),
+        ),
+    ] {
+        assert_eq!(stdout_of(&cmd?)?, zh, "{how}");
+    }
+    for (how, cmd) in [
+        ("nothing set", with_env(&[]).arg("lessons").output()),
+        (
+            "LANG=en_US.UTF-8",
+            with_env(&[("LANG", "en_US.UTF-8")]).arg("lessons").output(),
+        ),
+        ("LANG=C", with_env(&[("LANG", "C")]).arg("lessons").output()),
+        // The flag beats the variable, which beats the locale.
+        (
+            "--lang en over PPO_TUTOR_LANG=zh",
+            with_env(&[("PPO_TUTOR_LANG", "zh")])
+                .args(["--lang", "en", "lessons"])
+                .output(),
+        ),
+        (
+            "PPO_TUTOR_LANG=en over LANG=zh",
+            with_env(&[("PPO_TUTOR_LANG", "en"), ("LANG", "zh_CN.UTF-8")])
+                .arg("lessons")
+                .output(),
+        ),
+    ] {
+        assert_eq!(stdout_of(&cmd?)?, en, "{how}");
+    }
+    Ok(())
+}
+
+/// A language that does not exist is a usage error naming the fix, in one line, exit 2.
+#[test]
+fn a_bad_language_is_exit_2_with_the_fix() -> TestResult {
+    for (how, out, names) in [
+        (
+            "--lang fr",
+            with_env(&[]).args(["--lang", "fr", "lessons"]).output()?,
+            "--lang",
+        ),
+        (
+            "PPO_TUTOR_LANG=klingon",
+            with_env(&[("PPO_TUTOR_LANG", "klingon")])
+                .arg("lessons")
+                .output()?,
+            "PPO_TUTOR_LANG",
+        ),
+    ] {
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(2), "{how}: {err}");
+        assert!(out.stdout.is_empty(), "{how}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{how}: {err}");
+        assert!(
+            err.contains(names) && err.contains("en or zh"),
+            "{how}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{how}: {err}");
+    }
+    // --lang given: a bad variable does not matter.
+    let out = with_env(&[("PPO_TUTOR_LANG", "klingon")])
+        .args(["--lang", "en", "lessons"])
+        .output()?;
+    assert_eq!(stdout_of(&out)?, listing("lesson.md")?);
+    Ok(())
+}
+
+/// `--lang` is accepted by every subcommand, and the help says how the language is chosen.
+#[test]
+fn every_subcommand_takes_lang_and_the_help_explains_it() -> TestResult {
+    let top = String::from_utf8(run(&["--help"])?.stdout)?;
+    for says in ["--lang", "PPO_TUTOR_LANG", "LANG"] {
+        assert!(top.contains(says), "{top}");
+    }
+    for sub in [
+        "cartpole", "pendulum", "lessons", "show", "train", "lab", "play", "replay", "grade",
+        "watch", "reset",
+    ] {
+        let out = run(&[sub, "--lang", "zh", "--help"])?;
+        assert!(out.status.success(), "{sub} --lang zh --help");
+        assert!(String::from_utf8(out.stdout)?.contains("--lang"), "{sub}");
+    }
+    Ok(())
+}
+
+/// Errors are translated around what they quote, and the exit code does not change.
+#[test]
+fn errors_speak_the_language_and_keep_their_exit_code() -> TestResult {
+    let en = run(&["show", "no-such-lesson"])?;
+    let zh = with_env(&[])
+        .args(["--lang", "zh", "show", "no-such-lesson"])
+        .output()?;
+    assert_eq!(en.status.code(), Some(2));
+    assert_eq!(zh.status.code(), Some(2));
+    let (en, zh) = (String::from_utf8(en.stderr)?, String::from_utf8(zh.stderr)?);
+    assert!(en.contains("unknown lesson 'no-such-lesson'"), "{en}");
+    assert!(
+        zh.contains("错误") && zh.contains("'no-such-lesson'") && zh.contains("td-target"),
+        "{zh}"
+    );
+    let zh = with_env(&[])
+        .args(["--lang", "zh", "cartpole", "--seed", "1"])
+        .output()?;
+    assert_eq!(zh.status.code(), Some(2));
+    let err = String::from_utf8(zh.stderr)?;
+    assert!(err.contains("--actions") && err.contains("请"), "{err}");
+    Ok(())
+}
+
+/// The cartpole table in Chinese: the same numbers, the words translated, the columns where
+/// the English ones are (a Chinese character is two columns wide).
+#[test]
+fn the_cartpole_table_reads_in_chinese() -> TestResult {
+    let args = ["cartpole", "--seed", "0", "--actions", "0,1,1"];
+    let en = stdout_of(&run(&args)?)?;
+    let zh = stdout_of(&with_env(&[("PPO_TUTOR_LANG", "zh")]).args(args).output()?)?;
+    assert!(zh.contains("共 3 步，回报 3"), "{zh}");
+    assert!(zh.contains("左") && zh.contains("右"), "{zh}");
+    assert_eq!(en.lines().count(), zh.lines().count());
+    use unicode_width::UnicodeWidthStr;
+    // The header's columns end where the English ones do, up to the last numeric column.
+    let upto = |l: &str, word: &str| l.find(word).map(|i| l[..i + word.len()].width());
+    let (eh, zh_h) = (
+        en.lines().nth(1).unwrap_or(""),
+        zh.lines().nth(1).unwrap_or(""),
+    );
+    assert_eq!(
+        upto(eh, "theta_dot"),
+        upto(zh_h, "theta_dot"),
+        "{eh}\n{zh_h}"
+    );
+    assert!(zh_h.contains("奖励"), "{zh_h}");
+    // Every row has the same numbers at the same columns (no row ends the episode here).
+    for (e, z) in en.lines().zip(zh.lines()).skip(2).take(4) {
+        let numbers = |l: &str| -> Vec<String> {
+            l.split_whitespace()
+                .filter(|w| w.parse::<f64>().is_ok())
+                .map(str::to_string)
+                .collect()
+        };
+        assert_eq!(numbers(e), numbers(z), "{e}\n{z}");
+        assert_eq!(e.trim_end().width(), z.trim_end().width(), "{e}\n{z}");
+    }
+    Ok(())
+}
+
+/// `grade` reports in Chinese with `--lang zh`: the marks, the labels and the mistake's
+/// hint from `exercise.zh.toml`, with the exit code of the English report.
+#[test]
+fn a_wrong_answer_is_graded_in_chinese_with_the_same_exit_code() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let lesson = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/07-td-target");
+    // The classic mistake: the future is counted after the pole fell (no `1 - done`).
+    let starter = std::fs::read_to_string(lesson.join("exercise.rs"))?;
+    let at = starter.find("pub fn td_target(").ok_or("no td_target")?;
+    let todo = at + starter[at..].find("todo!()").ok_or("no todo!()")?;
+    let wrong = format!(
+        "{}(0..rewards.len()).map(|i| rewards[i] + gamma * next_values[i]).collect(){}",
+        &starter[..todo],
+        &starter[todo + "todo!()".len()..]
+    );
+    let file = dir.path().join("wrong.rs");
+    std::fs::write(&file, wrong)?;
+    let file = file.to_str().ok_or("path")?;
+    let grade = |lang: &str| {
+        with_env(&[])
+            .args(["--lang", lang, "grade", "td_target", "--file", file])
+            .env("PPO_TUTOR_STATE", dir.path().join("state.json"))
+            .env("PPO_TUTOR_GRADE_CACHE", dir.path().join("cache"))
+            .env("NO_COLOR", "1")
+            .output()
+    };
+    let (en, zh) = (grade("en")?, grade("zh")?);
+    assert_eq!(
+        en.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&en.stderr)
+    );
+    assert_eq!(zh.status.code(), en.status.code());
+    let (en, zh) = (String::from_utf8(en.stdout)?, String::from_utf8(zh.stdout)?);
+    assert!(
+        en.contains("hint:") && en.contains("checks passed: not yet"),
+        "{en}"
+    );
+    let hints: toml::Table = std::fs::read_to_string(lesson.join("exercise.zh.toml"))?.parse()?;
+    let hint = hints
+        .get("exercise")
+        .and_then(toml::Value::as_array)
+        .and_then(|all| {
+            all.iter()
+                .find(|e| e.get("name").and_then(toml::Value::as_str) == Some("td_target"))
+        })
+        .and_then(|e| e.get("mistakes")?.get("missing_done_mask")?.as_str())
+        .ok_or("no Chinese hint for missing_done_mask")?;
+    assert!(zh.contains("提示：") && zh.contains(hint), "{zh}");
+    assert!(
+        zh.contains("✗ 只有一步") && zh.contains("项检查通过"),
+        "{zh}"
+    );
+    assert!(
+        !zh.contains("hint:") && !zh.contains("checks passed"),
+        "{zh}"
+    );
+    // The same checks and lines, only the words differ.
+    assert_eq!(en.lines().count(), zh.lines().count(), "{en}\n{zh}");
+    assert_eq!(en.matches('✗').count(), zh.matches('✗').count());
     Ok(())
 }

@@ -24,15 +24,24 @@ fn fixture() -> Result<Fixture, Box<dyn std::error::Error>> {
     Ok(serde_json::from_str(&std::fs::read_to_string(path)?)?)
 }
 
+/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
+/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
+/// English tests read).
+fn english() -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    cmd.env("PPO_TUTOR_LANG", "en")
+        .env_remove("LC_ALL")
+        .env_remove("LC_MESSAGES")
+        .env("LANG", "C.UTF-8");
+    cmd
+}
+
 fn run(args: &[&str]) -> std::io::Result<Output> {
     run_env(args, &[])
 }
 
 fn run_env(args: &[&str], env: &[(&str, &str)]) -> std::io::Result<Output> {
-    Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
-        .args(args)
-        .envs(env.iter().copied())
-        .output()
+    english().args(args).envs(env.iter().copied()).output()
 }
 
 fn json(args: &[&str]) -> Result<serde_json::Value, Box<dyn std::error::Error>> {

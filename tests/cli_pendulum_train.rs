@@ -29,10 +29,20 @@ const PYTORCH_NAMES: [&str; 10] = [
     "critic.fc2.weight",
 ];
 
+/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
+/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
+/// English tests read).
+fn english() -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    cmd.env("PPO_TUTOR_LANG", "en")
+        .env_remove("LC_ALL")
+        .env_remove("LC_MESSAGES")
+        .env("LANG", "C.UTF-8");
+    cmd
+}
+
 fn ppo_tutor(args: &[&str]) -> Result<Output, std::io::Error> {
-    Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
-        .args(args)
-        .output()
+    english().args(args).output()
 }
 
 fn stderr(out: &Output) -> String {
@@ -374,6 +384,10 @@ fn play_animates_the_pendulum_in_a_terminal() -> TestResult {
     let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_ppo-tutor"));
     cmd.args(["play", "--load", path(&agent)?, "--delay-ms", "0"]);
     cmd.env("TERM", "xterm-256color");
+    cmd.env("PPO_TUTOR_LANG", "en");
+    cmd.env_remove("LC_ALL");
+    cmd.env_remove("LC_MESSAGES");
+    cmd.env("LANG", "C.UTF-8");
     let mut child = pty.slave.spawn_command(cmd)?;
     drop(pty.slave);
     let mut reader = pty.master.try_clone_reader()?;

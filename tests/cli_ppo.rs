@@ -13,10 +13,20 @@ const FIXTURE: &str = concat!(
     "/tests/fixtures/ppo_update_pytorch.json"
 );
 
+/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
+/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
+/// English tests read).
+fn english() -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    cmd.env("PPO_TUTOR_LANG", "en")
+        .env_remove("LC_ALL")
+        .env_remove("LC_MESSAGES")
+        .env("LANG", "C.UTF-8");
+    cmd
+}
+
 fn ppo_tutor(args: &[&str]) -> Result<Output, std::io::Error> {
-    Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
-        .args(args)
-        .output()
+    english().args(args).output()
 }
 
 fn stderr(out: &Output) -> String {

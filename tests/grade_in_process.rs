@@ -131,6 +131,18 @@ fn every_reference_solution_passes_in_place() {
         assert!(r.passed(), "{}", r.render());
         assert_eq!(r.file, in_process::DISPLAY);
     }
+    // In Chinese every check is named in Chinese (the names are English data; a check
+    // added or reworded without its Chinese name would show in English).
+    let _zh = ppo_tutor::i18n::Lang::Zh.scoped();
+    for r in &reports {
+        let text = r.render();
+        for line in text.lines().filter(|l| l.trim_start().starts_with('✓')) {
+            assert!(
+                line.chars().any(|c| ('\u{4e00}'..='\u{9fff}').contains(&c)),
+                "a check without a Chinese name (add it to CHECK_NAMES in src/grade/report.rs): {line}\n{text}"
+            );
+        }
+    }
 }
 
 /// The report text without its first line (which names the graded file or cell) and

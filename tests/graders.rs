@@ -297,6 +297,11 @@ fn an_endless_loop_is_reported_as_never_returning() -> TestResult {
 
 fn ppo_tutor(dir: &Path, args: &[&str]) -> Result<(i32, String), Box<dyn std::error::Error>> {
     let out = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        // English whatever the machine's locale.
+        .env("PPO_TUTOR_LANG", "en")
+        .env_remove("LC_ALL")
+        .env_remove("LC_MESSAGES")
+        .env("LANG", "C.UTF-8")
         .args(args)
         .current_dir(dir)
         .env("PPO_TUTOR_STATE", dir.join("state.json"))
@@ -652,6 +657,11 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
 
     // Without cargo, a clear error naming the fix (a fresh cache: nothing is built).
     let out = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        // English whatever the machine's locale.
+        .env("PPO_TUTOR_LANG", "en")
+        .env_remove("LC_ALL")
+        .env_remove("LC_MESSAGES")
+        .env("LANG", "C.UTF-8")
         .args([
             "grade",
             "ppo_losses",
@@ -745,6 +755,11 @@ fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
     let (code, text) = ppo_tutor(d, &["reset", "td_target"])?;
     assert_eq!(code, 0, "{text}");
     let mut child = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
+        // English whatever the machine's locale.
+        .env("PPO_TUTOR_LANG", "en")
+        .env_remove("LC_ALL")
+        .env_remove("LC_MESSAGES")
+        .env("LANG", "C.UTF-8")
         .args(["watch", "td_target"])
         .current_dir(d)
         .env("PPO_TUTOR_STATE", d.join("state.json"))

@@ -1,6 +1,7 @@
 //! Value parsers shared by the subcommands: each error names what was expected.
 
 use crate::env::EnvId;
+use crate::tr;
 
 /// Parses a seed: a non-negative integer that fits in 64 bits.
 ///
@@ -8,9 +9,10 @@ use crate::env::EnvId;
 /// A message naming the accepted range.
 pub fn parse_seed(s: &str) -> Result<u64, String> {
     s.trim().parse::<u64>().map_err(|_| {
-        format!(
-            "expected a non-negative integer up to {}, got '{s}'",
-            u64::MAX
+        let max = u64::MAX;
+        tr!(
+            "expected a non-negative integer up to {max}, got '{s}'",
+            "应为不超过 {max} 的非负整数，实际是 '{s}'"
         )
     })
 }
@@ -34,8 +36,9 @@ pub fn parse_seeds(s: &str) -> Result<SeedList, String> {
         let (from, to) = match part.split_once('-') {
             Some((a, b)) => (parse_seed(a)?, parse_seed(b)?),
             None if part.is_empty() => {
-                return Err(format!(
-                    "expected seeds like 0-4 or 1,3,8, got an empty item in '{s}'"
+                return Err(tr!(
+                    "expected seeds like 0-4 or 1,3,8, got an empty item in '{s}'",
+                    "随机种子应写成 0-4 或 1,3,8 这样，'{s}' 中有一项是空的"
                 ));
             }
             None => {
@@ -44,16 +47,23 @@ pub fn parse_seeds(s: &str) -> Result<SeedList, String> {
             }
         };
         if from > to {
-            return Err(format!(
-                "the range '{part}' runs backwards; write {to}-{from}"
+            return Err(tr!(
+                "the range '{part}' runs backwards; write {to}-{from}",
+                "范围 '{part}' 写反了，应写成 {to}-{from}"
             ));
         }
         if to - from >= MAX_SEEDS as u64 || seeds.len() + (to - from) as usize >= MAX_SEEDS {
-            return Err(format!("'{s}' lists more than {MAX_SEEDS} seeds"));
+            return Err(tr!(
+                "'{s}' lists more than {MAX_SEEDS} seeds",
+                "'{s}' 列出的随机种子超过 {MAX_SEEDS} 个"
+            ));
         }
         for seed in from..=to {
             if seeds.contains(&seed) {
-                return Err(format!("seed {seed} is listed twice in '{s}'"));
+                return Err(tr!(
+                    "seed {seed} is listed twice in '{s}'",
+                    "随机种子 {seed} 在 '{s}' 中出现了两次"
+                ));
             }
             seeds.push(seed);
         }
@@ -68,9 +78,10 @@ pub fn parse_seeds(s: &str) -> Result<SeedList, String> {
 pub fn parse_env(s: &str) -> Result<EnvId, String> {
     s.parse::<EnvId>().map_err(|_| {
         let ids: Vec<_> = EnvId::ALL.iter().map(|id| id.as_str()).collect();
-        format!(
-            "unknown environment '{s}': expected one of {}",
-            ids.join(", ")
+        let ids = ids.join(", ");
+        tr!(
+            "unknown environment '{s}': expected one of {ids}",
+            "未知的环境 '{s}'：应为 {ids} 之一"
         )
     })
 }
@@ -92,8 +103,9 @@ pub fn parse_actions(s: &str) -> Result<ActionList, String> {
         .map(|(i, part)| match part.trim() {
             "0" => Ok(0),
             "1" => Ok(1),
-            other => Err(format!(
+            other => Err(tr!(
                 "action {} is '{other}': CartPole's actions are 0 (left) and 1 (right), comma-separated like 0,1,1,0",
+                "第 {} 个动作是 '{other}'：CartPole 的动作是 0（左）和 1（右），用逗号分隔，如 0,1,1,0",
                 i + 1
             )),
         })

@@ -8,7 +8,10 @@ use anyhow::Context;
 use clap::{Args, ValueEnum};
 
 use super::args::{ActionList, parse_actions, parse_env, parse_seed};
+use super::pad_left;
 use crate::env::{CartPoleConfig, EnvId, Integrator, Policy, Trajectory};
+use crate::i18n::t as t_;
+use crate::tr;
 
 /// Arguments of `ppo-tutor cartpole`.
 #[derive(Debug, Args)]
@@ -72,19 +75,30 @@ pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
         (None, Some(PolicyArg::Random)) => (Policy::Random, args.max_steps),
         (None, Some(PolicyArg::Lean)) => (Policy::Lean, args.max_steps),
         (None, None) => {
-            eprintln!("error: give --actions 0,1,... or --policy random|lean (see --help)");
+            eprintln!(
+                "{}{}{}",
+                super::error_prefix(),
+                t_(
+                    "give --actions 0,1,... or --policy random|lean",
+                    "请给出 --actions 0,1,... 或 --policy random|lean"
+                ),
+                super::see_help()
+            );
             return Ok(ExitCode::from(super::EXIT_USAGE));
         }
     };
     let t = Trajectory::record(config, args.seed, &policy, max_steps, args.resets)
-        .context("recording the episode")?;
+        .context(t_("recording the episode", "记录回合"))?;
     if let Policy::Actions(list) = &policy
         && t.actions.len() < list.len()
     {
+        let (done, all) = (t.actions.len(), list.len());
         eprintln!(
-            "note: the episode ended after {} of the {} actions; the rest were not applied",
-            t.actions.len(),
-            list.len()
+            "{}",
+            tr!(
+                "note: the episode ended after {done} of the {all} actions; the rest were not applied",
+                "注意：回合在 {all} 个动作中的第 {done} 个之后就结束了，其余动作没有执行"
+            )
         );
     }
     if args.json {
@@ -109,8 +123,15 @@ fn print_table(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
     writeln!(out, "{env_id}, reset(seed={})", t.seed)?;
     writeln!(
         out,
-        "{:>5} {:>6} {:>11} {:>11} {:>11} {:>11} {:>6}  end",
-        "step", "action", "x", "x_dot", "theta", "theta_dot", "reward"
+        "{} {} {:>11} {:>11} {:>11} {:>11} {}  {}",
+        pad_left(t_("step", "步"), 5),
+        pad_left(t_("action", "动作"), 6),
+        "x",
+        "x_dot",
+        "theta",
+        "theta_dot",
+        pad_left(t_("reward", "奖励"), 6),
+        t_("end", "结束")
     )?;
     let o = t.reset_obs;
     writeln!(
@@ -120,17 +141,21 @@ fn print_table(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
     )?;
     for (i, o) in t.obs.iter().enumerate() {
         let end = match (t.terminated[i], t.truncated[i]) {
-            (true, true) => "terminated+truncated",
-            (true, false) => "terminated",
-            (false, true) => "truncated",
+            (true, true) => t_("terminated+truncated", "终止+时限中断"),
+            (true, false) => t_("terminated", "终止"),
+            (false, true) => t_("truncated", "时限中断"),
             (false, false) => "",
         };
-        let action = if t.actions[i] == 1 { "right" } else { "left" };
+        let action = if t.actions[i] == 1 {
+            t_("right", "右")
+        } else {
+            t_("left", "左")
+        };
         writeln!(
             out,
-            "{:>5} {:>6} {:>11.6} {:>11.6} {:>11.6} {:>11.6} {:>6.1}  {end}",
+            "{:>5} {} {:>11.6} {:>11.6} {:>11.6} {:>11.6} {:>6.1}  {end}",
             i + 1,
-            action,
+            pad_left(action, 6),
             o[0],
             o[1],
             o[2],
@@ -138,16 +163,22 @@ fn print_table(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
             t.rewards[i]
         )?;
     }
-    writeln!(
-        out,
-        "return {} over {} steps",
-        t.episode_return(),
-        t.actions.len()
-    )?;
+    writeln!(out, "{}", return_line(t))?;
     for (i, s) in t.next_resets.iter().enumerate() {
-        writeln!(out, "next reset {}: {:?}", i + 1, s)?;
+        let n = i + 1;
+        writeln!(
+            out,
+            "{}{s:?}",
+            tr!("next reset {n}: ", "下一次 reset {n}：")
+        )?;
     }
     Ok(())
+}
+
+/// `return R over N steps`, in the current language.
+fn return_line(t: &Trajectory) -> String {
+    let (r, n) = (t.episode_return(), t.actions.len());
+    tr!("return {r} over {n} steps", "共 {n} 步，回报 {r}")
 }
 
 /// Draws the cart and pole as text, one frame per state.
@@ -194,8 +225,12 @@ fn render(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
         }
         writeln!(
             out,
-            "{env_id} seed {} step {i:>3}  x={:+.3} θ={:+.3}      ",
-            t.seed, state[0], state[2]
+            "{env_id} {} {} {} {i:>3}  x={:+.3} θ={:+.3}      ",
+            t_("seed", "随机种子"),
+            t.seed,
+            t_("step", "步"),
+            state[0],
+            state[2]
         )?;
         for line in lines {
             writeln!(out, "{line}")?;
@@ -203,11 +238,6 @@ fn render(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
         out.flush()?;
         std::thread::sleep(Duration::from_millis(20));
     }
-    writeln!(
-        out,
-        "return {} over {} steps",
-        t.episode_return(),
-        t.actions.len()
-    )?;
+    writeln!(out, "{}", return_line(t))?;
     Ok(())
 }

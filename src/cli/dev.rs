@@ -135,8 +135,15 @@ mod runner {
                 continue;
             }
             let started = Instant::now();
-            let name = format!("notebooks/{folder}.ipynb");
-            let outputs = Kernel::start()?.run_cells(cells, &name)?;
+            // English in notebooks/, Chinese (`--lang zh`) in notebooks/zh/.
+            std::fs::create_dir_all(root.join(build::notebook_dir()))
+                .with_context(|| format!("creating {}", build::notebook_dir()))?;
+            let name = build::notebook_file(folder);
+            let outputs = Kernel::start_in(
+                crate::i18n::Lang::current(),
+                &root.join(build::notebook_dir()),
+            )?
+            .run_cells(cells, &name)?;
             let text = to_text(&notebook_json(cells, &outputs))?;
             std::fs::write(root.join(&name), text).with_context(|| format!("writing {name}"))?;
             println!(

@@ -9,7 +9,9 @@ use std::time::Duration;
 use clap::Args;
 
 use crate::grade::{self, GradeError, GradeOptions, Report};
+use crate::i18n::t;
 use crate::lesson::Progress;
+use crate::tr;
 
 /// Arguments of `ppo-tutor grade`.
 #[derive(Debug, Args)]
@@ -44,7 +46,7 @@ pub struct ResetArgs {
 }
 
 fn usage(message: &str) -> ExitCode {
-    eprintln!("error: {message} (see --help)");
+    eprintln!("{}{message}{}", super::error_prefix(), super::see_help());
     ExitCode::from(super::EXIT_USAGE)
 }
 
@@ -60,9 +62,10 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     };
     let Some(name) = &args.exercise else {
         if args.file.is_some() {
-            return Ok(usage(
+            return Ok(usage(t(
                 "--file needs an exercise name: ppo-tutor grade NAME --file PATH",
-            ));
+                "--file 需要练习名：ppo-tutor grade NAME --file PATH",
+            )));
         }
         return grade_all(&opts);
     };
@@ -70,7 +73,7 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     let report = match grade::grade(name, args.file.as_deref(), &opts) {
         Err(e @ GradeError::UnknownExercise { .. }) => return Ok(usage(&e.to_string())),
         Err(e @ GradeError::Read { .. }) => {
-            eprintln!("error: {e}");
+            eprintln!("{}{e}", super::error_prefix());
             return Ok(ExitCode::FAILURE);
         }
         other => other?,
@@ -81,10 +84,11 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
         if args.file.is_none()
             && let Ok(exercise) = grade::find(name)
         {
+            let path = exercise.solution_path();
             writeln!(
                 std::io::stdout(),
-                "  The reference solution: {}",
-                exercise.solution_path()
+                "  {}",
+                tr!("The reference solution: {path}", "参考答案：{path}")
             )?;
         }
         Ok(ExitCode::SUCCESS)
@@ -105,7 +109,13 @@ fn note_first_build(name: &str, opts: &GradeOptions) {
 
 fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout();
-    writeln!(out, "{:<22} {:<38} result", "exercise", "file")?;
+    writeln!(
+        out,
+        "{} {} {}",
+        super::pad(t("exercise", "练习"), 22),
+        super::pad(t("file", "文件"), 38),
+        t("result", "结果")
+    )?;
     let mut passed = 0;
     let exercises = grade::exercises();
     for exercise in exercises {
@@ -119,16 +129,35 @@ fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
                 }
                 report.summary()
             }
-            Err(GradeError::Read { .. }) => format!("missing: ppo-tutor reset {name}"),
-            Err(GradeError::NoCargo { .. } | GradeError::Cargo { .. }) => {
-                format!("not graded, cargo failed: ppo-tutor grade {name} says why")
-            }
+            Err(GradeError::Read { .. }) => tr!(
+                "missing: ppo-tutor reset {name}",
+                "文件不存在：ppo-tutor reset {name}"
+            ),
+            Err(GradeError::NoCargo { .. } | GradeError::Cargo { .. }) => tr!(
+                "not graded, cargo failed: ppo-tutor grade {name} says why",
+                "未评分，cargo 出错：ppo-tutor grade {name} 会说明原因"
+            ),
             Err(e) => return Err(e.into()),
         };
         writeln!(out, "{name:<22} {path:<38} {result}")?;
     }
-    writeln!(out, "score: {passed}/{} exercises pass", exercises.len())?;
-    writeln!(out, "details: ppo-tutor grade <exercise>")?;
+    let total = exercises.len();
+    writeln!(
+        out,
+        "{}",
+        tr!(
+            "score: {passed}/{total} exercises pass",
+            "得分：{passed}/{total} 个练习通过"
+        )
+    )?;
+    writeln!(
+        out,
+        "{}",
+        t(
+            "details: ppo-tutor grade <exercise>",
+            "详情：ppo-tutor grade <练习名>"
+        )
+    )?;
     Ok(if passed == exercises.len() {
         ExitCode::SUCCESS
     } else {
@@ -143,9 +172,13 @@ fn record_pass(report: &Report) {
     if progress.exercises_done.insert(report.exercise.clone())
         && let Err(e) = progress.save(&path)
     {
+        let path = path.display();
         eprintln!(
-            "warning: could not record the pass in {}: {e}",
-            path.display()
+            "{}",
+            tr!(
+                "warning: could not record the pass in {path}: {e}",
+                "警告：无法把通过记录写入 {path}：{e}"
+            )
         );
     }
 }
@@ -159,7 +192,12 @@ pub fn reset(args: &ResetArgs) -> anyhow::Result<ExitCode> {
         Err(e @ GradeError::UnknownExercise { .. }) => Ok(usage(&e.to_string())),
         Err(e) => Err(e.into()),
         Ok(path) => {
-            writeln!(std::io::stdout(), "restored the starter {}", path.display())?;
+            let path = path.display();
+            writeln!(
+                std::io::stdout(),
+                "{}",
+                tr!("restored the starter {path}", "已恢复初始文件 {path}")
+            )?;
             Ok(ExitCode::SUCCESS)
         }
     }
@@ -189,8 +227,9 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
             Some(i) => i,
             None => {
                 let known = grade::exercise_names().join(", ");
-                return Ok(usage(&format!(
-                    "no exercise '{name}'; the exercises are: {known}"
+                return Ok(usage(&tr!(
+                    "no exercise '{name}'; the exercises are: {known}",
+                    "没有名为 '{name}' 的练习；现有的练习：{known}"
                 )));
             }
         },
@@ -198,7 +237,11 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
             Some(i) => i,
             None => {
                 println!(
-                    "Every exercise passes already: `ppo-tutor watch NAME` watches one anyway."
+                    "{}",
+                    t(
+                        "Every exercise passes already: `ppo-tutor watch NAME` watches one anyway.",
+                        "所有练习都已通过。仍想监视某个练习，可用 `ppo-tutor watch NAME`。"
+                    )
                 );
                 return Ok(ExitCode::SUCCESS);
             }
@@ -213,10 +256,16 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
         let exercise = all[current];
         let (name, path) = (exercise.name(), PathBuf::from(exercise.starter_path()));
         if !path.exists() {
+            let shown = path.display();
             eprintln!(
-                "error: {} is missing: `ppo-tutor reset {name}` writes the starter there \
-                 (run ppo-tutor from the course folder)",
-                path.display()
+                "{}{}",
+                super::error_prefix(),
+                tr!(
+                    "{shown} is missing: `ppo-tutor reset {name}` writes the starter there \
+                     (run ppo-tutor from the course folder)",
+                    "找不到 {shown}：`ppo-tutor reset {name}` 会在那里写入初始文件\
+                     （请在课程文件夹中运行 ppo-tutor）"
+                )
             );
             return Ok(ExitCode::FAILURE);
         }
@@ -236,7 +285,7 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
                     report.passed().then_some(report)
                 }
                 Err(e) => {
-                    println!("error: {e}");
+                    println!("{}{e}", super::error_prefix());
                     None
                 }
             };
@@ -245,24 +294,37 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
                 let (progress, _) = Progress::load(&Progress::default_path());
                 match next_pending(current + 1, &progress).or_else(|| next_pending(0, &progress)) {
                     Some(next) => {
+                        let (next_name, next_path) = (all[next].name(), all[next].starter_path());
                         println!(
-                            "\n✓ {name} passes. Next: {} in {}\n",
-                            all[next].name(),
-                            all[next].starter_path()
+                            "\n{}\n",
+                            tr!(
+                                "✓ {name} passes. Next: {next_name} in {next_path}",
+                                "✓ {name} 通过了。下一个：{next_path} 中的 {next_name}"
+                            )
                         );
                         current = next;
                     }
                     None => {
-                        println!("\n✓ {name} passes, and so does every other exercise. Well done.");
+                        println!(
+                            "\n{}",
+                            tr!(
+                                "✓ {name} passes, and so does every other exercise. Well done.",
+                                "✓ {name} 通过了，其他练习也全部通过。干得漂亮！"
+                            )
+                        );
                         return Ok(ExitCode::SUCCESS);
                     }
                 }
                 keep_screen = true;
                 break;
             }
+            let shown = path.display();
             println!(
-                "\nWatching {} for saves: edit and save to regrade (Ctrl-C stops).",
-                path.display()
+                "\n{}",
+                tr!(
+                    "Watching {shown} for saves: edit and save to regrade (Ctrl-C stops).",
+                    "正在监视 {shown}：修改并保存后会重新评分（按 Ctrl-C 停止）。"
+                )
             );
             std::io::stdout().flush()?;
             if rx.recv().is_err() {

@@ -12,9 +12,11 @@ use anyhow::Context;
 use clap::Args;
 
 use super::args::{SeedList, parse_seeds};
-use crate::plot::{ascii_versus_plot, save_lab_plot};
+use crate::i18n::t;
+use crate::plot::{ascii_versus_plot, labels, save_lab_plot};
 use crate::ppo::PpoConfig;
 use crate::ppo::lab::{self, Experiment};
+use crate::tr;
 
 /// Arguments of `ppo-tutor lab`.
 #[derive(Debug, Args)]
@@ -42,9 +44,10 @@ pub struct LabArgs {
 fn parse_experiment(s: &str) -> Result<Experiment, String> {
     Experiment::from_name(s).ok_or_else(|| {
         let names: Vec<&str> = Experiment::ALL.iter().map(|e| e.name()).collect();
-        format!(
-            "unknown experiment '{s}': choose one of {}",
-            names.join(", ")
+        let names = names.join(", ");
+        tr!(
+            "unknown experiment '{s}': choose one of {names}",
+            "未知的实验 '{s}'：请从 {names} 中选一个"
         )
     })
 }
@@ -58,7 +61,11 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
     let Some(experiment) = args.experiment else {
         writeln!(
             out,
-            "The clip lab's experiments (run one with ppo-tutor lab NAME):"
+            "{}",
+            t(
+                "The clip lab's experiments (run one with ppo-tutor lab NAME):",
+                "截断实验室的实验（用 ppo-tutor lab NAME 运行其中一个）："
+            )
         )?;
         for e in Experiment::ALL {
             let arms: Vec<String> = e
@@ -77,7 +84,15 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     };
     if args.episodes == 0 {
-        eprintln!("error: invalid --episodes 0: expected at least 1 (see --help)");
+        eprintln!(
+            "{}{}{}",
+            super::error_prefix(),
+            t(
+                "invalid --episodes 0: expected at least 1",
+                "--episodes 0 无效：至少为 1"
+            ),
+            super::see_help()
+        );
         return Ok(ExitCode::from(super::EXIT_USAGE));
     }
     let base = PpoConfig {
@@ -89,26 +104,27 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
     let threads = std::thread::available_parallelism()
         .map_or(1, usize::from)
         .min(runs);
-    let bar = super::episodes_bar(args.quiet, runs * args.episodes, "lab");
+    let bar = super::episodes_bar(args.quiet, runs * args.episodes, t("lab", "实验"));
     let started = Instant::now();
     let result = lab::run(experiment, &base, seeds, threads, |done, _| {
         if let Some(bar) = &bar {
             bar.set_position(done as u64);
         }
     })
-    .context("the experiment stopped")?;
+    .context(t("the experiment stopped", "实验中止"))?;
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
     let wall_s = started.elapsed().as_secs_f64();
+    let (name, question) = (experiment.name(), experiment.question());
+    let (arms, n_seeds, episodes) = (result.arms.len(), seeds.len(), args.episodes);
     writeln!(
         out,
-        "lab {}: {}\n{} settings x {} seeds, {} episodes each, {threads} runs at a time, {wall_s:.1} s\n",
-        experiment.name(),
-        experiment.question(),
-        result.arms.len(),
-        seeds.len(),
-        args.episodes
+        "{}\n",
+        tr!(
+            "lab {name}: {question}\n{arms} settings x {n_seeds} seeds, {episodes} episodes each, {threads} runs at a time, {wall_s:.1} s",
+            "实验 {name}：{question}\n{arms} 种设置 × {n_seeds} 个随机种子，每次 {episodes} 个回合，同时跑 {threads} 次，用时 {wall_s:.1} 秒"
+        )
     )?;
     for line in result.table() {
         writeln!(out, "{line}")?;
@@ -131,9 +147,8 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
         }
     }
     if let Some(path) = &args.json {
-        let text = serde_json::to_string(&result).context("encoding the results")?;
-        std::fs::write(path, format!("{text}\n"))
-            .with_context(|| format!("writing {}", path.display()))?;
+        let text = serde_json::to_string(&result).context(t("encoding the results", "编码结果"))?;
+        std::fs::write(path, format!("{text}\n")).with_context(|| super::train::writing(path))?;
     }
     if let Some(path) = &args.plot {
         let arms: Vec<(&str, &crate::ppo::seeds::Band)> = result
@@ -141,9 +156,17 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
             .iter()
             .map(|a| (a.label.as_str(), &a.band))
             .collect();
-        let title = format!("lab {}: {} seeds", experiment.name(), seeds.len());
+        let title = labels::lab_title(experiment.name(), seeds.len());
         save_lab_plot(path, &title, &arms, seeds.len())?;
-        writeln!(out, "drew the settings' bands to {}", path.display())?;
+        let shown = path.display();
+        writeln!(
+            out,
+            "{}",
+            tr!(
+                "drew the settings' bands to {shown}",
+                "已把各设置的曲线带画到 {shown}"
+            )
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }

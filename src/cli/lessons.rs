@@ -8,7 +8,9 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 
-use crate::lesson::{Course, RunConfig, Session, Snapshot, anchor};
+use crate::i18n::t;
+use crate::lesson::{Course, Environment, RunConfig, Session, Snapshot, anchor};
+use crate::tr;
 
 /// Arguments of `ppo-tutor show`.
 #[derive(Debug, Args)]
@@ -31,7 +33,7 @@ pub struct ShowArgs {
 /// # Errors
 /// The embedded lessons are invalid (a build that passed its tests never is).
 pub fn list() -> anyhow::Result<ExitCode> {
-    let course = Course::embedded().context("loading the embedded lessons")?;
+    let course = Course::embedded().context(t("loading the embedded lessons", "加载内置课程"))?;
     for l in &course.lessons {
         writeln!(std::io::stdout(), "{}\t{}", l.id, l.title)?;
     }
@@ -48,21 +50,26 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
     let Some(s) = l.steps.get(step) else {
         return out;
     };
+    let (title, n, of, step_title) = (&l.title, step + 1, l.steps.len(), &s.title);
     let _ = writeln!(
         out,
-        "# {} — step {}/{}: {}\n",
-        l.title,
-        step + 1,
-        l.steps.len(),
-        s.title
+        "{}\n",
+        tr!(
+            "# {title} — step {n}/{of}: {step_title}",
+            "# {title} — 第 {n}/{of} 节：{step_title}"
+        )
     );
     let body = s.text(crate::lesson::face::Face::Terminal);
     let _ = writeln!(out, "{}\n", crate::lesson::details::fold(&body, true));
     if !s.python.is_empty() {
+        let source = match l.env {
+            Environment::CartPole => t("The seed", "原教程代码"),
+            Environment::Pendulum => t("The book", "书中代码"),
+        };
         let _ = writeln!(
             out,
-            "## The {} (PyTorch)\n{}\n",
-            l.env.python_source(),
+            "## {source}{}\n{}\n",
+            t(" (PyTorch)", "（PyTorch）"),
             s.python
         );
     }
@@ -91,14 +98,22 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
                     let _ = writeln!(out, "  [{row}] {}", vals.join(" "));
                 }
                 if t.values.len() / cols > 20 {
-                    let _ = writeln!(out, "  ... ({} rows)", t.values.len() / cols);
+                    let rows = t.values.len() / cols;
+                    let _ = writeln!(out, "  ... {}", tr!("({rows} rows)", "（共 {rows} 行）"));
                 }
             }
             None if crate::lesson::VIEWS.contains(&name.as_str()) => {
-                let _ = writeln!(out, "## {name}: a picture in the terminal app (ppo-tutor)");
+                let _ = writeln!(
+                    out,
+                    "## {name}{}",
+                    t(
+                        ": a picture in the terminal app (ppo-tutor)",
+                        "：终端应用（ppo-tutor）里的图"
+                    )
+                );
             }
             None => {
-                let _ = writeln!(out, "## {name}: not available yet");
+                let _ = writeln!(out, "## {name}{}", t(": not available yet", "：暂无数据"));
             }
         }
     }
@@ -110,22 +125,31 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
 /// # Errors
 /// Training failed; unknown ids and steps are reported with exit code 2.
 pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
-    let course = Course::embedded().context("loading the embedded lessons")?;
+    let course = Course::embedded().context(t("loading the embedded lessons", "加载内置课程"))?;
     let Some(index) = course.index_of(&args.id) else {
         let ids: Vec<&str> = course.lessons.iter().map(|l| l.id.as_str()).collect();
+        let (id, ids) = (&args.id, ids.join(", "));
         eprintln!(
-            "error: unknown lesson '{}' for <ID>: expected one of {}",
-            args.id,
-            ids.join(", ")
+            "{}{}",
+            super::error_prefix(),
+            tr!(
+                "unknown lesson '{id}' for <ID>: expected one of {ids}",
+                "<ID> 没有名为 '{id}' 的课；可选：{ids}"
+            )
         );
         return Ok(ExitCode::from(super::EXIT_USAGE));
     };
     let steps = course.lessons[index].steps.len();
     let range = match args.step {
         Some(n) if n == 0 || n > steps => {
+            let id = &args.id;
             eprintln!(
-                "error: --step {n} is out of range: lesson '{}' has steps 1 to {steps}",
-                args.id
+                "{}{}",
+                super::error_prefix(),
+                tr!(
+                    "--step {n} is out of range: lesson '{id}' has steps 1 to {steps}",
+                    "--step {n} 超出范围：课 '{id}' 只有第 1 到 {steps} 节"
+                )
             );
             return Ok(ExitCode::from(super::EXIT_USAGE));
         }

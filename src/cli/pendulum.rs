@@ -7,8 +7,11 @@ use anyhow::Context;
 use clap::Args;
 
 use super::args::parse_seed;
+use super::pad_left;
 use crate::env::PendulumTrajectory;
 use crate::env::pendulum::{ENV_ID, MAX_TORQUE, PendulumConfig};
+use crate::i18n::t as t_;
+use crate::tr;
 
 /// Arguments of `ppo-tutor pendulum`.
 #[derive(Debug, Args)]
@@ -46,8 +49,9 @@ pub fn parse_torques(s: &str) -> Result<TorqueList, String> {
     if s.trim().is_empty() {
         return Ok(TorqueList(Vec::new()));
     }
-    let fix = format!(
-        "give decimal torques in N·m, comma-separated like -0.5,1.25 (clipped to [-{MAX_TORQUE}, {MAX_TORQUE}])"
+    let fix = tr!(
+        "give decimal torques in N·m, comma-separated like -0.5,1.25 (clipped to [-{MAX_TORQUE}, {MAX_TORQUE}])",
+        "请给出以 N·m 为单位的小数力矩，用逗号分隔，如 -0.5,1.25（会截到 [-{MAX_TORQUE}, {MAX_TORQUE}]）"
     );
     s.split(',')
         .enumerate()
@@ -55,11 +59,16 @@ pub fn parse_torques(s: &str) -> Result<TorqueList, String> {
             let part = part.trim();
             match part.parse::<f64>() {
                 Ok(u) if u.is_finite() => Ok(u),
-                Ok(_) => Err(format!(
+                Ok(_) => Err(tr!(
                     "torque {} is '{part}', which is not a finite number: {fix}",
+                    "第 {} 个力矩是 '{part}'，不是有限数：{fix}",
                     i + 1
                 )),
-                Err(_) => Err(format!("torque {} is '{part}', not a number: {fix}", i + 1)),
+                Err(_) => Err(tr!(
+                    "torque {} is '{part}', not a number: {fix}",
+                    "第 {} 个力矩是 '{part}'，不是数：{fix}",
+                    i + 1
+                )),
             }
         })
         .collect::<Result<_, _>>()
@@ -73,17 +82,25 @@ pub fn parse_torques(s: &str) -> Result<TorqueList, String> {
 pub fn run(args: &PendulumArgs) -> anyhow::Result<ExitCode> {
     let Some(TorqueList(torques)) = &args.actions else {
         eprintln!(
-            "error: give --actions with the torques to apply, like --actions=-0.5,1.25 ('' only resets; see --help)"
+            "{}{}",
+            super::error_prefix(),
+            t_(
+                "give --actions with the torques to apply, like --actions=-0.5,1.25 ('' only resets; see --help)",
+                "请用 --actions 给出要施加的力矩，如 --actions=-0.5,1.25（'' 表示只 reset；见 --help）"
+            )
         );
         return Ok(ExitCode::from(super::EXIT_USAGE));
     };
     let t = PendulumTrajectory::record(PendulumConfig::default(), args.seed, torques, args.resets)
-        .context("recording the episode")?;
+        .context(t_("recording the episode", "记录回合"))?;
     if t.actions.len() < torques.len() {
+        let (done, all) = (t.actions.len(), torques.len());
         eprintln!(
-            "note: the episode was truncated after {} of the {} torques; the rest were not applied",
-            t.actions.len(),
-            torques.len()
+            "{}",
+            tr!(
+                "note: the episode was truncated after {done} of the {all} torques; the rest were not applied",
+                "注意：回合在 {all} 个力矩中的第 {done} 个之后因时限中断，其余力矩没有施加"
+            )
         );
     }
     if args.json {
@@ -106,8 +123,15 @@ fn print_table(t: &PendulumTrajectory) -> anyhow::Result<()> {
     writeln!(out, "{ENV_ID}, reset(seed={})", t.seed)?;
     writeln!(
         out,
-        "{:>5} {:>8} {:>11} {:>10} {:>10} {:>10} {:>10}  end",
-        "step", "torque", "theta", "cos_theta", "sin_theta", "theta_dot", "reward"
+        "{} {} {:>11} {:>10} {:>10} {:>10} {}  {}",
+        pad_left(t_("step", "步"), 5),
+        pad_left(t_("torque", "力矩"), 8),
+        "theta",
+        "cos_theta",
+        "sin_theta",
+        "theta_dot",
+        pad_left(t_("reward", "奖励"), 10),
+        t_("end", "结束")
     )?;
     let (s, o) = (t.reset_state, t.reset_obs);
     writeln!(
@@ -116,7 +140,11 @@ fn print_table(t: &PendulumTrajectory) -> anyhow::Result<()> {
         0, "-", s[0], o[0], o[1], o[2], "-"
     )?;
     for (i, (s, o)) in t.states.iter().zip(&t.obs).enumerate() {
-        let end = if t.truncated[i] { "  truncated" } else { "" };
+        let end = if t.truncated[i] {
+            t_("  truncated", "  时限中断")
+        } else {
+            ""
+        };
         writeln!(
             out,
             "{:>5} {:>8.4} {:>11.6} {:>10.6} {:>10.6} {:>10.6} {:>10.5}{end}",
@@ -129,14 +157,19 @@ fn print_table(t: &PendulumTrajectory) -> anyhow::Result<()> {
             t.rewards[i]
         )?;
     }
+    let (r, n) = (t.episode_return(), t.actions.len());
     writeln!(
         out,
-        "return {} over {} steps",
-        t.episode_return(),
-        t.actions.len()
+        "{}",
+        tr!("return {r} over {n} steps", "共 {n} 步，回报 {r}")
     )?;
     for (i, s) in t.next_resets.iter().enumerate() {
-        writeln!(out, "next reset {}: {:?}", i + 1, s)?;
+        let n = i + 1;
+        writeln!(
+            out,
+            "{}{s:?}",
+            tr!("next reset {n}: ", "下一次 reset {n}：")
+        )?;
     }
     Ok(())
 }

@@ -17,7 +17,9 @@ use super::args::parse_seed;
 use super::cartpole::ascii_frame;
 use super::train::{TrainEnv, parse_train_env};
 use crate::env::{CartPole, EnvId, Pendulum};
+use crate::i18n::t;
 use crate::ppo::{Agent, CheckpointKind, PpoConfig, PpoContinuous, PpoContinuousConfig};
+use crate::tr;
 use crate::tui::widgets::pendulum::PendulumView;
 
 /// Arguments of `ppo-tutor play`.
@@ -68,13 +70,23 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
         // An unreadable file goes to the loader of the environment asked, which says why.
         Some(asked) if kind.is_none() || (asked == TrainEnv::Pendulum) == pendulum_file => asked,
         Some(asked) => {
-            let holds = kind.map_or("another agent".to_string(), |k| {
-                format!("a {} agent for {}", k.algorithm(), k.env())
+            let holds = kind.map_or(t("another agent", "别的智能体").to_string(), |k| {
+                let (algorithm, env) = (k.algorithm(), k.env());
+                tr!(
+                    "a {algorithm} agent for {env}",
+                    "{env} 上的 {algorithm} 智能体"
+                )
             });
+            let file = args.load.display();
             eprintln!(
-                "error: --env {asked} does not match {}: it holds {holds}; drop --env to play \
-                 it on its own environment (see --help)",
-                args.load.display()
+                "{}{}{}",
+                super::error_prefix(),
+                tr!(
+                    "--env {asked} does not match {file}: it holds {holds}; drop --env to play \
+                     it on its own environment",
+                    "--env {asked} 与 {file} 不符：它保存的是 {holds}。去掉 --env 即可在它自己的环境中运行"
+                ),
+                super::see_help()
             );
             return Ok(ExitCode::from(super::EXIT_USAGE));
         }
@@ -90,8 +102,8 @@ fn play_cartpole(args: &PlayArgs, env_id: EnvId) -> anyhow::Result<ExitCode> {
         env_id,
         ..PpoConfig::default()
     };
-    let mut agent = Agent::load(&args.load, &config, args.seed)
-        .with_context(|| format!("loading the agent from {}", args.load.display()))?;
+    let mut agent =
+        Agent::load(&args.load, &config, args.seed).with_context(|| loading(&args.load))?;
     let render = !args.no_render && std::io::stdout().is_terminal();
     let delay = Duration::from_millis(args.delay_ms.unwrap_or(20));
     let mut env = CartPole::new(env_id);
@@ -117,15 +129,18 @@ fn play_cartpole(args: &PlayArgs, env_id: EnvId) -> anyhow::Result<ExitCode> {
                 if render {
                     draw_cartpole(&mut out, &env, env_id, (episode, steps), drawn)?;
                 }
-                let how = if step.terminated {
-                    "the pole fell"
+                let line = if step.terminated {
+                    tr!(
+                        "episode {episode}: return {total} (the pole fell after {steps} steps)",
+                        "回合 {episode}：回报 {total}（{steps} 步后杆子倒下）"
+                    )
                 } else {
-                    "time limit"
+                    tr!(
+                        "episode {episode}: return {total} (time limit after {steps} steps)",
+                        "回合 {episode}：回报 {total}（{steps} 步后到达时限）"
+                    )
                 };
-                writeln!(
-                    out,
-                    "episode {episode}: return {total} ({how} after {steps} steps)"
-                )?;
+                writeln!(out, "{line}")?;
                 break;
             }
         }
@@ -148,10 +163,14 @@ fn draw_cartpole(
     if previous > 0 {
         write!(out, "\x1b[{previous}A")?;
     }
+    let (x, theta) = (state[0], state[2]);
     writeln!(
         out,
-        "{env_id} episode {episode} step {step:>3}  x={:+.3} θ={:+.3}      ",
-        state[0], state[2]
+        "{}",
+        tr!(
+            "{env_id} episode {episode} step {step:>3}  x={x:+.3} θ={theta:+.3}      ",
+            "{env_id} 回合 {episode} 第 {step:>3} 步  x={x:+.3} θ={theta:+.3}      "
+        )
     )?;
     for line in &lines {
         writeln!(out, "{line}")?;
@@ -163,7 +182,7 @@ fn draw_cartpole(
 /// Plays a Pendulum-v1 agent's mean torque μ(s), as the book watches a trained policy.
 fn play_pendulum(args: &PlayArgs) -> anyhow::Result<ExitCode> {
     let agent = PpoContinuous::load(&args.load, &PpoContinuousConfig::default(), args.seed)
-        .with_context(|| format!("loading the agent from {}", args.load.display()))?;
+        .with_context(|| loading(&args.load))?;
     let render = !args.no_render && std::io::stdout().is_terminal();
     let delay = Duration::from_millis(args.delay_ms.unwrap_or(33));
     let mut env = Pendulum::new();
@@ -197,7 +216,11 @@ fn play_pendulum(args: &PlayArgs) -> anyhow::Result<ExitCode> {
                 }
                 writeln!(
                     out,
-                    "episode {episode}: return {total:.2} (time limit after {steps} steps)"
+                    "{}",
+                    tr!(
+                        "episode {episode}: return {total:.2} (time limit after {steps} steps)",
+                        "回合 {episode}：回报 {total:.2}（{steps} 步后到达时限）"
+                    )
                 )?;
                 break;
             }
@@ -233,18 +256,28 @@ fn draw_pendulum(
     }
     writeln!(
         out,
-        "Pendulum-v1 episode {} step {:>3}  θ={:+.3} θ̇={:+.3} u={:+.3}      ",
-        frame.episode,
-        frame.step,
-        crate::env::pendulum::angle_normalize(theta),
-        theta_dot,
-        frame.torque.clamp(-2.0, 2.0),
+        "{}",
+        tr!(
+            "Pendulum-v1 episode {} step {:>3}  θ={:+.3} θ̇={:+.3} u={:+.3}      ",
+            "Pendulum-v1 回合 {} 第 {:>3} 步  θ={:+.3} θ̇={:+.3} u={:+.3}      ",
+            frame.episode,
+            frame.step,
+            crate::env::pendulum::angle_normalize(theta),
+            theta_dot,
+            frame.torque.clamp(-2.0, 2.0),
+        )
     )?;
     for line in &lines {
         writeln!(out, "{line}")?;
     }
     out.flush()?;
     Ok(lines.len() + 1)
+}
+
+/// `loading the agent from FILE`, the context of a checkpoint that cannot be loaded.
+fn loading(file: &std::path::Path) -> String {
+    let shown = file.display();
+    tr!("loading the agent from {shown}", "从 {shown} 加载智能体")
 }
 
 /// The pendulum drawn by [`PendulumView`] as lines of text.
@@ -254,7 +287,7 @@ fn pendulum_lines(theta: f64, torque: f64) -> Vec<String> {
     PendulumView {
         theta,
         torque,
-        block: Block::bordered().title(" torque: arc around the pivot "),
+        block: Block::bordered().title(t(" torque: arc around the pivot ", " 力矩：绕支点的弧 ")),
         color: false,
     }
     .render(area, &mut buf);

@@ -12,9 +12,11 @@ use anyhow::Context;
 use clap::Args;
 use serde_json::json;
 
+use crate::i18n::t;
 use crate::ppo::continuous::replay::{ContinuousReplayOutput, replay_continuous_case};
 use crate::ppo::replay::{ReplayOutput, replay_case};
 use crate::ppo::replay_file::{AnyReplay, parse_any_replay};
+use crate::tr;
 
 /// Arguments of `ppo-tutor replay`.
 #[derive(Debug, Args)]
@@ -37,7 +39,8 @@ pub struct ReplayArgs {
 /// The file is unreadable or malformed (the message names the key and its expected shape).
 pub fn run(args: &ReplayArgs) -> anyhow::Result<ExitCode> {
     let name = args.file.display().to_string();
-    let text = std::fs::read_to_string(&args.file).with_context(|| format!("reading {name}"))?;
+    let text = std::fs::read_to_string(&args.file)
+        .with_context(|| tr!("reading {name}", "读取 {name}"))?;
     let mut out = std::io::stdout().lock();
     // (transitions, [(actor_loss, critic_loss)] per epoch) of each case, for the table
     let summary: Vec<(usize, Vec<(f32, f32)>)> = match parse_any_replay(&text, &name)? {
@@ -73,15 +76,21 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<ExitCode> {
         }
     };
     for (i, (transitions, losses)) in summary.iter().enumerate() {
+        let epochs = losses.len();
         writeln!(
             out,
-            "case {i}: {transitions} transitions, {} epochs",
-            losses.len()
+            "{}",
+            tr!(
+                "case {i}: {transitions} transitions, {epochs} epochs",
+                "用例 {i}：{transitions} 条转移，{epochs} 轮"
+            )
         )?;
         writeln!(
             out,
-            "{:>7} {:>14} {:>14}",
-            "epoch", "actor_loss", "critic_loss"
+            "{} {:>14} {:>14}",
+            super::pad_left(t("epoch", "轮"), 7),
+            "actor_loss",
+            "critic_loss"
         )?;
         for (e, (actor_loss, critic_loss)) in losses.iter().enumerate() {
             writeln!(out, "{e:>7} {actor_loss:>14.7} {critic_loss:>14.7}")?;
@@ -89,7 +98,11 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<ExitCode> {
     }
     writeln!(
         out,
-        "(--json prints every tensor, in the fixture's key names and shapes)"
+        "{}",
+        t(
+            "(--json prints every tensor, in the fixture's key names and shapes)",
+            "（--json 会输出每个张量，键名和形状与录制文件相同）"
+        )
     )?;
     Ok(ExitCode::SUCCESS)
 }
@@ -102,6 +115,8 @@ fn run_cases<C, O>(
     cases
         .iter()
         .enumerate()
-        .map(|(i, case)| replay(case).with_context(|| format!("replaying cases[{i}]")))
+        .map(|(i, case)| {
+            replay(case).with_context(|| tr!("replaying cases[{i}]", "重放 cases[{i}]"))
+        })
         .collect()
 }

@@ -14,12 +14,14 @@ use serde_json::json;
 
 use super::args::{SeedList, parse_seed, parse_seeds};
 use crate::env::EnvId;
+use crate::i18n::t;
 use crate::plot::{ascii_return_plot, save_return_plot, smoothed_returns};
 use crate::ppo::train::mean_last;
 use crate::ppo::{
     Agent, Algorithm, ContinuousEpisodeReport, EpisodeReport, PpoConfig, PpoContinuous, PpoError,
     TrainSummary, train, train_continuous,
 };
+use crate::tr;
 
 pub mod setup;
 mod several;
@@ -162,7 +164,7 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
     let setup = match Setup::from_args(args) {
         Ok(setup) => setup,
         Err(err) => {
-            eprintln!("error: {err} (see --help)");
+            eprintln!("{}{err}{}", super::error_prefix(), super::see_help());
             return Ok(ExitCode::from(super::EXIT_USAGE));
         }
     };
@@ -182,25 +184,39 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         })
         .map(|(summary, agent)| (summary, Trained::Pendulum(agent))),
     }
-    .context("training stopped")?;
+    .context(t("training stopped", "训练中止"))?;
     bars.finish();
 
     let smoothed = smoothed_returns(&summary.returns);
     print_summary(&summary, &setup, args.seed, &smoothed, !args.quiet)?;
     if let Some(path) = &args.json {
         let value = run_json(&summary, &setup, args.seed, &smoothed);
-        std::fs::write(path, format!("{value}\n"))
-            .with_context(|| format!("writing {}", path.display()))?;
+        std::fs::write(path, format!("{value}\n")).with_context(|| writing(path))?;
     }
     let mut out = std::io::stdout();
     if let Some(path) = &args.save {
-        agent.save(path).context("saving the agent")?;
-        writeln!(out, "saved the agent to {}", path.display())?;
+        agent
+            .save(path)
+            .context(t("saving the agent", "保存智能体"))?;
+        let shown = path.display();
+        writeln!(
+            out,
+            "{}",
+            tr!("saved the agent to {shown}", "已把智能体保存到 {shown}")
+        )?;
     }
     if let Some(path) = &args.plot {
-        let title = format!("PPO on {}", setup.env());
+        let title = crate::plot::labels::return_title(setup.env());
         save_return_plot(path, &title, &summary.returns, &smoothed)?;
-        writeln!(out, "drew the return curve to {}", path.display())?;
+        let shown = path.display();
+        writeln!(
+            out,
+            "{}",
+            tr!(
+                "drew the return curve to {shown}",
+                "已把回报曲线画到 {shown}"
+            )
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -274,22 +290,29 @@ fn print_summary(
         Setup::CartPole(_) => format!("{best}"),
         Setup::Pendulum(_) => format!("{best:.1}"),
     };
+    let (env, episodes, steps) = (setup.env(), summary.returns.len(), summary.env_steps);
+    let (wall, rate) = (summary.wall_s, summary.steps_per_s());
     writeln!(
         out,
-        "PPO on {}, seed {seed}: {} episodes, {} env steps in {:.2} s ({:.0} steps/s)",
-        setup.env(),
-        summary.returns.len(),
-        summary.env_steps,
-        summary.wall_s,
-        summary.steps_per_s()
+        "{}",
+        tr!(
+            "PPO on {env}, seed {seed}: {episodes} episodes, {steps} env steps in {wall:.2} s ({rate:.0} steps/s)",
+            "{env} 上的 PPO，随机种子 {seed}：{episodes} 个回合，环境共 {steps} 步，用时 {wall:.2} 秒（每秒 {rate:.0} 步）"
+        )
     )?;
     let last = setup.last();
-    writeln!(
-        out,
-        "mean return of the last {} episodes: {:.1}   (last 10: {:.1}, best: {best})",
+    let (n, mean, mean10) = (
         summary.returns.len().min(last),
         summary.mean_last(last),
         summary.mean_last(10),
+    );
+    writeln!(
+        out,
+        "{}",
+        tr!(
+            "mean return of the last {n} episodes: {mean:.1}   (last 10: {mean10:.1}, best: {best})",
+            "最后 {n} 个回合的平均回报：{mean:.1}（最后 10 个：{mean10:.1}，最高：{best}）"
+        )
     )?;
     if plot {
         let width = crossterm::terminal::size().map_or(80, |(w, _)| usize::from(w));
@@ -334,6 +357,17 @@ impl From<&ContinuousEpisodeReport> for Progress {
     }
 }
 
+/// `writing PATH`, the context of a file that could not be written.
+pub(super) fn writing(path: &Path) -> String {
+    let shown = path.display();
+    tr!("writing {shown}", "写入 {shown}")
+}
+
+/// The seed's tqdm prefix, `Iteration i`, in the current language.
+fn iteration_label(i: usize) -> String {
+    tr!("Iteration {i}", "第 {i} 轮迭代")
+}
+
 /// The seed's ten tqdm bars ("Iteration i"), with the same postfix every 10 episodes.
 struct Bars {
     bar: Option<ProgressBar>,
@@ -362,7 +396,7 @@ impl Bars {
             .unwrap_or_else(|_| ProgressStyle::default_bar());
             let bar = ProgressBar::new(r.iteration_len as u64)
                 .with_style(style.progress_chars("█▉▊▋▌▍▎▏ "))
-                .with_prefix(format!("Iteration {}", r.iteration));
+                .with_prefix(iteration_label(r.iteration));
             self.bar = Some(bar);
         }
         let postfix = (r.episode_in_iteration + 1).is_multiple_of(10);
@@ -382,8 +416,10 @@ impl Bars {
         }
         if self.lines && r.episode_in_iteration + 1 == r.iteration_len {
             eprintln!(
-                "Iteration {}: {}/{}{message}",
-                r.iteration, r.iteration_len, r.iteration_len
+                "{}: {}/{}{message}",
+                iteration_label(r.iteration),
+                r.iteration_len,
+                r.iteration_len
             );
         }
     }

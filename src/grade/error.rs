@@ -4,11 +4,12 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
+use crate::tr;
+
 /// Why grading could not happen at all (a learner's bad file is a [`Report`], not this).
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug)]
 pub enum GradeError {
     /// No exercise has this name.
-    #[error("unknown exercise '{name}': the exercises are {known}")]
     UnknownExercise {
         /// The name given.
         name: String,
@@ -16,9 +17,6 @@ pub enum GradeError {
         known: String,
     },
     /// The learner's file cannot be read.
-    #[error(
-        "cannot read {file}: {reason} (run `ppo-tutor reset {exercise}` to restore the starter, or pass --file PATH)"
-    )]
     Read {
         /// The file.
         file: PathBuf,
@@ -28,9 +26,6 @@ pub enum GradeError {
         reason: String,
     },
     /// `rustc` could not be started.
-    #[error(
-        "cannot run the Rust compiler '{rustc}': {reason}; install Rust (https://rustup.rs) or set RUSTC to rustc's path"
-    )]
     NoRustc {
         /// The program tried.
         rustc: PathBuf,
@@ -38,9 +33,6 @@ pub enum GradeError {
         reason: String,
     },
     /// The cache folder cannot be written.
-    #[error(
-        "cannot write the grading cache {dir}: {reason} (set PPO_TUTOR_GRADE_CACHE to a writable folder)"
-    )]
     Cache {
         /// The folder.
         dir: PathBuf,
@@ -48,9 +40,6 @@ pub enum GradeError {
         reason: String,
     },
     /// `cargo` could not be started (the candle exercise is built with cargo).
-    #[error(
-        "cannot run cargo '{cargo}': {reason}; the candle exercise is built with cargo: install Rust (https://rustup.rs) or set CARGO to cargo's path"
-    )]
     NoCargo {
         /// The program tried.
         cargo: PathBuf,
@@ -58,9 +47,6 @@ pub enum GradeError {
         reason: String,
     },
     /// cargo failed for a reason other than the learner's code.
-    #[error(
-        "cargo could not build the candle grader in {dir}:\n{message}\n(the first build fetches and compiles candle: it needs the crates.io registry or cargo's download cache; delete {dir} to start over)"
-    )]
     Cargo {
         /// The project folder.
         dir: PathBuf,
@@ -68,15 +54,10 @@ pub enum GradeError {
         message: String,
     },
     /// The embedded course content is broken (a bug in this build of ppo-tutor).
-    #[error("the embedded course content is broken: {0} (a bug in this build of ppo-tutor)")]
     Content(String),
     /// The embedded PyTorch fixture could not be replayed (a broken build).
-    #[error(
-        "the embedded PyTorch fixture cannot be replayed: {0} (a bug in this build of ppo-tutor)"
-    )]
     Fixture(String),
     /// The compiled harness could not be started.
-    #[error("cannot run the compiled grader {binary}: {reason}")]
     Run {
         /// The harness.
         binary: PathBuf,
@@ -84,13 +65,85 @@ pub enum GradeError {
         reason: String,
     },
     /// Writing a starter back failed.
-    #[error("cannot write {file}: {reason}")]
     Write {
         /// The file.
         file: PathBuf,
         /// The I/O error.
         reason: String,
     },
+}
+
+impl std::error::Error for GradeError {}
+
+impl std::fmt::Display for GradeError {
+    /// The message in the current language (flags, paths and commands as they are).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let text = match self {
+            Self::UnknownExercise { name, known } => tr!(
+                "unknown exercise '{name}': the exercises are {known}",
+                "没有名为 '{name}' 的练习；现有的练习：{known}"
+            ),
+            Self::Read {
+                file,
+                exercise,
+                reason,
+            } => {
+                let file = file.display();
+                tr!(
+                    "cannot read {file}: {reason} (run `ppo-tutor reset {exercise}` to restore the starter, or pass --file PATH)",
+                    "无法读取 {file}：{reason}（运行 `ppo-tutor reset {exercise}` 恢复初始文件，或用 --file PATH 指定文件）"
+                )
+            }
+            Self::NoRustc { rustc, reason } => {
+                let rustc = rustc.display();
+                tr!(
+                    "cannot run the Rust compiler '{rustc}': {reason}; install Rust (https://rustup.rs) or set RUSTC to rustc's path",
+                    "无法运行 Rust 编译器 '{rustc}'：{reason}。请安装 Rust（https://rustup.rs），或把 RUSTC 设为 rustc 的路径"
+                )
+            }
+            Self::Cache { dir, reason } => {
+                let dir = dir.display();
+                tr!(
+                    "cannot write the grading cache {dir}: {reason} (set PPO_TUTOR_GRADE_CACHE to a writable folder)",
+                    "无法写入评分缓存 {dir}：{reason}（请把 PPO_TUTOR_GRADE_CACHE 设为可写的文件夹）"
+                )
+            }
+            Self::NoCargo { cargo, reason } => {
+                let cargo = cargo.display();
+                tr!(
+                    "cannot run cargo '{cargo}': {reason}; the candle exercise is built with cargo: install Rust (https://rustup.rs) or set CARGO to cargo's path",
+                    "无法运行 cargo '{cargo}'：{reason}。candle 练习要用 cargo 构建：请安装 Rust（https://rustup.rs），或把 CARGO 设为 cargo 的路径"
+                )
+            }
+            Self::Cargo { dir, message } => {
+                let dir = dir.display();
+                tr!(
+                    "cargo could not build the candle grader in {dir}:\n{message}\n(the first build fetches and compiles candle: it needs the crates.io registry or cargo's download cache; delete {dir} to start over)",
+                    "cargo 无法在 {dir} 中构建 candle 评分程序：\n{message}\n（第一次构建要下载并编译 candle，需要能访问 crates.io 或有 cargo 的下载缓存；删除 {dir} 可从头再来）"
+                )
+            }
+            Self::Content(why) => tr!(
+                "the embedded course content is broken: {why} (a bug in this build of ppo-tutor)",
+                "内置的课程内容有误：{why}（这是本版 ppo-tutor 的 bug）"
+            ),
+            Self::Fixture(why) => tr!(
+                "the embedded PyTorch fixture cannot be replayed: {why} (a bug in this build of ppo-tutor)",
+                "内置的 PyTorch 录制数据无法重放：{why}（这是本版 ppo-tutor 的 bug）"
+            ),
+            Self::Run { binary, reason } => {
+                let binary = binary.display();
+                tr!(
+                    "cannot run the compiled grader {binary}: {reason}",
+                    "无法运行编译好的评分程序 {binary}：{reason}"
+                )
+            }
+            Self::Write { file, reason } => {
+                let file = file.display();
+                tr!("cannot write {file}: {reason}", "无法写入 {file}：{reason}")
+            }
+        };
+        f.write_str(&text)
+    }
 }
 
 /// How to grade.

@@ -195,10 +195,10 @@ pub fn problem<R>(answer: &Answer<R>, prose: &Prose) -> (Problem, String) {
             Problem::TimedOut(*s),
             prose
                 .other("timed_out")
-                .unwrap_or(hints::TIMED_OUT)
+                .unwrap_or(hints::timed_out())
                 .to_string(),
         ),
-        Answer::Crashed(m) => (Problem::Crashed(m.clone()), hints::CRASHED.to_string()),
+        Answer::Crashed(m) => (Problem::Crashed(m.clone()), hints::crashed().to_string()),
         Answer::Value(_) | Answer::NotRun => (Problem::Wrong, prose.text("fallback").to_string()),
     }
 }

@@ -29,13 +29,25 @@ impl std::fmt::Debug for SaveWatcher {
 }
 
 /// Why files cannot be watched.
-#[derive(Debug, thiserror::Error)]
-#[error("cannot watch {folder} for saves: {reason}")]
+#[derive(Debug)]
 pub struct WatchError {
     /// The folder that could not be watched.
     pub folder: PathBuf,
     /// The file watcher's message.
     pub reason: String,
+}
+
+impl std::error::Error for WatchError {}
+
+impl std::fmt::Display for WatchError {
+    /// The message in the current language (the folder as it is).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (folder, reason) = (self.folder.display(), &self.reason);
+        f.write_str(&crate::tr!(
+            "cannot watch {folder} for saves: {reason}",
+            "无法监视 {folder} 中的保存：{reason}"
+        ))
+    }
 }
 
 impl SaveWatcher {

@@ -16,7 +16,9 @@ use serde_json::json;
 use super::{AlgorithmArg, TrainArgs};
 use crate::env::EnvId;
 use crate::env::pendulum::ENV_ID as PENDULUM_V1;
+use crate::i18n::t;
 use crate::ppo::{PpoConfig, PpoContinuousConfig, PpoError};
+use crate::tr;
 
 /// A Gymnasium id `ppo-tutor train` and `play` accept.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -62,9 +64,10 @@ pub fn parse_train_env(s: &str) -> Result<TrainEnv, String> {
         .find(|id| id.as_str().eq_ignore_ascii_case(wanted))
         .ok_or_else(|| {
             let ids: Vec<_> = TrainEnv::ALL.iter().map(|id| id.as_str()).collect();
-            format!(
-                "unknown environment '{s}': expected one of {} (any case)",
-                ids.join(", ")
+            let ids = ids.join(", ");
+            tr!(
+                "unknown environment '{s}': expected one of {ids} (any case)",
+                "未知的环境 '{s}'：应为 {ids} 之一（不分大小写）"
             )
         })
 }
@@ -112,10 +115,13 @@ impl Setup {
                 field,
                 value,
                 expected,
-            }) => Err(format!(
-                "invalid --{} {value}: expected {expected}",
-                flag_of(field)
-            )),
+            }) => {
+                let flag = flag_of(field);
+                Err(tr!(
+                    "invalid --{flag} {value}: expected {expected}",
+                    "--{flag} {value} 无效：应为 {expected}"
+                ))
+            }
             Err(other) => Err(other.to_string()),
         }
     }
@@ -164,43 +170,66 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
         (
             args.bootstrap_truncation,
             "--bootstrap-truncation",
-            "the book's PPOContinuous ends every episode at Pendulum-v1's 200-step time limit \
-             (done = terminated or truncated) and its update has no bootstrap from V(s')",
+            t(
+                "the book's PPOContinuous ends every episode at Pendulum-v1's 200-step time limit \
+                 (done = terminated or truncated) and its update has no bootstrap from V(s')",
+                "书中的 PPOContinuous 让每个回合都在 Pendulum-v1 的 200 步时限处结束\
+                 （done = terminated or truncated），更新时也不从 V(s') 自举",
+            ),
         ),
         (
             args.normalize_advantage,
             "--normalize-advantage",
-            "the book's PPOContinuous update uses the GAE advantage as it is",
+            t(
+                "the book's PPOContinuous update uses the GAE advantage as it is",
+                "书中的 PPOContinuous 更新直接使用 GAE 优势值",
+            ),
         ),
         (
             args.entropy_coef != 0.0,
             "--entropy-coef",
-            "the book's PPOContinuous update has no entropy bonus",
+            t(
+                "the book's PPOContinuous update has no entropy bonus",
+                "书中的 PPOContinuous 更新没有熵奖励",
+            ),
         ),
         (
             args.max_grad_norm.is_some(),
             "--max-grad-norm",
-            "the book's PPOContinuous update does not clip gradients",
+            t(
+                "the book's PPOContinuous update does not clip gradients",
+                "书中的 PPOContinuous 更新不裁剪梯度",
+            ),
         ),
         (
             args.target_kl.is_some(),
             "--target-kl",
-            "the book's PPOContinuous update always runs all its epochs",
+            t(
+                "the book's PPOContinuous update always runs all its epochs",
+                "书中的 PPOContinuous 更新总是跑完所有轮",
+            ),
         ),
         (
             args.no_clip,
             "--no-clip",
-            "the book's PPOContinuous update always clips the ratio",
+            t(
+                "the book's PPOContinuous update always clips the ratio",
+                "书中的 PPOContinuous 更新总是截断比率",
+            ),
         ),
         (
             args.algorithm != AlgorithmArg::Ppo,
             "--algorithm",
-            "REINFORCE is implemented for CartPole's softmax policy only",
+            t(
+                "REINFORCE is implemented for CartPole's softmax policy only",
+                "REINFORCE 只为 CartPole 的 softmax 策略实现了",
+            ),
         ),
     ];
     match given.into_iter().find(|(on, _, _)| *on) {
-        Some((_, flag, why)) => Err(format!(
-            "{flag} works only with CartPole: {why}; drop {flag} to train {PENDULUM_V1}"
+        Some((_, flag, why)) => Err(tr!(
+            "{flag} works only with CartPole: {why}; drop {flag} to train {PENDULUM_V1}",
+            "{flag} 只适用于 CartPole：{why}。要训练 {PENDULUM_V1}，请去掉 {flag}"
         )),
         None => Ok(()),
     }

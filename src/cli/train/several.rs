@@ -10,8 +10,10 @@ use anyhow::Context;
 use serde_json::json;
 
 use super::{Setup, TrainArgs, peak_rss_mb};
-use crate::plot::{ascii_band_plot, save_band_plot, smoothed_returns};
+use crate::i18n::t;
+use crate::plot::{ascii_band_plot, labels, save_band_plot, smoothed_returns};
 use crate::ppo::seeds::{Band, SeedRun, mean_std, train_continuous_seeds, train_seeds};
+use crate::tr;
 
 /// Trains `setup` once per seed and reports as the module says.
 ///
@@ -22,13 +24,23 @@ pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Res
         .map_or(1, usize::from)
         .min(seeds.len());
     let episodes = setup.num_episodes();
-    let bar = super::super::episodes_bar(args.quiet, seeds.len() * episodes, "all seeds");
+    let bar = super::super::episodes_bar(
+        args.quiet,
+        seeds.len() * episodes,
+        t("all seeds", "所有随机种子"),
+    );
     let started = Instant::now();
     let on_episode = |seed: u64, episode: usize| {
         if let Some(bar) = &bar {
             bar.inc(1);
         } else if !args.quiet && episode + 1 == episodes {
-            eprintln!("seed {seed}: {episodes} episodes trained");
+            eprintln!(
+                "{}",
+                tr!(
+                    "seed {seed}: {episodes} episodes trained",
+                    "随机种子 {seed}：已训练 {episodes} 个回合"
+                )
+            );
         }
     };
     let runs = match setup {
@@ -41,7 +53,7 @@ pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Res
             })
         }
     }
-    .context("training stopped")?;
+    .context(t("training stopped", "训练中止"))?;
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -56,26 +68,38 @@ pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Res
 
     let mut out = std::io::stdout().lock();
     let steps: u64 = runs.iter().map(|r| r.summary.env_steps).sum();
+    let (env, n_runs) = (setup.env(), runs.len());
     writeln!(
         out,
-        "PPO on {}, {} seeds, {episodes} episodes each, {threads} at a time: {steps} env steps in {wall_s:.2} s",
-        setup.env(),
-        runs.len(),
+        "{}",
+        tr!(
+            "PPO on {env}, {n_runs} seeds, {episodes} episodes each, {threads} at a time: {steps} env steps in {wall_s:.2} s",
+            "{env} 上的 PPO，{n_runs} 个随机种子，每个 {episodes} 个回合，同时跑 {threads} 个：环境共 {steps} 步，用时 {wall_s:.2} 秒"
+        )
     )?;
     for run in &runs {
-        writeln!(
-            out,
-            "seed {:>3}: mean return of the last {} episodes {:6.1}",
+        let (seed, n, mean) = (
             run.seed,
             run.summary.returns.len().min(last),
-            run.summary.mean_last(last)
+            run.summary.mean_last(last),
+        );
+        writeln!(
+            out,
+            "{}",
+            tr!(
+                "seed {seed:>3}: mean return of the last {n} episodes {mean:6.1}",
+                "随机种子 {seed:>3}：最后 {n} 个回合的平均回报 {mean:6.1}"
+            )
         )?;
     }
     let (mean, std) = mean_std(&finals);
     writeln!(
         out,
-        "over {} seeds: {mean:.1} ± {std:.1} (mean ± sample std of the seeds' means)",
-        runs.len()
+        "{}",
+        tr!(
+            "over {n_runs} seeds: {mean:.1} ± {std:.1} (mean ± sample std of the seeds' means)",
+            "{n_runs} 个随机种子：{mean:.1} ± {std:.1}（各随机种子均值的平均 ± 样本标准差）"
+        )
     )?;
     if !args.quiet {
         let width = crossterm::terminal::size().map_or(80, |(w, _)| usize::from(w));
@@ -86,13 +110,20 @@ pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Res
     }
     if let Some(path) = &args.json {
         let value = seeds_json(setup, &runs, &smoothed, &band, (mean, std), wall_s);
-        std::fs::write(path, format!("{value}\n"))
-            .with_context(|| format!("writing {}", path.display()))?;
+        std::fs::write(path, format!("{value}\n")).with_context(|| super::writing(path))?;
     }
     if let Some(path) = &args.plot {
-        let title = format!("PPO on {}, {} seeds", setup.env(), runs.len());
+        let title = labels::band_title(setup.env(), runs.len());
         save_band_plot(path, &title, &band, runs.len())?;
-        writeln!(out, "drew the seeds' curves to {}", path.display())?;
+        let shown = path.display();
+        writeln!(
+            out,
+            "{}",
+            tr!(
+                "drew the seeds' curves to {shown}",
+                "已把各随机种子的曲线画到 {shown}"
+            )
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }
