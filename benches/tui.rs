@@ -1,11 +1,13 @@
-//! Drawing cost of the terminal app's screens at 160×50, and input-to-frame latency
-//! (key → `App::update` → full redraw) while a training worker runs on another thread.
+//! Drawing cost of the terminal app's screens at 160×50 (in English, and in Chinese, whose
+//! lines the app wraps itself between characters), and input-to-frame latency (key →
+//! `App::update` → full redraw) while a training worker runs on another thread.
 //! Target: under 2 ms per frame. Run: `cargo bench --bench tui`.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use ppo_tutor::i18n::Lang;
 use ppo_tutor::lesson::{Course, Progress, Session};
 use ppo_tutor::ppo::{PpoConfig, Trainer};
 use ppo_tutor::tui::app::App;
@@ -93,5 +95,27 @@ fn latency_while_training(c: &mut Criterion) {
     let _ = worker.join();
 }
 
-criterion_group!(benches, draw, latency_while_training);
+/// The longest Chinese text screens: a step's prose wrapped by the app, and the quiz.
+#[allow(irrefutable_let_patterns)] // TestBackend never fails
+fn draw_chinese(c: &mut Criterion) {
+    let _zh = Lang::Zh.scoped();
+    let theme = Theme { color: true };
+    for (name, lesson, step) in [("text_zh", "what-is-ppo", 0), ("tensors_zh", "gae", 1)] {
+        let Some(app) = app_at(lesson, step) else {
+            return;
+        };
+        let Ok(mut terminal) = Terminal::new(TestBackend::new(160, 50)) else {
+            return;
+        };
+        c.bench_function(&format!("draw_{name}_160x50"), |b| {
+            b.iter(|| {
+                terminal
+                    .draw(|f| f.render_widget(&View { app: &app, theme }, f.area()))
+                    .map(|_| ())
+            });
+        });
+    }
+}
+
+criterion_group!(benches, draw, draw_chinese, latency_while_training);
 criterion_main!(benches);

@@ -27,7 +27,7 @@ use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, MouseEvent
 use crate::grade::watch::SaveWatcher;
 use crate::lesson::{Course, Progress};
 use crate::ppo::lab::{self, Experiment};
-use app::{App, WARNING};
+use app::App;
 use keys::Action;
 use widgets::lab::LabState;
 use worker::{Command, WorkerEvent};
@@ -58,16 +58,20 @@ const TICK: Duration = Duration::from_millis(50);
 /// No terminal attached, the lessons cannot be loaded, or terminal I/O fails.
 pub fn run() -> anyhow::Result<()> {
     if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
-        anyhow::bail!(
-            "ppo-tutor needs an interactive terminal; without one, use `ppo-tutor lessons` and `ppo-tutor show <id> [--step N]`"
-        );
+        anyhow::bail!(crate::tr!(
+            "ppo-tutor needs an interactive terminal; without one, use `ppo-tutor lessons` and `ppo-tutor show <id> [--step N]`",
+            "ppo-tutor 需要交互式终端；没有终端时，请用 `ppo-tutor lessons` 和 `ppo-tutor show <id> [--step N]`"
+        ));
     }
-    let course = Course::embedded().context("loading the embedded lessons")?;
+    let course = Course::embedded().context(crate::i18n::t(
+        "loading the embedded lessons",
+        "加载内置课程",
+    ))?;
     let path = Progress::default_path();
     let (progress, warning) = Progress::load(&path);
     let mut app = App::new(course, progress, Some(path));
     if let Some(w) = warning {
-        app.status = format!("{WARNING}{w}");
+        app.status = format!("{}{w}", app::warning());
     }
     let (tx, rx) = mpsc::channel::<Event>();
     let (cmd_tx, cmd_rx) = mpsc::channel::<Command>();
@@ -181,7 +185,13 @@ fn watch_exercise_files(app: &mut App, watcher: &mut Option<SaveWatcher>, tx: &S
         let _ = sender.send(Event::Saved);
     }) {
         Ok(w) => *watcher = Some(w),
-        Err(e) => app.status = format!("{WARNING}{e}; g still grades"),
+        Err(e) => {
+            app.status = crate::tr!(
+                "{}{e}; g still grades",
+                "{}{e}；按 g 仍可评测",
+                app::warning()
+            );
+        }
     }
 }
 

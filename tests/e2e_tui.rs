@@ -1,11 +1,14 @@
 //! End to end: the real binary in a pseudo-terminal (portable-pty), its screen parsed
-//! with a vt100 emulator. Walks every step of every lesson, trains, opens help, quits.
+//! with a vt100 emulator. Walks every step of every lesson, trains, opens help, quits; once
+//! in English and once in Chinese (`PPO_TUTOR_LANG=zh`), which also switches to English
+//! live with `L`.
 
 use std::io::{Read, Write};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use portable_pty::{CommandBuilder, PtySize, native_pty_system};
+use ppo_tutor::i18n::Lang;
 use ppo_tutor::lesson::Course;
 use ppo_tutor::lesson::quiz::{QuestionKind, letter_of};
 
@@ -39,9 +42,46 @@ impl Screen {
     }
 }
 
-/// The episode count in the header (`episode N · ...`), 0 if absent.
-fn episode_on(text: &str) -> usize {
-    text.split("episode ")
+/// What the walk looks for on the screen, in one language.
+struct Words {
+    lang: Lang,
+    /// The header's step counter: `step 2/6`.
+    step: fn(usize, usize) -> String,
+    /// The quiz's question counter: `question 1/3`.
+    question: fn(usize, usize) -> String,
+    /// The header's episode counter before its number: `episode `.
+    episode: &'static str,
+    /// The status after a right answer.
+    right: &'static str,
+    /// The header while training.
+    training: &'static str,
+    /// The help overlay's title.
+    help: &'static str,
+}
+
+const ENGLISH: Words = Words {
+    lang: Lang::En,
+    step: |i, n| format!("step {i}/{n}"),
+    question: |i, n| format!("question {i}/{n}"),
+    episode: "episode ",
+    right: "✓ Right",
+    training: "training",
+    help: "keys (Esc closes)",
+};
+
+const CHINESE: Words = Words {
+    lang: Lang::Zh,
+    step: |i, n| format!("第 {i}/{n} 节"),
+    question: |i, n| format!("第 {i}/{n} 题"),
+    episode: "回合 ",
+    right: "答对了",
+    training: "训练中",
+    help: "按键（Esc 关闭）",
+};
+
+/// The episode count in the header (`episode N · ...`, `回合 N · ...`), 0 if absent.
+fn episode_on(text: &str, word: &str) -> usize {
+    text.split(word)
         .filter_map(|rest| rest.split_whitespace().next()?.parse().ok())
         .max()
         .unwrap_or(0)
@@ -49,7 +89,25 @@ fn episode_on(text: &str) -> usize {
 
 #[test]
 fn walk_the_whole_course_in_a_real_terminal() -> TestResult {
-    let course = Course::embedded()?;
+    walk(&ENGLISH)
+}
+
+#[test]
+fn walk_the_whole_course_in_chinese_in_a_real_terminal() -> TestResult {
+    // The first lesson's Chinese title, as its lesson.zh.md writes it.
+    let zh = include_str!("../lessons/01-what-is-ppo/lesson.zh.md");
+    let title = zh
+        .lines()
+        .find_map(|l| l.strip_prefix("title = "))
+        .ok_or("no title in lesson.zh.md")?
+        .trim_matches('"');
+    assert_eq!(Course::embedded_in(Lang::Zh)?.lessons[0].title, title);
+    walk(&CHINESE)
+}
+
+fn walk(words: &Words) -> TestResult {
+    let course = Course::embedded_in(words.lang)?;
+    let english = Course::embedded_in(Lang::En)?;
     let dir = tempfile::tempdir()?;
     let pty = native_pty_system().openpty(PtySize {
         rows: 50,
@@ -60,6 +118,7 @@ fn walk_the_whole_course_in_a_real_terminal() -> TestResult {
     let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_ppo-tutor"));
     cmd.env("PPO_TUTOR_STATE", dir.path().join("state.json"));
     cmd.env("TERM", "xterm-256color");
+    cmd.env("PPO_TUTOR_LANG", words.lang.code());
     cmd.cwd(dir.path());
     let mut child = pty.slave.spawn_command(cmd)?;
     drop(pty.slave);
@@ -87,10 +146,15 @@ fn walk_the_whole_course_in_a_real_terminal() -> TestResult {
     };
 
     screen.wait_for(&course.lessons[0].title, 30)?;
-    screen.wait_for("episode 1 ·", 30)?; // the first episode arrives from the worker
+    // the first episode arrives from the worker
+    screen.wait_for(&format!("{}1 ·", words.episode), 30)?;
     for lesson in &course.lessons {
         for (i, step) in lesson.steps.iter().enumerate() {
-            let header = format!("{} · step {}/{}", lesson.title, i + 1, lesson.steps.len());
+            let header = format!(
+                "{} · {}",
+                lesson.title,
+                (words.step)(i + 1, lesson.steps.len())
+            );
             let text = screen.wait_for(&header, 10)?;
             let short: String = step.title.chars().take(20).collect();
             assert!(
@@ -102,27 +166,27 @@ fn walk_the_whole_course_in_a_real_terminal() -> TestResult {
         // After the last step come the lesson's questions; the first lesson's first one is
         // answered with its letter, the others skipped with →.
         for (i, question) in lesson.quiz.iter().enumerate() {
-            let header = format!("question {}/{}", i + 1, lesson.quiz.len());
+            let header = (words.question)(i + 1, lesson.quiz.len());
             screen.wait_for(&header, 10)?;
             if let (0, QuestionKind::Choice { answer, .. }) = (i, &question.kind)
                 && lesson.order == 1
             {
                 key(letter_of(*answer).to_string().as_bytes())?;
-                screen.wait_for("✓ Right", 10)?;
+                screen.wait_for(words.right, 10)?;
             }
             key(b"\x1b[C")?; // →
         }
     }
     // One more episode than the screen shows: the walk ends in a Pendulum lesson, whose run
     // started fresh (episode 0) when the walk entered the first Pendulum lesson.
-    let before = episode_on(&screen.text());
+    let before = episode_on(&screen.text(), words.episode);
     key(b"e")?;
-    screen.wait_for(&format!("episode {} ·", before + 1), 30)?;
+    screen.wait_for(&format!("{}{} ·", words.episode, before + 1), 30)?;
     key(b"t")?;
-    screen.wait_for("training", 10)?;
+    screen.wait_for(words.training, 10)?;
     // Training runs on the worker: the header's episode counter must climb.
     let deadline = Instant::now() + Duration::from_secs(60);
-    while episode_on(&screen.text()) < 10 {
+    while episode_on(&screen.text(), words.episode) < 10 {
         if Instant::now() > deadline {
             return Err(format!("training did not advance:\n{}", screen.text()).into());
         }
@@ -130,8 +194,23 @@ fn walk_the_whole_course_in_a_real_terminal() -> TestResult {
     }
     key(b"t")?;
     key(b"?")?;
-    screen.wait_for("keys (Esc closes)", 10)?;
+    screen.wait_for(words.help, 10)?;
     key(b"\x1b")?;
+    if words.lang == Lang::Zh {
+        // L switches to English live, at the same lesson and step.
+        let last = english.lessons.last().ok_or("no lessons")?;
+        key(b"L")?;
+        screen.wait_for(
+            &format!(
+                "{} · step {}/{}",
+                last.title,
+                last.steps.len(),
+                last.steps.len()
+            ),
+            10,
+        )?;
+        screen.wait_for("L 中文", 10)?;
+    }
     key(b"q")?;
     let deadline = Instant::now() + Duration::from_secs(20);
     let status = loop {

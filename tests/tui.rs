@@ -1,10 +1,13 @@
 //! The terminal app without a terminal: every lesson step's screen as an insta snapshot
-//! (drawn on ratatui's `TestBackend` from a real 3-episode session, seed 0), key → state,
-//! and the worker thread against the same session.
+//! (drawn on ratatui's `TestBackend` from a real 3-episode session, seed 0), in English and
+//! in Chinese (at 160×50 and at 80×24, every screen checked for cut CJK glyphs and
+//! misaligned rows), key → state, the live language switch, and the worker thread against
+//! the same session.
 
 use std::sync::mpsc;
 use std::time::Duration;
 
+use ppo_tutor::i18n::Lang;
 use ppo_tutor::lesson::{Course, Environment, Progress, RunConfig, Session};
 use ppo_tutor::ppo::{PpoConfig, PpoContinuousConfig};
 use ppo_tutor::tui::app::{App, Overlay, TrainState};
@@ -24,18 +27,9 @@ fn app() -> Result<App, Box<dyn std::error::Error>> {
     Ok(app)
 }
 
+/// The screen as text, checked for cut glyphs and misaligned rows ([`checked_screen`]).
 fn screen(app: &App, width: u16, height: u16) -> Result<String, Box<dyn std::error::Error>> {
-    let mut terminal = Terminal::new(TestBackend::new(width, height))?;
-    terminal.draw(|f| {
-        f.render_widget(
-            &View {
-                app,
-                theme: Theme { color: false },
-            },
-            f.area(),
-        )
-    })?;
-    Ok(terminal.backend().to_string())
+    checked_screen(app, width, height)
 }
 
 #[test]
@@ -543,6 +537,240 @@ fn saving_the_exercise_file_grades_it_one_grading_at_a_time() -> TestResult {
     assert!(
         app.exercise.request.is_none(),
         "a lesson without an exercise ignores saves"
+    );
+    Ok(())
+}
+
+/// The screen as rows of text (one cell a column, a wide glyph once), each row checked: no
+/// wide glyph cut at the right edge or drawn over by its neighbour, and every row exactly
+/// as wide as the terminal (so the right border lines up).
+fn checked_screen(
+    app: &App,
+    width: u16,
+    height: u16,
+) -> Result<String, Box<dyn std::error::Error>> {
+    let columns = |s: &str| ratatui::text::Span::raw(s).width();
+    let mut terminal = Terminal::new(TestBackend::new(width, height))?;
+    // The frame as drawn (a cell drawn over the right half of a wide glyph shows here; the
+    // backend never receives it).
+    let frame = terminal.draw(|f| {
+        f.render_widget(
+            &View {
+                app,
+                theme: Theme { color: false },
+            },
+            f.area(),
+        )
+    })?;
+    let buffer = frame.buffer.clone();
+    let mut out = String::new();
+    let mut problems = Vec::new();
+    for y in 0..height {
+        let mut row = String::new();
+        let mut covered = 0_usize;
+        for x in 0..width {
+            let symbol = buffer[(x, y)].symbol();
+            if covered > 0 {
+                covered -= 1;
+                if !symbol.trim().is_empty() {
+                    problems.push(format!(
+                        "row {y}, column {x}: {symbol:?} drawn over the right half of a wide glyph"
+                    ));
+                }
+                continue;
+            }
+            let w = columns(symbol);
+            if w > 1 && usize::from(x) + w > usize::from(width) {
+                problems.push(format!("row {y}: {symbol:?} cut at the right edge"));
+            }
+            covered = w.saturating_sub(1);
+            row.push_str(symbol);
+        }
+        if columns(&row) != usize::from(width) {
+            problems.push(format!(
+                "row {y} is {} columns wide, not {width}: {row:?}",
+                columns(&row)
+            ));
+        }
+        out.push('"');
+        out.push_str(&row);
+        out.push_str("\"\n");
+    }
+    if problems.is_empty() {
+        Ok(out)
+    } else {
+        Err(format!("{}\n{out}", problems.join("\n")).into())
+    }
+}
+
+/// Every step of every lesson and each lesson's first quiz question, in Chinese at
+/// `width`×`height`: snapshots, and no row cut or misaligned.
+fn every_step_in_chinese(width: u16, height: u16) -> TestResult {
+    let _zh = Lang::Zh.scoped();
+    // The course is loaded in this thread, so in Chinese.
+    let mut app = app()?;
+    let total = app.course.total_steps();
+    let size = format!("{width}x{height}");
+    for i in 0..total {
+        let lesson = app.current_lesson().ok_or("no lesson")?;
+        let name = format!(
+            "zh-{size}-{:02}-{}-step{}",
+            lesson.order,
+            lesson.id,
+            app.step + 1
+        );
+        let text = checked_screen(&app, width, height).map_err(|e| format!("{name}: {e}"))?;
+        let chrome = format!("第 {}/{} 节", app.step + 1, lesson.steps.len());
+        assert!(text.contains(&chrome), "{name}: {chrome} missing:\n{text}");
+        if width >= 160 {
+            assert!(text.contains(&lesson.title), "{name}: title missing");
+            assert!(text.contains("L English"), "{name}: language key missing");
+        }
+        insta::assert_snapshot!(name, text);
+        if i + 1 < total {
+            app.update(Action::Next);
+        }
+        show_pendulum_run(&mut app)?;
+        if let Overlay::Quiz(0) = app.overlay {
+            let lesson = app.current_lesson().ok_or("no lesson")?;
+            let name = format!("zh-{size}-{:02}-{}-quiz", lesson.order, lesson.id);
+            let questions = lesson.quiz.len();
+            let text = checked_screen(&app, width, height).map_err(|e| format!("{name}: {e}"))?;
+            assert!(text.contains("小测验"), "{name}:\n{text}");
+            insta::assert_snapshot!(name, text);
+            for _ in 0..questions {
+                app.update(Action::Next);
+            }
+            show_pendulum_run(&mut app)?;
+        }
+    }
+    assert_eq!(app.position(), (total, total));
+    Ok(())
+}
+
+#[test]
+fn every_step_of_every_lesson_in_chinese_at_160x50() -> TestResult {
+    every_step_in_chinese(160, 50)
+}
+
+#[test]
+fn every_step_of_every_lesson_in_chinese_at_80x24() -> TestResult {
+    every_step_in_chinese(80, 24)
+}
+
+#[test]
+fn chinese_overlays_stay_aligned_at_both_sizes() -> TestResult {
+    let _zh = Lang::Zh.scoped();
+    let mut app = app()?;
+    open(&mut app, "td-target")?;
+    for (width, height) in [(160, 50), (80, 24)] {
+        let size = format!("{width}x{height}");
+        app.update(Action::Help);
+        let help = checked_screen(&app, width, height)?;
+        assert!(
+            help.contains("按键（Esc 关闭）") && help.contains("切换为 English"),
+            "{help}"
+        );
+        insta::assert_snapshot!(format!("zh-{size}-help"), help);
+        app.update(Action::Back);
+        app.update(Action::Lessons);
+        insta::assert_snapshot!(
+            format!("zh-{size}-lesson_list"),
+            checked_screen(&app, width, height)?
+        );
+        app.update(Action::Back);
+        app.update(Action::Sandbox);
+        let sandbox = checked_screen(&app, width, height)?;
+        assert!(sandbox.contains("沙盒"), "{sandbox}");
+        insta::assert_snapshot!(format!("zh-{size}-sandbox"), sandbox);
+        app.update(Action::Back);
+        app.update(Action::Hint);
+        let exercise = checked_screen(&app, width, height)?;
+        assert!(
+            exercise.contains("提示（") && exercise.contains("已完成练习"),
+            "{exercise}"
+        );
+        insta::assert_snapshot!(format!("zh-{size}-exercise"), exercise);
+        app.update(Action::Back);
+    }
+    let small = checked_screen(&app, 60, 20)?;
+    assert!(small.contains("至少需要 80×24"), "{small}");
+    Ok(())
+}
+
+#[test]
+fn l_switches_the_language_live_and_keeps_the_place() -> TestResult {
+    use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+    use ppo_tutor::tui::keys::{Context, map};
+    assert_eq!(
+        map(
+            KeyEvent::new(KeyCode::Char('L'), KeyModifiers::SHIFT),
+            Context::default()
+        ),
+        Some(Action::Language)
+    );
+    let quiz = Context {
+        overlay_open: true,
+        quiz_open: true,
+        ..Context::default()
+    };
+    assert_eq!(
+        map(KeyEvent::new(KeyCode::Char('L'), KeyModifiers::SHIFT), quiz),
+        Some(Action::Language),
+        "L is not typed into a quiz answer"
+    );
+
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    // Only this test thread's language switches: the other tests render English meanwhile.
+    app.thread_language = true;
+    open(&mut app, "gae")?;
+    app.update(Action::Next);
+    let place = (app.lesson, app.step);
+    let english_title = app.current_lesson().ok_or("no lesson")?.title.clone();
+    let chinese_title = Course::embedded_in(Lang::Zh)?.lessons[app.lesson]
+        .title
+        .clone();
+    let header = |text: &str| text.lines().next().unwrap_or_default().to_string();
+    let english = screen(&app, 160, 50)?;
+    assert!(english.contains(" L 中文 "), "{english}");
+    assert!(header(&english).contains(&format!("{english_title} · step 2/")));
+
+    app.update(Action::Language);
+    assert_eq!(Lang::current(), Lang::Zh);
+    assert_eq!((app.lesson, app.step), place, "the same lesson and step");
+    let chinese = checked_screen(&app, 160, 50)?;
+    assert!(
+        header(&chinese).contains(&format!("{chinese_title} · 第 2/")),
+        "{chinese}"
+    );
+    assert!(chinese.contains(" L English ") && chinese.contains("语言：中文"));
+
+    app.update(Action::Language);
+    assert_eq!(Lang::current(), Lang::En);
+    assert_eq!((app.lesson, app.step), place);
+    let back = screen(&app, 160, 50)?;
+    assert_eq!(header(&back), header(&english), "English again");
+    assert!(back.contains("language: English"));
+
+    // Over an overlay: the quiz stays open on the same question, in the other language.
+    let steps = app.current_lesson().map_or(0, |l| l.steps.len());
+    for _ in app.step..steps {
+        app.update(Action::Next);
+    }
+    app.update(Action::Next);
+    assert_eq!(app.overlay, Overlay::Quiz(1));
+    app.update(Action::Language);
+    assert_eq!(app.overlay, Overlay::Quiz(1));
+    let quiz = checked_screen(&app, 160, 50)?;
+    assert!(quiz.contains("检验一下：第 2/"), "{quiz}");
+    app.update(Action::Language);
+    assert!(screen(&app, 160, 50)?.contains("Check your understanding: question 2/"));
+    drop(app);
+    assert_eq!(
+        Lang::current(),
+        Lang::En,
+        "the thread's language is restored"
     );
     Ok(())
 }

@@ -103,11 +103,17 @@ pub fn fold(body: &str, open: bool) -> String {
         match part {
             Part::Main(lines) => out.extend(lines.iter().map(|l| (*l).to_string())),
             Part::Details(summary, lines) if open => {
-                out.push(format!("▾ **Details: {summary}** (d folds)"));
+                out.push(crate::tr!(
+                    "▾ **Details: {summary}** (d folds)",
+                    "▾ **细节：{summary}**（按 d 收起）"
+                ));
                 out.extend(lines.iter().map(|l| (*l).to_string()));
                 out.push("▴ end of details".to_string());
             }
-            Part::Details(summary, _) => out.push(format!("▸ **Details: {summary}** (d opens)")),
+            Part::Details(summary, _) => out.push(crate::tr!(
+                "▸ **Details: {summary}** (d opens)",
+                "▸ **细节：{summary}**（按 d 展开）"
+            )),
         }
     }
     out.join("\n").trim().to_string()

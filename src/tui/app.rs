@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use crate::grade::Report;
+use crate::i18n::{Lang, LangGuard, t};
 use crate::lesson::quiz::QuestionKind;
 use crate::lesson::{Course, Environment, Lesson, Progress, RunConfig, Snapshot, Step};
 use crate::ppo::lab::Experiment;
@@ -14,8 +15,24 @@ use super::sandbox::{Outcome, Sandbox};
 use super::widgets::lab::LabState;
 use super::worker::{Command, WorkerEvent};
 
-/// Prefix of a status message that episode updates must not overwrite.
+/// Prefix of a status message that episode updates must not overwrite (English; see
+/// [`warning`] for the current language's).
 pub const WARNING: &str = "warning: ";
+
+/// The current language's prefix of a status message that episode updates must not
+/// overwrite: `warning: ` or `警告：`.
+#[must_use]
+pub fn warning() -> &'static str {
+    t(WARNING, "警告：")
+}
+
+/// Whether `status` is a warning (in either language), which episode updates keep.
+#[must_use]
+pub fn is_warning(status: &str) -> bool {
+    Lang::ALL
+        .iter()
+        .any(|l| status.starts_with(l.pick(WARNING, "警告：")))
+}
 
 /// Which overlay covers the lesson, if any.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -71,10 +88,22 @@ impl Graded {
 /// A previous run's return curve, overlaid on the plot after a sandbox retrain.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PreviousCurve {
-    /// The legend, like `before (moving average)`.
-    pub label: String,
+    /// Whether the curve is the run's moving average (otherwise its raw returns).
+    pub smoothed: bool,
     /// The curve: the run's moving average, or its returns when it had too few for one.
     pub values: Vec<f64>,
+}
+
+impl PreviousCurve {
+    /// The legend in the current language, like `before (moving average)`.
+    #[must_use]
+    pub fn label(&self) -> String {
+        if self.smoothed {
+            t("before (moving average)", "之前（移动平均）").to_string()
+        } else {
+            t("before (returns)", "之前（回报）").to_string()
+        }
+    }
 }
 
 /// The exercise of the open lesson: grading, its last result, and the hints revealed.
@@ -159,6 +188,11 @@ pub struct App {
     pub lab_request: Option<(Experiment, PpoConfig)>,
     /// The open quiz question's answer.
     pub quiz: QuizState,
+    /// Whether the language key switches only this thread's language (tests, which render
+    /// both languages on parallel threads) rather than the whole process's (the app).
+    pub thread_language: bool,
+    /// This thread's language while [`App::thread_language`] switched it.
+    language_guard: Option<LangGuard>,
 }
 
 /// A return as the app prints it: CartPole's whole numbers as they are, Pendulum's to one
@@ -218,6 +252,52 @@ impl App {
             labs: BTreeMap::new(),
             lab_request: None,
             quiz: QuizState::default(),
+            thread_language: false,
+            language_guard: None,
+        }
+    }
+
+    /// Switches the language live (the `L` key): English ⇄ 中文. The course is reloaded in
+    /// the new language at the same lesson, step and overlay; an answer being typed and
+    /// the verdict shown are cleared (they were written in the old language).
+    pub fn switch_language(&mut self) {
+        let next = Lang::current().other();
+        if self.thread_language {
+            // Dropping this app's own override first restores the thread's language as it
+            // was before; a new override is only needed when that is not `next`.
+            self.language_guard = None;
+            if Lang::current() != next {
+                self.language_guard = Some(next.scoped());
+            }
+        } else {
+            next.set_current();
+        }
+        match Course::embedded() {
+            Ok(course) => {
+                let (lesson, step) = (self.lesson, self.step);
+                self.course = course;
+                self.lesson = lesson.min(self.course.lessons.len().saturating_sub(1));
+                let steps = self.current_lesson().map_or(1, |l| l.steps.len());
+                self.step = step.min(steps.saturating_sub(1));
+                let quiz = self.current_lesson().map_or(0, |l| l.quiz.len());
+                match self.overlay {
+                    Overlay::Quiz(i) if i >= quiz => self.overlay = Overlay::None,
+                    Overlay::Lessons(i) if i >= self.course.lessons.len() => {
+                        self.overlay = Overlay::Lessons(self.lesson);
+                    }
+                    _ => {}
+                }
+                self.quiz = QuizState::default();
+                self.status = crate::tr!("language: {}", "语言：{}", next.name());
+            }
+            Err(e) => {
+                self.status = crate::tr!(
+                    "{}could not load the lessons in {}: {e}",
+                    "{}无法加载{}课程：{e}",
+                    warning(),
+                    next.name()
+                );
+            }
         }
     }
 
@@ -245,6 +325,11 @@ impl App {
 
     /// Applies one action from the keyboard or mouse.
     pub fn update(&mut self, action: Action) {
+        if action == Action::Language {
+            // Over every overlay: the same screen, in the other language.
+            self.switch_language();
+            return;
+        }
         match self.overlay {
             Overlay::Help => match action {
                 Action::Quit => self.quit(),
@@ -280,7 +365,7 @@ impl App {
                 if self.train != TrainState::Finished {
                     self.train = TrainState::Paused;
                     self.outbox.push(Command::OneEpisode);
-                    self.status = "training one episode".into();
+                    self.status = t("training one episode", "正在训练一个回合").into();
                 }
             }
             Action::ResetAgent => self.reset_agent(self.run_config(), self.seed, false),
@@ -294,7 +379,8 @@ impl App {
             | Action::Increase
             | Action::Decrease
             | Action::Type(_)
-            | Action::Erase => {}
+            | Action::Erase
+            | Action::Language => {}
         }
     }
 
@@ -317,11 +403,12 @@ impl App {
         self.overlay = Overlay::Quiz(i);
         let total = self.current_lesson().map_or(0, |l| l.quiz.len());
         let how = match self.quiz_question(i).map(|q| &q.kind) {
-            Some(QuestionKind::Predict { .. }) => "type a number, Enter",
-            _ => "a–d answers",
+            Some(QuestionKind::Predict { .. }) => t("type a number, Enter", "输入一个数，按 Enter"),
+            _ => t("a–d answers", "按 a–d 作答"),
         };
-        self.status = format!(
+        self.status = crate::tr!(
             "check your understanding: question {}/{total} ({how})",
+            "检验一下：第 {}/{total} 题（{how}）",
             i + 1
         );
     }
@@ -361,7 +448,11 @@ impl App {
                     let verdict = match self.quiz.input.parse::<f64>() {
                         Ok(v) => question.predict(v, &self.snapshot),
                         Err(_) => {
-                            self.status = "type a number first (digits, '.', '-')".into();
+                            self.status = t(
+                                "type a number first (digits, '.', '-')",
+                                "先输入一个数（数字、'.'、'-'）",
+                            )
+                            .into();
                             return;
                         }
                     };
@@ -400,9 +491,14 @@ impl App {
             self.progress.record_quiz(&id, i + 1, verdict.right);
             self.save_progress();
             let (answered, right, total) = self.quiz_score();
-            self.status = format!(
+            self.status = crate::tr!(
                 "{} · quiz {right} right of {answered} answered ({total} questions) · n next",
-                if verdict.right { "right" } else { "not quite" }
+                "{} · 小测验已答 {answered} 题，答对 {right} 题（共 {total} 题）· n 下一题",
+                if verdict.right {
+                    t("right", "答对了")
+                } else {
+                    t("not quite", "不太对")
+                }
             );
         } else {
             self.status = verdict.text.lines().next().unwrap_or_default().to_string();
@@ -472,37 +568,45 @@ impl App {
             return;
         }
         self.request_grade();
-        self.status = format!("saved: {}", self.status);
+        self.status = crate::tr!("saved: {}", "已保存：{}", self.status);
     }
 
     fn request_grade(&mut self) {
         let names = self.exercise_names();
         if names.is_empty() {
-            self.status = "this lesson has no exercise to grade".into();
+            self.status = t(
+                "this lesson has no exercise to grade",
+                "本课没有要评测的练习",
+            )
+            .into();
             return;
         }
         self.overlay = Overlay::Exercise(0);
         if self.exercise.grading {
-            self.status = "already grading…".into();
+            self.status = t("already grading…", "正在评测……").into();
             return;
         }
         self.exercise.grading = true;
-        self.status = format!("grading {}…", names.join(", "));
+        self.status = crate::tr!("grading {}…", "正在评测 {}……", names.join(", "));
         self.exercise.request = Some(names);
     }
 
     fn reveal_hint(&mut self) {
         let Some(exercise) = self.current_lesson().and_then(|l| l.exercise.as_ref()) else {
-            self.status = "this lesson has no exercise".into();
+            self.status = t("this lesson has no exercise", "本课没有练习").into();
             return;
         };
         let total = exercise.hints.len();
         self.overlay = Overlay::Exercise(0);
         if self.exercise.hints_shown < total {
             self.exercise.hints_shown += 1;
-            self.status = format!("hint {}/{total}", self.exercise.hints_shown);
+            self.status = crate::tr!(
+                "hint {}/{total}",
+                "提示 {}/{total}",
+                self.exercise.hints_shown
+            );
         } else {
-            self.status = format!("all {total} hints are shown");
+            self.status = crate::tr!("all {total} hints are shown", "{total} 条提示已全部显示");
         }
     }
 
@@ -519,15 +623,22 @@ impl App {
     /// Starts the current step's experiment (`x`), unless it is running or done.
     fn request_lab(&mut self) {
         let Some(experiment) = self.current_step().and_then(|s| s.lab) else {
-            self.status =
-                "this step has no experiment to run (the clip-lab lesson has them)".into();
+            self.status = t(
+                "this step has no experiment to run (the clip-lab lesson has them)",
+                "本节没有可运行的实验（截断实验室那一课里有）",
+            )
+            .into();
             return;
         };
         if matches!(
             self.labs.get(&experiment),
             Some(LabState::Running { .. } | LabState::Done(_))
         ) {
-            self.status = format!("lab {}: already started in this session", experiment.name());
+            self.status = crate::tr!(
+                "lab {}: already started in this session",
+                "实验 {}：本次会话中已经启动过",
+                experiment.name()
+            );
             return;
         }
         let base = self.lab_base();
@@ -535,14 +646,27 @@ impl App {
         self.labs
             .insert(experiment, LabState::Running { done: 0, total });
         self.lab_request = Some((experiment, base));
-        self.status = format!("lab {}: running on every core", experiment.name());
+        self.status = crate::tr!(
+            "lab {}: running on every core",
+            "实验 {}：正在所有 CPU 核心上运行",
+            experiment.name()
+        );
     }
 
     /// Applies an experiment's progress or its end.
     pub fn on_lab(&mut self, experiment: Experiment, state: LabState) {
         match &state {
-            LabState::Done(_) => self.status = format!("lab {}: done", experiment.name()),
-            LabState::Failed(m) => self.status = format!("{WARNING}lab {}: {m}", experiment.name()),
+            LabState::Done(_) => {
+                self.status = crate::tr!("lab {}: done", "实验 {}：完成", experiment.name());
+            }
+            LabState::Failed(m) => {
+                self.status = crate::tr!(
+                    "{}lab {}: {m}",
+                    "{}实验 {}：{m}",
+                    warning(),
+                    experiment.name()
+                );
+            }
             LabState::Running { .. } => {}
         }
         self.labs.insert(experiment, state);
@@ -561,10 +685,15 @@ impl App {
             self.progress.exercises_done.insert((*name).to_string());
         }
         self.status = if passed.len() == graded.len() {
-            "passed: the reference solution is shown in the exercise panel".into()
+            t(
+                "passed: the reference solution is shown in the exercise panel",
+                "通过：练习面板里显示了参考答案",
+            )
+            .into()
         } else {
-            format!(
+            crate::tr!(
                 "{}/{} passed: see the exercise panel",
+                "{}/{} 通过：详见练习面板",
                 passed.len(),
                 graded.len()
             )
@@ -603,15 +732,13 @@ impl App {
                 // Keep the current run's smoothed curve on the plot for comparison.
                 let s = &self.snapshot;
                 if !s.returns.is_empty() {
-                    let (what, values) = if s.moving_average.is_empty() {
-                        ("returns", s.returns.clone())
+                    let smoothed = !s.moving_average.is_empty();
+                    let values = if smoothed {
+                        s.moving_average.clone()
                     } else {
-                        ("moving average", s.moving_average.clone())
+                        s.returns.clone()
                     };
-                    self.previous = Some(PreviousCurve {
-                        label: format!("before ({what})"),
-                        values,
-                    });
+                    self.previous = Some(PreviousCurve { smoothed, values });
                 }
                 self.reset_agent(self.sandbox.run_config(), self.sandbox.seed, true);
             }
@@ -623,16 +750,17 @@ impl App {
             TrainState::Paused => {
                 self.train = TrainState::Running;
                 self.outbox.push(Command::Run);
-                self.status = "training…".into();
+                self.status = t("training…", "训练中……").into();
             }
             TrainState::Running => {
                 self.train = TrainState::Paused;
                 self.outbox.push(Command::Pause);
-                self.status = "paused".into();
+                self.status = t("paused", "已暂停").into();
             }
             TrainState::Finished => {
-                self.status = format!(
+                self.status = crate::tr!(
                     "all {} episodes done: r resets the agent, s opens the sandbox",
+                    "全部 {} 个回合已训练完：按 r 重置智能体，按 s 打开沙盒",
                     self.run_config().num_episodes()
                 );
             }
@@ -665,7 +793,7 @@ impl App {
             self.outbox.push(Command::Run);
             self.train = TrainState::Running;
         }
-        self.status = format!("fresh agent, seed {seed}");
+        self.status = crate::tr!("fresh agent, seed {seed}", "新的智能体，随机种子 {seed}");
     }
 
     /// Applies one event from the training worker.
@@ -674,12 +802,18 @@ impl App {
             WorkerEvent::Episode(snapshot) => self.on_episode(*snapshot),
             WorkerEvent::Finished => {
                 self.train = TrainState::Finished;
-                self.status = format!("finished {} episodes", self.snapshot.returns.len());
+                self.status = crate::tr!(
+                    "finished {} episodes",
+                    "已训练完 {} 个回合",
+                    self.snapshot.returns.len()
+                );
             }
-            WorkerEvent::Reset { seed } => self.status = format!("fresh agent, seed {seed}"),
+            WorkerEvent::Reset { seed } => {
+                self.status = crate::tr!("fresh agent, seed {seed}", "新的智能体，随机种子 {seed}");
+            }
             WorkerEvent::Error(message) => {
                 self.train = TrainState::Paused;
-                self.status = format!("training stopped: {message}");
+                self.status = crate::tr!("training stopped: {message}", "训练已停止：{message}");
             }
         }
     }
@@ -688,11 +822,12 @@ impl App {
         self.show(snapshot);
         // A start-up warning stays until the learner does something.
         if self.train == TrainState::Paused
-            && !self.status.starts_with(WARNING)
+            && !is_warning(&self.status)
             && let Some(r) = self.snapshot.returns.last()
         {
-            self.status = format!(
+            self.status = crate::tr!(
                 "episode {}: return {}",
+                "第 {} 回合：回报 {}",
                 self.snapshot.episodes,
                 return_text(*r)
             );
@@ -740,7 +875,11 @@ impl App {
             self.go_to(self.lesson + 1, 0);
         } else {
             self.save_progress();
-            self.status = "that was the last step: l opens the lesson list".into();
+            self.status = t(
+                "that was the last step: l opens the lesson list",
+                "这是最后一节了：按 l 打开课程列表",
+            )
+            .into();
         }
     }
 
@@ -792,8 +931,9 @@ impl App {
             Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
         };
         self.reset_agent(run, self.seed, false);
-        self.status = format!(
+        self.status = crate::tr!(
             "a {} lesson: fresh agent, seed {} (t trains, e one episode)",
+            "这是 {} 的课：新的智能体，随机种子 {}（t 训练，e 训练一个回合）",
             env.as_str(),
             self.seed
         );
@@ -804,7 +944,11 @@ impl App {
         if let Some(path) = &self.progress_path
             && let Err(e) = self.progress.save(path)
         {
-            self.status = format!("could not save progress to {}: {e}", path.display());
+            self.status = crate::tr!(
+                "could not save progress to {}: {e}",
+                "无法把进度保存到 {}：{e}",
+                path.display()
+            );
         }
     }
 

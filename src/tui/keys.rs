@@ -2,6 +2,8 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
+use crate::i18n::{Lang, t};
+
 /// What the learner asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Action {
@@ -53,40 +55,122 @@ pub enum Action {
     Type(char),
     /// Erase the last character typed (Backspace).
     Erase,
+    /// Switch the language live, English ⇄ 中文 (L).
+    Language,
     /// Leave the app.
     Quit,
 }
 
-/// The help overlay's lines: key, what it does.
-pub const HELP: [(&str, &str); 21] = [
-    ("→ / n", "next step"),
-    ("← / p", "previous step"),
-    ("j / k, wheel", "scroll the explanation"),
-    ("J / K", "scroll the live tensors"),
-    ("d", "open / fold the details (▸) in the explanation"),
-    ("x", "run the step's experiment (clip lab, 5 seeds)"),
-    ("l", "lesson list (↑↓ choose, Enter open)"),
-    ("t", "train / pause (runs on a worker thread)"),
-    ("e", "train one episode"),
-    ("r", "reset the agent with the seed"),
-    ("s", "sandbox: change ε, γ, λ, learning rates, seed"),
-    (
-        "  ↑↓ + − Enter",
-        "  pick a value, change it, retrain (curves overlaid)",
-    ),
-    ("g", "grade this lesson's exercise (its exercise.rs)"),
-    ("h", "reveal the exercise's next hint"),
-    (
-        "a–d, 0–9 Enter",
-        "answer the quiz after a lesson's last step",
-    ),
-    ("?", "this help"),
-    ("Esc", "close an overlay"),
-    ("q / Ctrl-C", "quit (progress is saved)"),
-    ("", ""),
-    ("Live values", "magenta = clipped ratio, red = done flag"),
-    ("", "green / red = positive / negative advantage"),
-];
+/// The language key's label in the key bar and the help: the language it switches to
+/// (`中文` while the app is in English, `English` while it is in Chinese).
+#[must_use]
+pub fn language_label() -> &'static str {
+    Lang::current().other().name()
+}
+
+/// The help overlay's lines, in the current language: key, what it does.
+#[must_use]
+pub fn help() -> Vec<(&'static str, &'static str)> {
+    vec![
+        ("→ / n", t("next step", "下一节")),
+        ("← / p", t("previous step", "上一节")),
+        ("j / k, wheel", t("scroll the explanation", "滚动讲解")),
+        ("J / K", t("scroll the live values", "滚动实时数值")),
+        (
+            "d",
+            t(
+                "open / fold the details (▸) in the explanation",
+                "展开 / 收起讲解中的细节（▸）",
+            ),
+        ),
+        (
+            "x",
+            t(
+                "run the step's experiment (clip lab, 5 seeds)",
+                "运行本节的实验（截断实验室，5 个随机种子）",
+            ),
+        ),
+        (
+            "l",
+            t(
+                "lesson list (↑↓ choose, Enter open)",
+                "课程列表（↑↓ 选择，Enter 打开）",
+            ),
+        ),
+        (
+            "t",
+            t(
+                "train / pause (runs on a worker thread)",
+                "训练 / 暂停（在后台线程运行）",
+            ),
+        ),
+        ("e", t("train one episode", "训练一个回合")),
+        (
+            "r",
+            t("reset the agent with the seed", "用随机种子重置智能体"),
+        ),
+        (
+            "s",
+            t(
+                "sandbox: change ε, γ, λ, learning rates, seed",
+                "沙盒：修改 ε、γ、λ、学习率、随机种子",
+            ),
+        ),
+        (
+            "  ↑↓ + − Enter",
+            t(
+                "  pick a value, change it, retrain (curves overlaid)",
+                "  选一项，改它的值，重新训练（曲线叠加对比）",
+            ),
+        ),
+        (
+            "g",
+            t(
+                "grade this lesson's exercise (its exercise.rs)",
+                "评测本课的练习（它的 exercise.rs）",
+            ),
+        ),
+        (
+            "h",
+            t("reveal the exercise's next hint", "显示练习的下一条提示"),
+        ),
+        (
+            "a–d, 0–9 Enter",
+            t(
+                "answer the quiz after a lesson's last step",
+                "回答每课最后一节之后的小测验",
+            ),
+        ),
+        (
+            "L",
+            t(
+                "switch the language to 中文 (Chinese)",
+                "把界面语言切换为 English（英文）",
+            ),
+        ),
+        ("?", t("this help", "本帮助")),
+        ("Esc", t("close an overlay", "关闭弹出面板")),
+        (
+            "q / Ctrl-C",
+            t("quit (progress is saved)", "退出（进度会保存）"),
+        ),
+        ("", ""),
+        (
+            t("Live values", "实时数值"),
+            t(
+                "magenta = clipped ratio, red = done flag",
+                "品红 = 被截断的比率，红 = 回合结束标志",
+            ),
+        ),
+        (
+            "",
+            t(
+                "green / red = positive / negative advantage",
+                "绿 / 红 = 正 / 负优势值",
+            ),
+        ),
+    ]
+}
 
 /// Where a key press lands: what is open decides what some keys mean.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -139,6 +223,7 @@ pub fn map(key: KeyEvent, context: Context) -> Option<Action> {
         KeyCode::Char('h') => Action::Hint,
         KeyCode::Char('d') => Action::Details,
         KeyCode::Char('x') => Action::RunLab,
+        KeyCode::Char('L') => Action::Language,
         _ => return None,
     };
     Some(action)

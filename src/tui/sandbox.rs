@@ -2,6 +2,7 @@
 //! highlighted field. Enter retrains with the copy; nothing changes before that.
 
 use crate::env::EnvId;
+use crate::i18n::t;
 use crate::lesson::{Environment, RunConfig};
 use crate::ppo::{Algorithm, PpoConfig, PpoContinuousConfig};
 
@@ -124,8 +125,20 @@ pub struct Sandbox {
     pub selected: Field,
 }
 
-/// What the sandbox shows for a CartPole-only switch while Pendulum is chosen.
+/// What the sandbox shows for a CartPole-only switch while Pendulum is chosen (English;
+/// [`cartpole_only`] is the current language's).
 pub const CARTPOLE_ONLY: &str = "(CartPole only)";
+
+/// [`CARTPOLE_ONLY`] in the current language.
+#[must_use]
+pub fn cartpole_only() -> &'static str {
+    t(CARTPOLE_ONLY, "（仅 CartPole）")
+}
+
+/// What the sandbox shows for a switch that is off.
+fn off() -> String {
+    t("off", "关").into()
+}
 
 impl Sandbox {
     /// A sandbox starting from the current CartPole run's settings, first field highlighted.
@@ -217,8 +230,8 @@ impl Sandbox {
             Field::NormalizeAdvantage => c.normalize_advantage.to_string(),
             Field::Env => c.env_id.to_string(),
             Field::EntropyCoef => c.entropy_coef.to_string(),
-            Field::MaxGradNorm => c.max_grad_norm.map_or("off".into(), |v| v.to_string()),
-            Field::TargetKl => c.target_kl.map_or("off".into(), |v| v.to_string()),
+            Field::MaxGradNorm => c.max_grad_norm.map_or_else(off, |v| v.to_string()),
+            Field::TargetKl => c.target_kl.map_or_else(off, |v| v.to_string()),
             Field::Epochs => c.epochs.to_string(),
             Field::NoClip => c.no_clip.to_string(),
             Field::Algorithm => c.algorithm.as_str().into(),
@@ -236,7 +249,7 @@ impl Sandbox {
             Field::Seed => self.seed.to_string(),
             Field::Env => Environment::Pendulum.as_str().into(),
             Field::Epochs => p.epochs.to_string(),
-            _ => CARTPOLE_ONLY.into(),
+            _ => cartpole_only().into(),
         }
     }
 

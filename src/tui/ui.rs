@@ -3,17 +3,19 @@
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Clear, Gauge, Paragraph, Widget, Wrap};
+use ratatui::widgets::{Block, Borders, Clear, Gauge, Paragraph, Widget};
 
 use super::app::{App, Overlay, TrainState};
-use super::keys::HELP;
+use super::keys::{help, language_label};
 use super::sandbox::Field;
 use super::theme::Theme;
 use super::widgets::{
     cartpole::CartPoleView, clip::ClipChart, lab::LabPanel, pendulum::PendulumView,
     plot::ReturnPlot, tensors, text,
 };
+use crate::i18n::t;
 use crate::lesson::{Environment, TensorView, VIEWS};
+use crate::tr;
 
 /// The bottom of the return plot's y-axis in a Pendulum run (returns are negative; a
 /// random policy scores around −1200).
@@ -34,13 +36,15 @@ impl Widget for &View<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let (app, theme) = (self.app, self.theme);
         if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
-            let msg = format!(
+            let msg = tr!(
                 "The terminal is {}×{}; ppo-tutor needs at least {}×{}. Enlarge it, or press q to quit.",
-                area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
+                "终端只有 {}×{}，ppo-tutor 至少需要 {}×{}。请把窗口放大，或按 q 退出。",
+                area.width,
+                area.height,
+                MIN_SIZE.0,
+                MIN_SIZE.1
             );
-            Paragraph::new(msg)
-                .wrap(Wrap { trim: true })
-                .render(area, buf);
+            Paragraph::new(text::wrap([Line::raw(msg)], area.width)).render(area, buf);
             return;
         }
         let [header, body, footer] = Layout::vertical([
@@ -65,29 +69,48 @@ impl Widget for &View<'_> {
 
 fn draw_header(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let (pos, total) = app.position();
-    let title = app.current_lesson().map_or(String::new(), |l| {
-        format!(
-            " {:02}/{:02} {} · step {}/{}",
-            l.order,
-            app.course.lessons.len(),
-            l.title,
-            app.step + 1,
-            l.steps.len()
+    let (number, name, counter) = app.current_lesson().map_or_else(Default::default, |l| {
+        (
+            format!(" {:02}/{:02} ", l.order, app.course.lessons.len()),
+            l.title.clone(),
+            tr!(
+                " · step {}/{}",
+                " · 第 {}/{} 节",
+                app.step + 1,
+                l.steps.len()
+            ),
         )
     });
     let train = match app.train {
-        TrainState::Running => "training",
-        TrainState::Paused => "paused",
-        TrainState::Finished => "finished",
+        TrainState::Running => t("training", "训练中"),
+        TrainState::Paused => t("paused", "已暂停"),
+        TrainState::Finished => t("finished", "已完成"),
     };
     let last = app.snapshot.returns.last().map_or(String::new(), |r| {
-        format!(" · last return {}", super::app::return_text(*r))
+        tr!(
+            " · last return {}",
+            " · 上回合回报 {}",
+            super::app::return_text(*r)
+        )
     });
-    let right = format!(
+    let right = tr!(
         "episode {}{last} · {train} · {pos}/{total} ",
+        "回合 {}{last} · {train} · {pos}/{total} ",
         app.snapshot.episodes
     );
-    let pad = (area.width as usize).saturating_sub(title.chars().count() + right.chars().count());
+    // The counters on the right and the step number always show; a lesson title too long
+    // for the rest is cut by columns, with an ellipsis.
+    let width = usize::from(area.width);
+    let room = width
+        .saturating_sub(text::width(&right) + 1)
+        .saturating_sub(text::width(&number) + text::width(&counter));
+    let name = if text::width(&name) > room {
+        format!("{}…", text::truncate(&name, room.saturating_sub(1)))
+    } else {
+        name
+    };
+    let title = text::truncate(&format!("{number}{name}{counter}"), width);
+    let pad = width.saturating_sub(text::width(&title) + text::width(&right));
     Line::from(vec![
         Span::styled(title, theme.title()),
         Span::raw(" ".repeat(pad)),
@@ -113,9 +136,13 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         &step.text(crate::lesson::face::Face::Terminal),
         app.details_open,
     );
-    Paragraph::new(text::markdown(&body, theme))
+    let columns = usize::from(left.width.saturating_sub(2));
+    let lines = text::wrap(
+        text::markdown(&body, theme, columns),
+        left.width.saturating_sub(2),
+    );
+    Paragraph::new(lines)
         .block(panel(&step.title, theme))
-        .wrap(Wrap { trim: false })
         .scroll((app.text_scroll, 0))
         .render(left, buf);
     let env = app
@@ -126,7 +153,7 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let [code_area, live] =
         Layout::vertical([Constraint::Length(code_height), Constraint::Min(0)]).areas(right);
     Paragraph::new(code)
-        .block(panel("the code that runs", theme))
+        .block(panel(t("the code that runs", "实际运行的代码"), theme))
         .render(code_area, buf);
     draw_live(app, theme, step, live, buf);
 }
@@ -138,8 +165,13 @@ fn code_lines(
 ) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
     if !step.python.is_empty() {
+        // Whose PyTorch program the lines quote (`Environment::python_source`).
+        let source = match env {
+            Environment::CartPole => t("the seed", "原教程代码"),
+            Environment::Pendulum => t("the book", "书中的代码"),
+        };
         lines.push(Line::styled(
-            format!("# the {} (PyTorch)", env.python_source()),
+            tr!("# {source} (PyTorch)", "# {source}（PyTorch）"),
             theme.dim(),
         ));
         lines.extend(
@@ -162,7 +194,10 @@ fn code_lines(
         );
     }
     if lines.is_empty() {
-        lines.push(Line::styled("(no code in this step)", theme.dim()));
+        lines.push(Line::styled(
+            t("(no code in this step)", "（本节没有代码）"),
+            theme.dim(),
+        ));
     }
     lines
 }
@@ -201,34 +236,44 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
             .iter()
             .filter_map(|n| app.snapshot.tensor(n))
             .collect();
-        let block = panel("live values", theme);
+        let block = panel(t("live values", "实时数值"), theme);
         let inner = block.inner(tensor_area);
         block.render(tensor_area, buf);
-        let lines = if shown.is_empty() && !names.is_empty() {
-            vec![Line::styled(
-                format!(
+        if shown.is_empty() && !names.is_empty() {
+            let line = Line::styled(
+                tr!(
                     "{} appear after the first episode: press e (one episode) or t (train).",
+                    "{} 在第一个回合之后出现：按 e 训练一个回合，或按 t 连续训练。",
                     names.join(", ")
                 ),
                 theme.dim(),
-            )]
+            );
+            Paragraph::new(text::wrap([line], inner.width)).render(inner, buf);
         } else {
-            tensors::lines(&shown, app.tensor_scroll, inner.height as usize, theme)
-        };
-        Paragraph::new(lines).render(inner, buf);
+            Paragraph::new(tensors::lines(
+                &shown,
+                app.tensor_scroll,
+                inner.height as usize,
+                theme,
+            ))
+            .render(inner, buf);
+        }
     }
 }
 
 fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) {
     let s = &app.snapshot;
+    let previous = app
+        .previous
+        .as_ref()
+        .map(|p| (p.label(), p.values.as_slice()));
     match view {
         "plot" => ReturnPlot {
             returns: &s.returns,
             average: &s.moving_average,
-            previous: app
-                .previous
+            previous: previous
                 .as_ref()
-                .map(|p| (p.label.as_str(), p.values.as_slice())),
+                .map(|(label, values)| (label.as_str(), *values)),
             max_return: match app.env {
                 Environment::CartPole => f64::from(app.config.env_id.max_episode_steps()),
                 Environment::Pendulum => 0.0,
@@ -239,8 +284,12 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             },
             block: panel(
                 &match app.env {
-                    Environment::CartPole => format!("PPO on {}", app.config.env_id),
-                    Environment::Pendulum => format!("PPO on {}", Environment::Pendulum.as_str()),
+                    Environment::CartPole => {
+                        tr!("PPO on {}", "PPO 训练 {}", app.config.env_id)
+                    }
+                    Environment::Pendulum => {
+                        tr!("PPO on {}", "PPO 训练 {}", Environment::Pendulum.as_str())
+                    }
                 },
                 theme,
             ),
@@ -249,8 +298,9 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
         .render(area, buf),
         "cartpole" => {
             let obs = s.observation(app.frame).unwrap_or([0.0; 4]);
-            let title = format!(
+            let title = tr!(
                 "the latest episode, step {}/{}",
+                "最近一个回合，时间步 {}/{}",
                 app.frame,
                 s.observation_count().saturating_sub(1)
             );
@@ -265,8 +315,9 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             let (theta, torque) = s
                 .pendulum_frame(app.frame)
                 .unwrap_or((std::f64::consts::PI, 0.0));
-            let title = format!(
+            let title = tr!(
                 "the latest episode, step {}/{}",
+                "最近一个回合，时间步 {}/{}",
                 app.frame,
                 s.observation_count().saturating_sub(1)
             );
@@ -293,7 +344,10 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
                 seeds: crate::tui::app::LAB_SEEDS.len(),
                 episodes: base.num_episodes,
                 state: app.labs.get(&experiment),
-                block: panel(&format!("clip lab: {}", experiment.name()), theme),
+                block: panel(
+                    &tr!("clip lab: {}", "截断实验室：{}", experiment.name()),
+                    theme,
+                ),
                 theme,
             }
             .render(area, buf);
@@ -304,7 +358,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
                 eps: app.config.eps,
                 epoch: trace.and_then(|t| t.epochs.last()),
                 advantage: trace.map_or(&[], |t| t.advantage.as_slice()),
-                block: panel("L^CLIP against the ratio", theme),
+                block: panel(t("L^CLIP against the ratio", "L^CLIP 随比率的变化"), theme),
                 theme,
             }
             .render(area, buf);
@@ -314,14 +368,15 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
 
 fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let keys = [
-        ("←/→", "step"),
-        ("l", "lessons"),
-        ("t", "train/pause"),
-        ("e", "one episode"),
-        ("r", "reset"),
-        ("s", "sandbox"),
-        ("?", "help"),
-        ("q", "quit"),
+        ("←/→", t("step", "翻页")),
+        ("l", t("lessons", "课程")),
+        ("t", t("train/pause", "训练/暂停")),
+        ("e", t("one episode", "一个回合")),
+        ("r", t("reset", "重置")),
+        ("s", t("sandbox", "沙盒")),
+        ("L", language_label()),
+        ("?", t("help", "帮助")),
+        ("q", t("quit", "退出")),
     ];
     let mut spans = Vec::new();
     for (k, what) in keys {
@@ -334,34 +389,54 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let exercise = app.exercise_names();
     if !exercise.is_empty() {
         let state = if app.exercise_done() {
-            "done"
+            t("done", "已完成")
         } else {
-            "pending"
+            t("pending", "未完成")
         };
-        parts.push(format!(
+        parts.push(tr!(
             "exercise {}: {state} (g grade, h hint)",
+            "练习 {}：{state}（g 评测，h 提示）",
             exercise.join(", ")
         ));
     }
     let (answered, right, questions) = app.quiz_score();
-    parts.push(format!(
+    parts.push(tr!(
         "lessons done {}/{}",
+        "已学完 {}/{} 课",
         app.progress.lessons_done.len(),
         app.course.lessons.len()
     ));
-    parts.push(format!(
+    parts.push(tr!(
         "exercises done {}/{}",
+        "已完成练习 {}/{}",
         app.progress.exercises_done.len(),
         crate::grade::exercise_names().len()
     ));
-    parts.push(format!(
-        "quiz {right}/{questions} right ({answered} answered)"
+    parts.push(tr!(
+        "quiz {right}/{questions} right ({answered} answered)",
+        "小测验答对 {right}/{questions}（已答 {answered}）"
     ));
     if !app.status.is_empty() {
         parts.push(app.status.clone());
     }
     let status = format!(" {}", parts.join(" · "));
     Paragraph::new(vec![Line::from(spans), Line::styled(status, theme.dim())]).render(area, buf);
+}
+
+/// Clears `rect` for an overlay, and the wide glyph (a CJK character) of the text below
+/// that straddles its left edge: the overlay's border would cut that glyph in half, and a
+/// terminal would draw neither.
+fn clear(rect: Rect, buf: &mut Buffer) {
+    Clear.render(rect, buf);
+    if rect.x == 0 {
+        return;
+    }
+    for y in rect.top()..rect.bottom() {
+        let cell = &mut buf[(rect.x - 1, y)];
+        if text::width(cell.symbol()) > 1 {
+            cell.set_symbol(" ");
+        }
+    }
 }
 
 fn centered(area: Rect, width: u16, height: u16) -> Rect {
@@ -376,25 +451,30 @@ fn centered(area: Rect, width: u16, height: u16) -> Rect {
 }
 
 fn draw_help(theme: Theme, area: Rect, buf: &mut Buffer) {
-    let rect = centered(area, 72, HELP.len() as u16 + 4);
-    Clear.render(rect, buf);
-    let lines: Vec<Line> = HELP
-        .iter()
-        .map(|(k, what)| {
+    let width = 72.min(area.width);
+    let lines = text::wrap(
+        help().into_iter().map(|(k, what)| {
             Line::from(vec![
-                Span::styled(format!(" {k:<16}"), theme.key()),
-                Span::raw(*what),
+                Span::styled(format!(" {}", text::pad_right(k, 16)), theme.key()),
+                Span::raw(what),
             ])
-        })
-        .collect();
+        }),
+        width.saturating_sub(2),
+    );
+    let rect = centered(
+        area,
+        width,
+        u16::try_from(lines.len() + 2).unwrap_or(u16::MAX),
+    );
+    clear(rect, buf);
     Paragraph::new(lines)
-        .block(panel("keys (Esc closes)", theme))
+        .block(panel(t("keys (Esc closes)", "按键（Esc 关闭）"), theme))
         .render(rect, buf);
 }
 
 fn draw_lessons(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut Buffer) {
     let rect = centered(area, 76, app.course.lessons.len() as u16 + 4);
-    Clear.render(rect, buf);
+    clear(rect, buf);
     let lines: Vec<Line> = app
         .course
         .lessons
@@ -407,6 +487,8 @@ fn draw_lessons(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut 
                 " "
             };
             let text = format!(" {mark} {:02} {}", l.order, l.title);
+            // Cut at the panel's edge by columns (a Chinese title is twice as wide).
+            let text = text::truncate(&text, usize::from(rect.width.saturating_sub(2)));
             if i == selected {
                 Line::styled(text, theme.highlight())
             } else {
@@ -415,13 +497,19 @@ fn draw_lessons(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut 
         })
         .collect();
     Paragraph::new(lines)
-        .block(panel("lessons (↑↓, Enter opens, Esc closes)", theme))
+        .block(panel(
+            t(
+                "lessons (↑↓, Enter opens, Esc closes)",
+                "课程（↑↓ 选择，Enter 打开，Esc 关闭）",
+            ),
+            theme,
+        ))
         .render(rect, buf);
 }
 
 fn draw_sandbox(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let rect = centered(area, 64, Field::ALL.len() as u16 + 7);
-    Clear.render(rect, buf);
+    clear(rect, buf);
     let sandbox = &app.sandbox;
     let mut lines: Vec<Line> = Field::ALL
         .iter()
@@ -438,15 +526,21 @@ fn draw_sandbox(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         .collect();
     lines.push(Line::raw(""));
     lines.push(Line::styled(
-        " ↑↓ choose · +/− or ←/→ change · Enter retrains",
+        t(
+            " ↑↓ choose · +/− or ←/→ change · Enter retrains",
+            " ↑↓ 选择 · +/− 或 ←/→ 修改 · Enter 重新训练",
+        ),
         theme.dim(),
     ));
     lines.push(Line::styled(
-        " (the current curve stays on the plot for comparison)",
+        t(
+            " (the current curve stays on the plot for comparison)",
+            " （当前曲线会留在图上作对比）",
+        ),
         theme.dim(),
     ));
     Paragraph::new(lines)
-        .block(panel("sandbox", theme))
+        .block(panel(t("sandbox", "沙盒"), theme))
         .render(rect, buf);
 }
 
@@ -458,33 +552,47 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
         area.width.saturating_sub(8),
         area.height.saturating_sub(4),
     );
-    Clear.render(rect, buf);
+    clear(rect, buf);
     let names = app.exercise_names();
     let file_of = |name: &str| crate::grade::starter(name).map_or(String::new(), |(path, _)| path);
     let mut files: Vec<String> = names.iter().map(|n| file_of(n)).collect();
     files.dedup();
     let heading = match files.as_slice() {
-        [file] => format!(" Write the function(s) in {file}"),
-        _ => " Write each function in its file".to_string(),
+        [file] => tr!(
+            " Write the function(s) in {file}",
+            " 在 {file} 里写出下面的函数"
+        ),
+        _ => t(
+            " Write each function in its file",
+            " 在各自的文件里写出每个函数",
+        )
+        .to_string(),
     };
     let mut lines = vec![
         Line::styled(heading, theme.title()),
         Line::styled(
-            " g grade (saving the file regrades too) · h next hint · ↑↓ scroll · Esc close",
+            t(
+                " g grade (saving the file regrades too) · h next hint · ↑↓ scroll · Esc close",
+                " g 评测（保存文件也会重新评测）· h 下一条提示 · ↑↓ 滚动 · Esc 关闭",
+            ),
             theme.dim(),
         ),
         Line::raw(""),
     ];
     for name in &names {
         let done = app.progress.exercises_done.contains(name);
-        let mark = if done { "✓ done" } else { "· pending" };
+        let mark = if done {
+            t("✓ done", "✓ 已完成")
+        } else {
+            t("· pending", "· 未完成")
+        };
         let mut line = vec![
-            Span::styled(format!(" {mark:<10}"), theme.key()),
+            Span::styled(format!(" {}", text::pad_right(mark, 10)), theme.key()),
             Span::raw(name.clone()),
         ];
         if files.len() > 1 {
-            let width = names.iter().map(String::len).max().unwrap_or(0);
-            let pad = " ".repeat(width - name.len() + 2);
+            let width = names.iter().map(|n| text::width(n)).max().unwrap_or(0);
+            let pad = " ".repeat(width.saturating_sub(text::width(name)) + 2);
             line.push(Span::styled(format!("{pad}{}", file_of(name)), theme.dim()));
         }
         lines.push(Line::from(line));
@@ -496,7 +604,12 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
     if app.exercise.hints_shown > 0 {
         lines.push(Line::raw(""));
         lines.push(Line::styled(
-            format!(" Hints ({}/{})", app.exercise.hints_shown, hints.len()),
+            tr!(
+                " Hints ({}/{})",
+                " 提示（{}/{}）",
+                app.exercise.hints_shown,
+                hints.len()
+            ),
             theme.title(),
         ));
         for (i, hint) in hints.iter().take(app.exercise.hints_shown).enumerate() {
@@ -510,10 +623,16 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
         });
         lines.push(Line::styled(
             if slow {
-                " grading… (the first time compiles, a few seconds; for the candle exercise, \
-                 a few minutes)"
+                t(
+                    " grading… (the first time compiles, a few seconds; for the candle exercise, \
+                     a few minutes)",
+                    " 评测中……（第一次要编译，需要几秒；candle 练习需要几分钟）",
+                )
             } else {
-                " grading… (the first time compiles, a few seconds)"
+                t(
+                    " grading… (the first time compiles, a few seconds)",
+                    " 评测中……（第一次要编译，需要几秒）",
+                )
             },
             theme.dim(),
         ));
@@ -533,15 +652,17 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
         solutions.dedup();
         for code in solutions {
             lines.push(Line::raw(""));
-            lines.push(Line::styled(" The reference solution", theme.title()));
+            lines.push(Line::styled(
+                t(" The reference solution", " 参考答案"),
+                theme.title(),
+            ));
             lines.extend(code.lines().map(|l| Line::raw(format!(" {l}"))));
         }
     }
     let [text, gauge] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)])
         .areas(rect.inner(ratatui::layout::Margin::new(1, 1)));
-    panel("exercise", theme).render(rect, buf);
-    Paragraph::new(lines)
-        .wrap(Wrap { trim: false })
+    panel(t("exercise", "练习"), theme).render(rect, buf);
+    Paragraph::new(text::wrap(lines, text.width))
         .scroll((scroll, 0))
         .render(text, buf);
     let total = crate::grade::exercise_names().len();
@@ -553,7 +674,10 @@ fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buf
         } else {
             done as f64 / total as f64
         })
-        .label(format!("exercises done {done}/{total}"))
+        .label(tr!(
+            "exercises done {done}/{total}",
+            "已完成练习 {done}/{total}"
+        ))
         .render(gauge, buf);
 }
 
@@ -565,8 +689,9 @@ fn draw_quiz(app: &App, theme: Theme, i: usize, area: Rect, buf: &mut Buffer) {
     let width = area.width.saturating_sub(8).min(100);
     let mut lines = vec![
         Line::styled(
-            format!(
+            tr!(
                 " Check your understanding: question {}/{}",
+                " 检验一下：第 {}/{} 题",
                 i + 1,
                 lesson.quiz.len()
             ),
@@ -584,21 +709,38 @@ fn draw_quiz(app: &App, theme: Theme, i: usize, area: Rect, buf: &mut Buffer) {
                     Span::raw(choice.clone()),
                 ]));
             }
-            format!(" a–{} answer", letter_of(choices.len().saturating_sub(1)))
+            tr!(
+                " a–{} answer",
+                " a–{} 作答",
+                letter_of(choices.len().saturating_sub(1))
+            )
         }
         QuestionKind::Predict { tolerance, .. } => {
             lines.push(Line::from(vec![
-                Span::styled(" your prediction: ", theme.key()),
+                Span::styled(t(" your prediction: ", " 你的预测："), theme.key()),
                 Span::raw(format!("{}▏", app.quiz.input)),
-                Span::styled(format!("  (within ±{tolerance} counts)"), theme.dim()),
+                Span::styled(
+                    tr!(
+                        "  (within ±{tolerance} counts)",
+                        "  （误差在 ±{tolerance} 以内算对）"
+                    ),
+                    theme.dim(),
+                ),
             ]));
             if app.snapshot.trace.is_none() {
                 lines.push(Line::styled(
-                    " the live value comes from the agent: train an episode first (e or t)",
+                    t(
+                        " the live value comes from the agent: train an episode first (e or t)",
+                        " 实时数值来自智能体：先训练一个回合（e 或 t）",
+                    ),
                     theme.dim(),
                 ));
             }
-            " type a number, Enter reveals the live value".to_string()
+            t(
+                " type a number, Enter reveals the live value",
+                " 输入一个数，按 Enter 揭晓实时数值",
+            )
+            .to_string()
         }
     };
     if let Some(verdict) = &app.quiz.verdict {
@@ -607,18 +749,17 @@ fn draw_quiz(app: &App, theme: Theme, i: usize, area: Rect, buf: &mut Buffer) {
     }
     lines.push(Line::raw(""));
     lines.push(Line::styled(
-        format!("{keys} · n next · p previous · Esc back to the lesson"),
+        tr!(
+            "{keys} · n next · p previous · Esc back to the lesson",
+            "{keys} · n 下一题 · p 上一题 · Esc 回到课文"
+        ),
         theme.dim(),
     ));
     // As tall as the wrapped text needs, at most the screen.
-    let inner = usize::from(width.saturating_sub(2)).max(1);
-    let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
-    // (+ 3: word wrapping can take a row more than the estimate here and there)
-    let height = u16::try_from(rows + 5).unwrap_or(u16::MAX);
+    let lines = text::wrap(lines, width.saturating_sub(2));
+    let height = u16::try_from(lines.len() + 2).unwrap_or(u16::MAX);
     let rect = centered(area, width, height.min(area.height.saturating_sub(4)));
-    Clear.render(rect, buf);
-    panel("quiz", theme).render(rect, buf);
-    Paragraph::new(lines)
-        .wrap(Wrap { trim: false })
-        .render(rect.inner(ratatui::layout::Margin::new(1, 1)), buf);
+    clear(rect, buf);
+    panel(t("quiz", "小测验"), theme).render(rect, buf);
+    Paragraph::new(lines).render(rect.inner(ratatui::layout::Margin::new(1, 1)), buf);
 }

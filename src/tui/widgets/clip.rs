@@ -10,6 +10,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::Span;
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Widget};
 
+use crate::i18n::t;
 use crate::ppo::EpochTrace;
 use crate::tui::theme::Theme;
 
@@ -84,13 +85,13 @@ impl Widget for ClipChart<'_> {
                 .style(self.theme.dim())
                 .data(&band_hi),
             Dataset::default()
-                .name("batch, A > 0")
+                .name(t("batch, A > 0", "批次，A > 0"))
                 .marker(Marker::Block)
                 .graph_type(GraphType::Scatter)
                 .style(self.theme.positive())
                 .data(&plus),
             Dataset::default()
-                .name("batch, A < 0")
+                .name(t("batch, A < 0", "批次，A < 0"))
                 .marker(Marker::Block)
                 .graph_type(GraphType::Scatter)
                 .style(self.theme.negative())
@@ -100,7 +101,7 @@ impl Widget for ClipChart<'_> {
             .block(self.block)
             .x_axis(
                 Axis::default()
-                    .title("ratio r")
+                    .title(t("ratio r", "比率 r"))
                     .bounds([0.0, 2.0])
                     .labels([Span::raw("0"), Span::raw("1"), Span::raw("2")])
                     .style(self.theme.dim()),

@@ -4,10 +4,11 @@
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget, Wrap};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget};
 
 use super::plot::points;
 use crate::ppo::lab::{ArmResult, Experiment, LabResult};
+use crate::tr;
 use crate::tui::theme::Theme;
 
 /// Where an experiment stands in this app session.
@@ -53,8 +54,9 @@ impl Widget for LabPanel<'_> {
         match self.state {
             None | Some(LabState::Running { .. } | LabState::Failed(_)) => {
                 let mut lines = vec![head, Line::raw("")];
-                lines.push(Line::raw(format!(
+                lines.push(Line::raw(tr!(
                     "Settings: {}. Each runs {} seeds x {} episodes, on every core.",
+                    "设置：{}。每个设置跑 {} 个随机种子 × {} 个回合，用上所有 CPU 核心。",
                     self.arms.join(" | "),
                     self.seeds,
                     self.episodes
@@ -62,25 +64,26 @@ impl Widget for LabPanel<'_> {
                 lines.push(Line::raw(""));
                 lines.push(match self.state {
                     Some(LabState::Running { done, total }) => Line::styled(
-                        format!(
+                        tr!(
                             "running: {done}/{total} episodes ({:.0}%); you can keep reading",
+                            "运行中：{done}/{total} 个回合（{:.0}%），可以继续阅读",
                             100.0 * *done as f64 / (*total).max(1) as f64
                         ),
                         t.key(),
                     ),
                     Some(LabState::Failed(m)) => {
-                        Line::styled(format!("stopped: {m}"), t.negative())
+                        Line::styled(tr!("stopped: {m}", "已停止：{m}"), t.negative())
                     }
                     _ => Line::from(vec![
                         Span::styled(" x ", t.key()),
-                        Span::raw("runs the experiment (or: ppo-tutor lab "),
-                        Span::raw(self.experiment.name()),
-                        Span::raw(")"),
+                        Span::raw(tr!(
+                            "runs the experiment (or: ppo-tutor lab {})",
+                            "运行实验（或在终端运行：ppo-tutor lab {}）",
+                            self.experiment.name()
+                        )),
                     ]),
                 });
-                Paragraph::new(lines)
-                    .wrap(Wrap { trim: false })
-                    .render(inner, buf);
+                Paragraph::new(super::text::wrap(lines, inner.width)).render(inner, buf);
             }
             Some(LabState::Done(result)) => {
                 let table = result.table();
@@ -99,8 +102,9 @@ impl Widget for LabPanel<'_> {
                     })
                     .collect();
                 lines.push(Line::styled(
-                    format!(
+                    tr!(
                         "{} seeds, {} episodes; charts: band and mean of each setting (o: the first)",
+                        "{} 个随机种子，{} 个回合；图：每个设置的范围带和均值（o：第一个设置）",
                         result.seeds.len(),
                         result.episodes
                     ),
@@ -172,7 +176,7 @@ fn versus(
             Block::bordered()
                 .border_style(t.border())
                 .title(Span::styled(
-                    format!(" {} vs {} ", arm.label, base.label),
+                    tr!(" {} vs {} ", " {} 对比 {} ", arm.label, base.label),
                     t.title(),
                 )),
         )

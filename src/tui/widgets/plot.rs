@@ -6,6 +6,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::Span;
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Widget};
 
+use crate::i18n::t;
 use crate::tui::theme::Theme;
 
 /// The return plot: this run's returns and moving average, and optionally a previous run.
@@ -59,7 +60,7 @@ impl Widget for ReturnPlot<'_> {
         }
         datasets.push(
             Dataset::default()
-                .name("returns")
+                .name(t("returns", "回报"))
                 .marker(super::marker())
                 .graph_type(GraphType::Scatter)
                 .style(self.theme.curve())
@@ -68,7 +69,7 @@ impl Widget for ReturnPlot<'_> {
         if !avg.is_empty() {
             datasets.push(
                 Dataset::default()
-                    .name("moving average (9)")
+                    .name(t("moving average (9)", "移动平均 (9)"))
                     .marker(super::marker())
                     .graph_type(GraphType::Line)
                     .style(self.theme.average())
@@ -87,14 +88,14 @@ impl Widget for ReturnPlot<'_> {
             .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)))
             .x_axis(
                 Axis::default()
-                    .title("Episodes")
+                    .title(t("Episodes", "回合"))
                     .bounds([0.0, episodes])
                     .labels([Span::raw("0"), Span::raw(format!("{episodes:.0}"))])
                     .style(self.theme.dim()),
             )
             .y_axis(
                 Axis::default()
-                    .title("Returns")
+                    .title(t("Returns", "回报"))
                     .bounds([y_bottom, y_top])
                     .labels([
                         Span::raw(format!("{y_bottom:.0}")),

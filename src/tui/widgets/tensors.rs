@@ -3,7 +3,9 @@
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
+use super::text::{pad_left, truncate};
 use crate::lesson::{Mark, TensorView};
+use crate::tr;
 use crate::tui::theme::Theme;
 
 fn style_of(mark: Mark, theme: Theme) -> Style {
@@ -59,7 +61,13 @@ pub fn lines(
     let mut out = Vec::new();
     for t in &per_step {
         let stats = t.stats().map_or(String::new(), |(lo, hi, mean)| {
-            format!("  min {}  max {}  mean {}", fmt(lo), fmt(hi), fmt(mean))
+            tr!(
+                "  min {}  max {}  mean {}",
+                "  最小 {}  最大 {}  均值 {}",
+                fmt(lo),
+                fmt(hi),
+                fmt(mean)
+            )
         });
         let marks = match (
             t.count(Mark::Clipped),
@@ -67,8 +75,8 @@ pub fn lines(
             t.count(Mark::Positive),
             t.count(Mark::Negative),
         ) {
-            (c, _, _, _) if c > 0 => format!("  clipped {c}"),
-            (_, d, _, _) if d > 0 => format!("  done {d}"),
+            (c, _, _, _) if c > 0 => tr!("  clipped {c}", "  被截断 {c}"),
+            (_, d, _, _) if d > 0 => tr!("  done {d}", "  结束 {d}"),
             (_, _, p, n) if p + n > 0 => format!("  A>0 {p}  A<0 {n}"),
             _ => String::new(),
         };
@@ -83,7 +91,9 @@ pub fn lines(
         let mut header = vec![Span::styled(format!("{:>4}", "t"), theme.dim())];
         for t in &per_step {
             for name in sub_names(t) {
-                header.push(Span::styled(format!(" {name:>11.11}"), theme.dim()));
+                // Padded and cut by columns: `obs.θ̇` has a combining mark.
+                let name = pad_left(&truncate(&name, 11), 11);
+                header.push(Span::styled(format!(" {name}"), theme.dim()));
             }
         }
         out.push(Line::from(header));
@@ -120,8 +130,9 @@ pub fn lines(
         }
         if n > budget {
             out.push(Line::styled(
-                format!(
+                tr!(
                     "     rows {}–{} of {n} (J/K scroll)",
+                    "     第 {}–{} 行，共 {n} 行（J/K 滚动）",
                     start,
                     (start + budget).min(n).saturating_sub(1)
                 ),
