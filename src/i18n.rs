@@ -117,21 +117,30 @@ impl Lang {
     }
 
     /// The current language: this thread's [`Lang::scoped`] one if any, otherwise the
-    /// process's.
+    /// process's ([`Lang::set_current`]), otherwise `PPO_TUTOR_LANG` when it names one,
+    /// otherwise English.
+    ///
+    /// The variable is how a notebook kernel gets its language: evcxr links this crate
+    /// into every cell anew, so a language set in one cell would be gone in the next, but
+    /// the Chinese notebooks' first cell sets the kernel's variable (`:env`).
     #[must_use]
     pub fn current() -> Lang {
         if let Some(lang) = SCOPED.with(std::cell::Cell::get) {
             return lang;
         }
         match CURRENT.load(Ordering::Relaxed) {
-            1 => Lang::Zh,
-            _ => Lang::En,
+            1 => Lang::En,
+            2 => Lang::Zh,
+            _ => std::env::var("PPO_TUTOR_LANG")
+                .ok()
+                .and_then(|v| Lang::from_code(&v))
+                .unwrap_or_default(),
         }
     }
 
     /// Makes `self` the language of the whole process (every thread without a scoped one).
     pub fn set_current(self) {
-        CURRENT.store(self as u8, Ordering::Relaxed);
+        CURRENT.store(self as u8 + 1, Ordering::Relaxed);
     }
 
     /// Makes `self` this thread's language until the guard drops, then restores the
@@ -193,6 +202,26 @@ pub enum LangError {
         "PPO_TUTOR_LANG='{0}': expected en or zh (unset it to follow the locale) / 应为 en 或 zh（不设置则跟随系统语言）"
     )]
     Env(String),
+}
+
+/// How many terminal columns `text` takes: a CJK character takes two.
+#[must_use]
+pub fn width(text: &str) -> usize {
+    unicode_width::UnicodeWidthStr::width(text)
+}
+
+/// `text` followed by spaces up to `columns` terminal columns (`{:<n}` by display width;
+/// unchanged if wider).
+#[must_use]
+pub fn pad_right(text: &str, columns: usize) -> String {
+    format!("{text}{}", " ".repeat(columns.saturating_sub(width(text))))
+}
+
+/// `text` after spaces up to `columns` terminal columns (`{:>n}` by display width;
+/// unchanged if wider).
+#[must_use]
+pub fn pad_left(text: &str, columns: usize) -> String {
+    format!("{}{text}", " ".repeat(columns.saturating_sub(width(text))))
 }
 
 /// `en` or `zh`, whichever is the current language.
@@ -286,6 +315,14 @@ mod tests {
             assert_eq!(crate::tr!("{} of {w}", "{} / {w}", 1, w = 2), "1 of 2");
         }
         assert_eq!(t("quit", "退出"), "退出");
+    }
+
+    #[test]
+    fn padding_counts_a_chinese_character_as_two_columns() {
+        assert_eq!(width("回合 500"), 8);
+        assert_eq!(pad_right("回合", 6), "回合  ");
+        assert_eq!(pad_left("回合", 6), "  回合");
+        assert_eq!(pad_right("episode", 3), "episode");
     }
 
     #[test]

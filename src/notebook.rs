@@ -205,10 +205,10 @@ pub fn tensor_html(t: &TensorView) -> Html {
         let Some(row) = row else {
             let _ = writeln!(
                 html,
-                "<tr><td>…</td><td colspan=\"{cols}\">{} more rows</td></tr>",
-                rows - (MAX_ROWS - 1)
+                "<tr><td>…</td><td colspan=\"{cols}\">{}</td></tr>",
+                more_rows(rows - (MAX_ROWS - 1))
             );
-            let _ = writeln!(text, "  ... {} more rows", rows - (MAX_ROWS - 1));
+            let _ = writeln!(text, "  ... {}", more_rows(rows - (MAX_ROWS - 1)));
             continue;
         };
         let _ = write!(html, "<tr><td style=\"color:#868e96\">{row}</td>");
@@ -253,7 +253,10 @@ impl Snapshot {
         for name in names {
             let part = self.tensor(name).map_or_else(
                 || {
-                    let msg = format!("{name}: not available yet (train an episode first)");
+                    let msg = crate::tr!(
+                        "{name}: not available yet (train an episode first)",
+                        "{name}：还没有数值（请先训练一个回合）"
+                    );
                     Html {
                         html: format!("<p>{}</p>", escape(&msg)),
                         text: format!("{msg}\n"),
@@ -339,10 +342,11 @@ pub fn lab(name: &str, seeds: &[u64], episodes: usize) -> anyhow::Result<LabResu
     hint_candle_threads();
     let experiment = Experiment::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = Experiment::ALL.iter().map(|e| e.name()).collect();
-        anyhow::anyhow!(
+        anyhow::anyhow!(crate::tr!(
             "unknown experiment '{name}': choose one of {}",
+            "没有名为 '{name}' 的实验：请从 {} 中选择",
             names.join(", ")
-        )
+        ))
     })?;
     let base = PpoConfig {
         num_episodes: episodes,
@@ -369,7 +373,7 @@ impl LabResult {
             .iter()
             .map(|a| (a.label.as_str(), &a.band))
             .collect();
-        let title = format!("lab {}: {} seeds", self.experiment.name(), self.seeds.len());
+        let title = crate::plot::labels::lab_title(self.experiment.name(), self.seeds.len());
         crate::plot::lab_plot_svg(&title, &arms, self.seeds.len()).map(Svg)
     }
 
@@ -389,7 +393,10 @@ fn hint_candle_threads() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
         if std::env::var_os("RAYON_NUM_THREADS").is_none() {
-            println!("{CANDLE_THREADS_HINT}");
+            println!(
+                "{}",
+                crate::i18n::t(CANDLE_THREADS_HINT, CANDLE_THREADS_HINT_ZH)
+            );
         }
     });
 }
@@ -398,6 +405,14 @@ fn hint_candle_threads() {
 const CANDLE_THREADS_HINT: &str = "note: RAYON_NUM_THREADS is unset, so candle uses every \
     core, which makes these small networks train about 2x slower. Start Jupyter with \
     `RAYON_NUM_THREADS=1 jupyter lab notebooks/` (the kernel inherits it).";
+const CANDLE_THREADS_HINT_ZH: &str = "注意：没有设置 RAYON_NUM_THREADS，candle 会用上所有 CPU \
+    核，这些小网络反而会训练得慢约 2 倍。请这样启动 Jupyter：\
+    `RAYON_NUM_THREADS=1 jupyter lab notebooks/`（内核会继承这个设置）。";
+
+/// "N more rows" under a cut table.
+fn more_rows(n: usize) -> String {
+    crate::tr!("{n} more rows", "还有 {n} 行")
+}
 
 /// A grading report as in `ppo-tutor grade`: the same text, with its marks coloured.
 #[cfg(feature = "exercises")]
@@ -410,7 +425,7 @@ pub fn report_html(report: &Report) -> Html {
             "#2b8a3e"
         } else if t.starts_with('✗') {
             "#c92a2a"
-        } else if t.starts_with("hint:") {
+        } else if t.starts_with("hint:") || t.starts_with("提示") {
             "#1864ab"
         } else {
             ""
@@ -430,9 +445,15 @@ pub fn report_html(report: &Report) -> Html {
         .iter()
         .all(|c| matches!(c.status, CheckStatus::Passed));
     let verdict = if passed && report.compile_error.is_none() {
-        "<b style=\"color:#2b8a3e\">All checks pass.</b>"
+        crate::i18n::t(
+            "<b style=\"color:#2b8a3e\">All checks pass.</b>",
+            "<b style=\"color:#2b8a3e\">全部检查通过。</b>",
+        )
     } else {
-        "<b style=\"color:#c92a2a\">Not yet: fix the first ✗ and run the cell again.</b>"
+        crate::i18n::t(
+            "<b style=\"color:#c92a2a\">Not yet: fix the first ✗ and run the cell again.</b>",
+            "<b style=\"color:#c92a2a\">还没有通过：先修正第一个 ✗，再运行这个单元格。</b>",
+        )
     };
     let _ = write!(html, "</pre>{verdict}");
     Html { html, text }
@@ -531,10 +552,14 @@ pub fn pendulum_svg(theta: f64, torque: f64) -> Svg {
             "<polyline points=\"{arc}\" fill=\"none\" stroke=\"#e0a000\" stroke-width=\"4\"/>"
         );
     }
+    let caption = crate::tr!(
+        "θ = {theta:.4} rad ({:.1}° from upright)  torque = {torque:.4}",
+        "θ = {theta:.4} rad（偏离竖直向上 {:.1}°）  力矩 = {torque:.4}",
+        crate::env::pendulum::angle_normalize(theta).to_degrees()
+    );
     let _ = writeln!(
         svg,
-        "<text x=\"10\" y=\"24\" font-family=\"monospace\" font-size=\"14\">θ = {theta:.4} rad ({:.1}° from upright)  torque = {torque:.4}</text>\n</svg>",
-        crate::env::pendulum::angle_normalize(theta).to_degrees()
+        "<text x=\"10\" y=\"24\" font-family=\"monospace\" font-size=\"14\">{caption}</text>\n</svg>"
     );
     Svg(svg)
 }
@@ -549,10 +574,14 @@ pub fn policy_map_svg(map: &crate::lesson::PolicyMap) -> Svg {
     let (cell, left, top) = (52.0, 70.0, 40.0);
     let width = left + cell * cols as f64 + 20.0;
     let height = top + cell * rows as f64 + 50.0;
+    let heading = crate::i18n::t(
+        "μ(θ, θ̇): red pushes counter-clockwise, blue clockwise",
+        "μ(θ, θ̇)：红色向逆时针推，蓝色向顺时针推",
+    );
     let mut svg = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"monospace\" font-size=\"12\">\n\
          <rect width=\"{width}\" height=\"{height}\" fill=\"white\"/>\n\
-         <text x=\"{left}\" y=\"24\" font-size=\"14\">μ(θ, θ̇): red pushes counter-clockwise, blue clockwise</text>\n"
+         <text x=\"{left}\" y=\"24\" font-size=\"14\">{heading}</text>\n"
     );
     for (i, dot) in map.theta_dots.iter().enumerate() {
         let y = top + cell * i as f64;
@@ -589,9 +618,13 @@ pub fn policy_map_svg(map: &crate::lesson::PolicyMap) -> Svg {
             f64::from(*theta).to_degrees()
         );
     }
+    let axis = crate::i18n::t(
+        "θ from −180° to 180° (0° upright)",
+        "θ 从 −180° 到 180°（0° 为竖直向上）",
+    );
     let _ = writeln!(
         svg,
-        "<text x=\"{left}\" y=\"{:.1}\">θ from −180° to 180° (0° upright)</text>\n</svg>",
+        "<text x=\"{left}\" y=\"{:.1}\">{axis}</text>\n</svg>",
         axis_y + 20.0
     );
     Svg(svg)

@@ -501,3 +501,145 @@ fn the_untranslated_paragraph_check_finds_english() {
         0
     );
 }
+
+/// A recipe's code with comments and string literals blanked, and its `// %%` markers.
+fn recipe_shape(text: &str) -> (Vec<String>, Vec<String>) {
+    let mut code = Vec::new();
+    let mut markers = Vec::new();
+    for line in text.lines() {
+        let t = line.trim_start();
+        if t.starts_with("// %%") || t.starts_with("// check:") {
+            markers.push(line.to_string());
+            continue;
+        }
+        let mut out = String::new();
+        let mut in_str = false;
+        let mut escaped = false;
+        let chars: Vec<char> = line.chars().collect();
+        let mut i = 0;
+        while i < chars.len() {
+            let c = chars[i];
+            if in_str {
+                if escaped {
+                    escaped = false;
+                } else if c == '\\' {
+                    escaped = true;
+                } else if c == '"' {
+                    in_str = false;
+                    out.push('"');
+                }
+            } else if c == '/' && chars.get(i + 1) == Some(&'/') {
+                break;
+            } else {
+                out.push(c);
+                if c == '"' {
+                    in_str = true;
+                }
+            }
+            i += 1;
+        }
+        if !out.trim().is_empty() {
+            code.push(out.trim_end().to_string());
+        }
+    }
+    (code, markers)
+}
+
+#[test]
+fn chinese_recipes_run_the_english_code() -> TestResult {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("notebooks/src");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&src)? {
+        let path = entry?.path();
+        let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
+            continue;
+        };
+        if !name.ends_with(".rs") {
+            continue;
+        }
+        let en = std::fs::read_to_string(&path)?;
+        let zh = std::fs::read_to_string(src.join("zh").join(name))
+            .map_err(|e| format!("notebooks/src/zh/{name}: {e}"))?;
+        let (ec, em) = recipe_shape(&en);
+        let (zc, zm) = recipe_shape(&zh);
+        assert_eq!(
+            em, zm,
+            "notebooks/src/zh/{name}: the `// %%` markers differ"
+        );
+        assert_eq!(
+            ec, zc,
+            "notebooks/src/zh/{name}: the code differs from the English recipe"
+        );
+        for line in zh
+            .lines()
+            .filter(|l| l.trim_start().starts_with("//") && !l.contains("%%"))
+        {
+            assert!(
+                english_paragraphs(line.trim_start_matches(['/', '!', ' '])).is_empty(),
+                "notebooks/src/zh/{name}: English comment: {line}"
+            );
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, Course::embedded_in(Lang::En)?.lessons.len());
+    Ok(())
+}
+
+/// The Chinese twin of `tests/lessons.rs`'s face check: a notebook's Chinese text says
+/// nothing of panels, the sandbox, keys or the screen, and the terminal's nothing of cells.
+#[test]
+fn each_chinese_face_speaks_of_what_it_has() -> TestResult {
+    use ppo_tutor::lesson::face::Face;
+    let course = Course::embedded_in(Lang::Zh)?;
+    let mut problems = Vec::new();
+    for l in &course.lessons {
+        for (i, s) in l.steps.iter().enumerate() {
+            let at = format!(
+                "lessons/{:02}-{}/lesson.zh.md, step {}",
+                l.order,
+                l.id,
+                i + 1
+            );
+            let notebook = s.text(Face::Notebook);
+            for word in [
+                "面板",
+                "沙盒",
+                "按下 `",
+                "按 `",
+                "按键",
+                "屏幕上",
+                "这段文字旁边",
+                "正文旁边",
+                "应用里",
+                "应用中",
+            ] {
+                if notebook.contains(word) {
+                    problems.push(format!("{at}, notebook face: '{word}'"));
+                }
+            }
+            let names: Vec<&str> = s
+                .python
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .collect();
+            let chars: Vec<char> = notebook.chars().collect();
+            for w in chars.windows(3) {
+                if w[0] == '`'
+                    && w[2] == '`'
+                    && w[1].is_ascii_graphic()
+                    && w[1] != '`'
+                    && !names.contains(&w[1].to_string().as_str())
+                {
+                    problems.push(format!("{at}, notebook face: the key `{}`", w[1]));
+                }
+            }
+            let terminal = s.text(Face::Terminal);
+            for word in ["单元格", "笔记本", "Jupyter"] {
+                if terminal.contains(word) {
+                    problems.push(format!("{at}, terminal face: '{word}'"));
+                }
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    Ok(())
+}

@@ -32,6 +32,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context as _, Result, bail, ensure};
+use ppo_tutor::i18n::Lang;
 use ppo_tutor::lesson::{Course, Lesson};
 use ppo_tutor::notebook::build::{self, Cell, REGENERATE};
 use ppo_tutor::notebook::ipynb::{Outputs, joined, notebook_json, to_text};
@@ -172,55 +173,66 @@ fn run() -> Result<()> {
         .filter(|a| !a.starts_with('-'))
         .collect();
     let root = root();
-    let course = Course::embedded()?;
-
-    // 1. One recipe and one notebook per lesson, and nothing else; the cells as generated.
-    let folders = build::recipe_folders(&root, &course)?;
-    let notebooks = build::stems(&root, "notebooks", ".ipynb")?;
-    ensure!(
-        notebooks == folders,
-        "notebooks/ must hold one notebook per lesson:\n  lessons:   {folders:?}\n  notebooks: {notebooks:?}\n\
-         (regenerate: {REGENERATE})"
-    );
-    let mut built = Vec::new();
-    for (lesson, folder) in course.lessons.iter().zip(&folders) {
-        let cells = build::notebook_cells(&root, lesson)?;
-        check_sources(folder, &cells)?;
-        built.push((lesson, folder, cells));
-    }
-    println!("notebooks: {} notebooks match their lessons", built.len());
-
     // The runner itself: each way a cell can fail must fail the test.
     self_check()?;
     println!("notebooks: the runner catches compile errors, panics, failed asserts and `?` errors");
 
-    // 2-5. Execute.
     let mut checks = 0;
-    for (lesson, folder, cells) in &built {
-        if !filters.is_empty() && !filters.iter().any(|f| folder.contains(f.as_str())) {
-            continue;
-        }
-        let started = Instant::now();
-        let name = format!("notebooks/{folder}.ipynb");
-        let mut kernel = Kernel::start()?;
-        let outputs = kernel.run_cells(cells, &name)?;
-        for (i, (cell, out)) in cells.iter().zip(&outputs).enumerate() {
-            if let (Cell::Code(code), Some(out)) = (cell, out)
-                && let Some((tensor, episodes)) = parse_check(code)
-            {
-                check_against_library(&tensor, episodes, out)
-                    .with_context(|| format!("{name}, cell {i}"))?;
-                checks += 1;
-            }
-        }
-        check_solutions(&mut kernel, lesson, folder)?;
-        let text = to_text(&notebook_json(cells, &outputs))?;
-        check_outputs(folder, &root.join(&name), &text)?;
-        println!(
-            "notebooks: {folder}: {} cells ran in {:.1} s",
-            cells.len(),
-            started.elapsed().as_secs_f64()
+    // English in notebooks/, Chinese in notebooks/zh/: the same recipes' code, the same
+    // checks. The language is this thread's (the generator's text) and the kernel's
+    // (`PPO_TUTOR_LANG`, the library's output).
+    for lang in Lang::ALL {
+        let _lang = lang.scoped();
+        let course = Course::embedded()?;
+
+        // 1. One recipe and one notebook per lesson, and nothing else; the cells as generated.
+        let folders = build::recipe_folders(&root, &course)?;
+        let notebooks = build::stems(&root, build::notebook_dir(), ".ipynb")?;
+        ensure!(
+            notebooks == folders,
+            "{}/ must hold one notebook per lesson:\n  lessons:   {folders:?}\n  notebooks: {notebooks:?}\n\
+             (regenerate: {REGENERATE})",
+            build::notebook_dir()
         );
+        let mut built = Vec::new();
+        for (lesson, folder) in course.lessons.iter().zip(&folders) {
+            let cells = build::notebook_cells(&root, lesson)?;
+            check_sources(folder, &cells)?;
+            built.push((lesson, folder, cells));
+        }
+        println!(
+            "notebooks: {} notebooks in {} match their lessons",
+            built.len(),
+            build::notebook_dir()
+        );
+
+        // 2-5. Execute.
+        for (lesson, folder, cells) in &built {
+            if !filters.is_empty() && !filters.iter().any(|f| folder.contains(f.as_str())) {
+                continue;
+            }
+            let started = Instant::now();
+            let name = build::notebook_file(folder);
+            let mut kernel = Kernel::start_in(lang, &root.join(build::notebook_dir()))?;
+            let outputs = kernel.run_cells(cells, &name)?;
+            for (i, (cell, out)) in cells.iter().zip(&outputs).enumerate() {
+                if let (Cell::Code(code), Some(out)) = (cell, out)
+                    && let Some((tensor, episodes)) = parse_check(code)
+                {
+                    check_against_library(&tensor, episodes, out)
+                        .with_context(|| format!("{name}, cell {i}"))?;
+                    checks += 1;
+                }
+            }
+            check_solutions(&mut kernel, lesson, folder)?;
+            let text = to_text(&notebook_json(cells, &outputs))?;
+            check_outputs(folder, &root.join(&name), &text)?;
+            println!(
+                "notebooks: {name}: {} cells ran in {:.1} s",
+                cells.len(),
+                started.elapsed().as_secs_f64()
+            );
+        }
     }
     println!("notebooks: {checks} cells checked against the library");
     Ok(())
@@ -255,18 +267,19 @@ fn self_check() -> Result<()> {
 
 /// The committed notebook's cells must be the generated ones (sources and order).
 fn check_sources(folder: &str, cells: &[Cell]) -> Result<()> {
-    let path = root().join("notebooks").join(format!("{folder}.ipynb"));
+    let file = build::notebook_file(folder);
+    let path = root().join(&file);
     let text = std::fs::read_to_string(&path).with_context(|| path.display().to_string())?;
     let nb: Value = serde_json::from_str(&text).with_context(|| path.display().to_string())?;
     ensure!(
         nb["metadata"]["kernelspec"]["name"] == "rust",
-        "notebooks/{folder}.ipynb: the kernel must be evcxr's `rust`"
+        "{file}: the kernel must be evcxr's `rust`"
     );
     let saved = nb["cells"].as_array().map_or(&[][..], Vec::as_slice);
     let fix = format!("regenerate with {REGENERATE} {folder}");
     ensure!(
         saved.len() == cells.len(),
-        "notebooks/{folder}.ipynb has {} cells, its lesson and recipe make {}: {fix}",
+        "{file} has {} cells, its lesson and recipe make {}: {fix}",
         saved.len(),
         cells.len()
     );
@@ -277,7 +290,7 @@ fn check_sources(folder: &str, cells: &[Cell]) -> Result<()> {
         };
         ensure!(
             s["cell_type"] == kind && joined(&s["source"]) == source,
-            "notebooks/{folder}.ipynb, cell {i} is out of date with its lesson or recipe: {fix}"
+            "{file}, cell {i} is out of date with its lesson or recipe: {fix}"
         );
     }
     Ok(())
@@ -301,8 +314,9 @@ fn check_outputs(folder: &str, path: &Path, fresh: &str) -> Result<()> {
     let saved: Value = serde_json::from_str(&saved)?;
     let fresh: Value = serde_json::from_str(fresh)?;
     let fix = format!("regenerate with {REGENERATE} {folder}");
+    let file = build::notebook_file(folder);
     let (Some(a), Some(b)) = (saved["cells"].as_array(), fresh["cells"].as_array()) else {
-        bail!("notebooks/{folder}.ipynb has no cells");
+        bail!("{file} has no cells");
     };
     for (i, (s, f)) in a.iter().zip(b).enumerate() {
         let (so, fo) = (output_texts(s), output_texts(f));
@@ -313,7 +327,7 @@ fn check_outputs(folder: &str, path: &Path, fresh: &str) -> Result<()> {
                 .all(|((k1, v1), (k2, v2))| k1 == k2 && same_output(v1, v2));
         ensure!(
             same,
-            "notebooks/{folder}.ipynb, cell {i}: the saved output is not what the cell prints now: {fix}"
+            "{file}, cell {i}: the saved output is not what the cell prints now: {fix}"
         );
     }
     Ok(())
@@ -330,10 +344,10 @@ fn check_solutions(kernel: &mut Kernel, lesson: &Lesson, folder: &str) -> Result
             .with_context(|| format!("{folder}: a reference solution in the notebook"))?;
     }
     for name in ex.names() {
-        let out = kernel.run(&build::grade_cell(name))?;
+        let out = kernel.run(&format!("{}.passed()", build::grade_cell(name)))?;
         let text = out.data.get("text/plain").cloned().unwrap_or_default();
         ensure!(
-            text.contains("checks passed: passed"),
+            text.trim() == "true",
             "{folder}: the reference {name} does not pass in the notebook:\n{text}"
         );
     }

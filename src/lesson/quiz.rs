@@ -24,7 +24,8 @@ use serde::Deserialize;
 
 use super::Snapshot;
 use super::files::embedded_file;
-use crate::i18n::Lang;
+use crate::i18n::{Lang, t};
+use crate::tr;
 
 /// One question.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,8 +66,18 @@ pub struct Measure {
     pub name: &'static str,
     /// What it is, in words (shown with the revealed value).
     pub about: &'static str,
+    /// [`Measure::about`] in Chinese.
+    pub about_zh: &'static str,
     /// Its value in a snapshot, `None` before anything computed it.
     pub value: fn(&Snapshot) -> Option<f64>,
+}
+
+impl Measure {
+    /// What it is, in words, in the current language.
+    #[must_use]
+    pub fn describe(&self) -> &'static str {
+        t(self.about, self.about_zh)
+    }
 }
 
 impl PartialEq for Measure {
@@ -80,6 +91,7 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "batch_rows",
         about: "transitions in the latest episode's batch",
+        about_zh: "最新回合批次中的状态转移数",
         value: |s| match &s.continuous {
             Some(c) => Some(c.rewards.len() as f64),
             None => Some(s.trace.as_ref()?.rewards.len() as f64),
@@ -88,11 +100,13 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "episode_return",
         about: "the latest episode's return",
+        about_zh: "最新回合的回报",
         value: |s| s.returns.last().copied(),
     },
     Measure {
         name: "dones_count",
         about: "rows of the latest batch with done = 1",
+        about_zh: "最新批次中 done = 1 的行数",
         value: |s| {
             let dones = match &s.continuous {
                 Some(c) => &c.dones,
@@ -104,56 +118,67 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "obs_dim",
         about: "numbers in one CartPole observation",
+        about_zh: "一个 CartPole 观测中的数的个数",
         value: |s| s.trace.as_ref()?.states.first().map(|o| o.len() as f64),
     },
     Measure {
         name: "actor_parameters",
         about: "trainable parameters of the actor",
+        about_zh: "策略网络的可训练参数个数",
         value: |s| parameters(s, "actor."),
     },
     Measure {
         name: "critic_parameters",
         about: "trainable parameters of the critic",
+        about_zh: "价值网络的可训练参数个数",
         value: |s| parameters(s, "critic."),
     },
     Measure {
         name: "probs_row_sum",
         about: "π(left|s_0) + π(right|s_0) for the batch's first row",
+        about_zh: "批次第一行的 π(left|s_0) + π(right|s_0)",
         value: |s| s.probs.first().map(|p| f64::from(p[0]) + f64::from(p[1])),
     },
     Measure {
         name: "entropy_max",
         about: "the largest entropy of a policy over CartPole's actions, in nats",
+        about_zh: "CartPole 动作上策略熵的最大值（单位 nat）",
         value: |s| s.probs.first().map(|p| (p.len() as f64).ln()),
     },
     Measure {
         name: "td_target_last",
         about: "the TD target of the batch's last row",
+        about_zh: "批次最后一行的 TD 目标",
         value: |s| s.trace.as_ref()?.td_target.last().map(|&v| f64::from(v)),
     },
     Measure {
         name: "gamma_lambda",
         about: "γ·λ of the run",
+        about_zh: "本次运行的 γ·λ",
         value: |s| Some(s.gamma * lambda(s)?),
     },
     Measure {
         name: "discount_50",
         about: "γ^50, the weight of a reward 50 steps ahead",
+        about_zh: "γ^50，即 50 步之后一个奖励的权重",
         value: |s| Some(s.gamma.powi(50)),
     },
     Measure {
         name: "horizon_gamma",
         about: "1/(1 − γ)",
+        about_zh: "1/(1 − γ)",
         value: |s| Some(1.0 / (1.0 - s.gamma)),
     },
     Measure {
         name: "horizon_gae",
         about: "1/(1 − γλ)",
+        about_zh: "1/(1 − γλ)",
         value: |s| Some(1.0 / (1.0 - s.gamma * lambda(s)?)),
     },
     Measure {
         name: "advantage_last_minus_td_delta_last",
         about: "Â_T − δ_T for the batch's last row",
+        about_zh: "批次最后一行的 Â_T − δ_T",
         value: |s| {
             let t = s.trace.as_ref()?;
             Some(f64::from(*t.advantage.last()?) - f64::from(*t.td_delta.last()?))
@@ -162,31 +187,37 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "ratio_epoch1_min",
         about: "the smallest ratio in epoch 1",
+        about_zh: "第 1 轮中最小的比率",
         value: |s| first_ratios(s).map(min),
     },
     Measure {
         name: "ratio_epoch1_max",
         about: "the largest ratio in epoch 1",
+        about_zh: "第 1 轮中最大的比率",
         value: |s| first_ratios(s).map(max),
     },
     Measure {
         name: "clipped_rows_epoch1",
         about: "rows with the clip active in epoch 1",
+        about_zh: "第 1 轮中截断生效的行数",
         value: |s| first_epoch(s, |e| e.clipped.iter().filter(|c| **c).count() as f64),
     },
     Measure {
         name: "clip_frac_epoch1",
         about: "the clip fraction of epoch 1",
+        about_zh: "第 1 轮的截断比例（clip fraction）",
         value: |s| first_epoch(s, |e| f64::from(e.clip_fraction)),
     },
     Measure {
         name: "approx_kl_epoch1",
         about: "approx_kl in epoch 1",
+        about_zh: "第 1 轮的 approx_kl",
         value: |s| first_epoch(s, |e| f64::from(e.approx_kl)),
     },
     Measure {
         name: "actor_loss_epoch1_plus_mean_advantage",
         about: "the actor loss of epoch 1 plus the batch's mean advantage",
+        about_zh: "第 1 轮的策略网络损失加上批次的平均优势值",
         value: |s| {
             let t = s.trace.as_ref()?;
             let mean =
@@ -197,11 +228,13 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "epochs_run",
         about: "epochs the latest update ran",
+        about_zh: "最新一次更新运行的轮数",
         value: |s| Some(s.trace.as_ref()?.epochs_run() as f64),
     },
     Measure {
         name: "grad_max_diff",
         about: "the largest difference between the two policy gradients at θ_old",
+        about_zh: "θ_old 处两种策略梯度之间的最大差值",
         value: |s| {
             let g = s.gradients.as_ref()?;
             Some(f64::from(g.max_abs_diff()))
@@ -210,16 +243,19 @@ pub static MEASURES: &[Measure] = &[
     Measure {
         name: "adv_norm_mean",
         about: "the mean of the normalised advantages",
+        about_zh: "归一化后优势值的均值",
         value: |s| normalised(s).map(|(mean, _)| mean),
     },
     Measure {
         name: "adv_norm_std",
         about: "the unbiased standard deviation of the normalised advantages",
+        about_zh: "归一化后优势值的无偏标准差",
         value: |s| normalised(s).map(|(_, std)| std),
     },
     Measure {
         name: "moving_average_window",
         about: "the window of the seed's moving average",
+        about_zh: "原教程代码中移动平均的窗口大小",
         value: |_| Some(super::live::session::MOVING_AVERAGE_WINDOW as f64),
     },
 ];
@@ -292,10 +328,18 @@ fn normalised(s: &Snapshot) -> Option<(f64, f64)> {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum QuizError {
     /// No lesson has this id.
-    #[error("no lesson '{0}': `ppo-tutor lessons` lists the ids (for example 'gae')")]
+    #[error("{}", crate::tr!(
+        "no lesson '{0}': `ppo-tutor lessons` lists the ids (for example 'gae')",
+        "没有 '{0}' 这一课：`ppo-tutor lessons` 会列出各课的 id（例如 'gae'）",
+        .0
+    ))]
     UnknownLesson(String),
     /// The lesson has no question with this number.
-    #[error("lesson '{lesson}' has questions 1 to {count}; there is no question {number}")]
+    #[error("{}", crate::tr!(
+        "lesson '{lesson}' has questions 1 to {count}; there is no question {number}",
+        "'{lesson}' 这一课的题号是 1 到 {count}，没有第 {number} 题",
+        lesson = lesson, count = count, number = number
+    ))]
     NoSuchQuestion {
         /// The lesson id.
         lesson: String,
@@ -590,21 +634,32 @@ impl Question {
         } = &self.kind
         else {
             return Verdict::unanswered(
-                "This question asks for a number: answer it with quiz::predict.".into(),
+                t(
+                    "This question asks for a number: answer it with quiz::predict.",
+                    "这道题要一个数：请用 quiz::predict 作答。",
+                )
+                .into(),
             );
         };
         let last = letter_of(choices.len() - 1);
         let Some(index) = letter_index(&letter.to_string()).filter(|&i| i < choices.len()) else {
-            return Verdict::unanswered(format!(
-                "Not answered yet: put your choice (a to {last}) in place of '{letter}' and run it again."
+            return Verdict::unanswered(tr!(
+                "Not answered yet: put your choice (a to {last}) in place of '{letter}' and run it again.",
+                "还没有作答：把 '{letter}' 换成你的选择（a 到 {last}），再运行一次。"
             ));
         };
         let right = index == *answer;
         let mut text = if right {
-            format!("✓ Right: {}) {}", letter_of(index), choices[index])
+            tr!(
+                "✓ Right: {}) {}",
+                "✓ 答对了：{}) {}",
+                letter_of(index),
+                choices[index]
+            )
         } else {
-            format!(
+            tr!(
                 "✗ Not {}). The answer is {}) {}",
+                "✗ 不是 {}）。正确答案是 {}) {}",
                 letter_of(index),
                 letter_of(*answer),
                 choices[*answer]
@@ -632,24 +687,40 @@ impl Question {
         } = &self.kind
         else {
             return Verdict::unanswered(
-                "This is a multiple-choice question: answer it with quiz::answer.".into(),
+                t(
+                    "This is a multiple-choice question: answer it with quiz::answer.",
+                    "这是一道选择题：请用 quiz::answer 作答。",
+                )
+                .into(),
             );
         };
         if !value.is_finite() {
-            return Verdict::unanswered("Not answered yet: predict a finite number.".into());
+            return Verdict::unanswered(
+                t(
+                    "Not answered yet: predict a finite number.",
+                    "还没有作答：请预测一个有限的数。",
+                )
+                .into(),
+            );
         }
         let Some(live) = (measure.value)(snapshot) else {
-            return Verdict::unanswered(format!(
+            return Verdict::unanswered(tr!(
                 "The live value ({}) does not exist yet: train at least one episode first.",
-                measure.about
+                "实时数值（{}）还不存在：请先至少训练一个回合。",
+                measure.describe()
             ));
         };
         let right = (value - live).abs() <= *tolerance;
-        let mark = if right { "✓ Right" } else { "✗ Not quite" };
-        let text = format!(
+        let mark = if right {
+            t("✓ Right", "✓ 答对了")
+        } else {
+            t("✗ Not quite", "✗ 不太对")
+        };
+        let text = tr!(
             "{mark}: you said {value}, the live value is {} ({}; within ±{tolerance} counts).\n\n{explain}",
+            "{mark}：你的预测是 {value}，实时数值是 {}（{}；相差不超过 ±{tolerance} 即算对）。\n\n{explain}",
             show(live),
-            measure.about
+            measure.describe()
         );
         Verdict {
             answered: true,
@@ -696,7 +767,7 @@ pub fn answer(lesson: &str, number: usize, letter: char) -> Verdict {
 
 /// `verdict` with the question's number in front, so that answers read apart in a notebook.
 fn numbered(number: usize, mut verdict: Verdict) -> Verdict {
-    verdict.text = format!("Question {number}: {}", verdict.text);
+    verdict.text = tr!("Question {number}: {}", "第 {number} 题：{}", verdict.text);
     verdict
 }
 
@@ -713,8 +784,9 @@ pub fn predict(lesson: &str, number: usize, value: &str, snapshot: &Snapshot) ->
         number,
         match value.trim().parse::<f64>() {
             Ok(v) => q.predict(v, snapshot),
-            Err(_) => Verdict::unanswered(format!(
-                "Not answered yet: put your prediction (a number, like \"0.5\") in place of \"{value}\" and run it again."
+            Err(_) => Verdict::unanswered(tr!(
+                "Not answered yet: put your prediction (a number, like \"0.5\") in place of \"{value}\" and run it again.",
+                "还没有作答：把 \"{value}\" 换成你的预测（一个数，例如 \"0.5\"），再运行一次。"
             )),
         },
     )

@@ -34,8 +34,10 @@ use std::path::Path;
 
 use crate::grade::prose::Prose;
 use crate::grade::{Backend, Exercise};
+use crate::i18n::{Lang, t};
 use crate::lesson::face::Face;
 use crate::lesson::{Course, Lesson};
+use crate::tr;
 
 /// The command that regenerates the notebooks (sources and outputs), run in the repository.
 pub const REGENERATE: &str = "cargo run --features notebook-runner -- dev notebooks";
@@ -50,18 +52,48 @@ pub const DEP_CELL: &str =
 /// The first cell of `lesson`'s notebook: [`DEP_CELL`], with the lesson's exercises
 /// (feature `exercises-NN`) when it has any, so that a notebook compiles only the graders
 /// it calls.
+///
+/// A Chinese notebook (in `notebooks/zh/`, current language [`Lang::Zh`]) first sets its
+/// kernel's language: evcxr links the crate into every cell anew, so the library reads it
+/// from `PPO_TUTOR_LANG`, which `:env` sets for the runtime that `:restart` starts.
 #[must_use]
 pub fn dep_cell(lesson: &Lesson) -> String {
-    if lesson.exercise.is_none() {
-        return DEP_CELL.to_string();
+    let mut cell = DEP_CELL.to_string();
+    if lesson.exercise.is_some() {
+        cell = cell.replace(
+            "default-features = false }",
+            &format!(
+                "default-features = false, features = [\"exercises-{:02}\"] }}",
+                lesson.order
+            ),
+        );
     }
-    DEP_CELL.replace(
-        "default-features = false }",
-        &format!(
-            "default-features = false, features = [\"exercises-{:02}\"] }}",
-            lesson.order
+    match Lang::current() {
+        Lang::En => cell,
+        Lang::Zh => format!(
+            ":env PPO_TUTOR_LANG=zh\n:restart\n{}",
+            cell.replace("path = \"..\"", "path = \"../..\"")
         ),
-    )
+    }
+}
+
+/// Where the current language's notebooks are, relative to the repository:
+/// `notebooks` (English) or `notebooks/zh`.
+#[must_use]
+pub fn notebook_dir() -> &'static str {
+    Lang::current().pick("notebooks", "notebooks/zh")
+}
+
+/// Where the current language's recipes are: `notebooks/src` or `notebooks/src/zh`.
+#[must_use]
+pub fn recipe_dir() -> &'static str {
+    Lang::current().pick("notebooks/src", "notebooks/src/zh")
+}
+
+/// The current language's notebook of lesson folder `folder`, e.g. `notebooks/zh/07-td-target.ipynb`.
+#[must_use]
+pub fn notebook_file(folder: &str) -> String {
+    format!("{}/{folder}.ipynb", notebook_dir())
 }
 
 /// One cell of a generated notebook.
@@ -189,7 +221,7 @@ pub fn folder(lesson: &Lesson) -> String {
 /// [`BuildError::Recipes`] listing both sides, or [`BuildError::Read`].
 pub fn recipe_folders(root: &Path, course: &Course) -> Result<Vec<String>, BuildError> {
     let lessons: Vec<String> = course.lessons.iter().map(folder).collect();
-    let recipes = stems(root, "notebooks/src", ".rs")?;
+    let recipes = stems(root, recipe_dir(), ".rs")?;
     if recipes != lessons {
         return Err(BuildError::Recipes { lessons, recipes });
     }
@@ -229,7 +261,7 @@ fn read(root: &Path, path: &str) -> Result<String, BuildError> {
 /// # Errors
 /// See [`cells_from_recipe`]; also [`BuildError::Read`] for the recipe.
 pub fn notebook_cells(root: &Path, lesson: &Lesson) -> Result<Vec<Cell>, BuildError> {
-    let file = format!("notebooks/src/{}.rs", folder(lesson));
+    let file = format!("{}/{}.rs", recipe_dir(), folder(lesson));
     let recipe = read(root, &file)?;
     cells_from_recipe(lesson, &recipe, &file, root)
 }
@@ -257,6 +289,15 @@ pub fn cells_from_recipe(
     let mut pending_show: Option<usize> = None;
     let mut shown = Shown::default();
     let mut exercise_done = false;
+    // Recipes name steps by their English titles, in either language.
+    let english: Vec<String> = match Lang::current() {
+        Lang::En => lesson.steps.iter().map(|s| s.title.clone()).collect(),
+        Lang::Zh => Course::embedded_in(Lang::En)
+            .ok()
+            .and_then(|c| c.get(&lesson.id).cloned())
+            .map(|l| l.steps.into_iter().map(|s| s.title).collect())
+            .unwrap_or_default(),
+    };
     for piece in parse_recipe(recipe) {
         match piece {
             Piece::Code(code) => {
@@ -266,17 +307,17 @@ pub fn cells_from_recipe(
                 cells.push(Cell::Code(code));
             }
             Piece::Step(title) => {
-                let Some(step) = lesson.steps.get(next_step) else {
+                let Some(step_title) = english.get(next_step) else {
                     return Err(BuildError::ExtraStep {
                         file: file.to_string(),
                         title,
                     });
                 };
-                if step.title != title {
+                if *step_title != title {
                     return Err(BuildError::WrongStep {
                         file: file.to_string(),
                         index: next_step + 1,
-                        lesson: step.title.clone(),
+                        lesson: step_title.clone(),
                         recipe: title,
                     });
                 }
@@ -304,10 +345,7 @@ pub fn cells_from_recipe(
             file: file.to_string(),
             covered: next_step,
             total: lesson.steps.len(),
-            next: lesson
-                .steps
-                .get(next_step)
-                .map_or_else(String::new, |s| s.title.clone()),
+            next: english.get(next_step).cloned().unwrap_or_default(),
         });
     }
     if lesson.exercise.is_some() && !exercise_done {
@@ -330,17 +368,26 @@ pub fn quiz_cells(lesson: &Lesson) -> Vec<Cell> {
     }
     let mut cells = vec![
         Cell::Markdown(
-            "## Check your understanding\n\nAnswer each question in the code cell below it: \
-             replace `'?'` with the letter of your choice, or `\"?\"` with your prediction \
-             (a number), and run the cell. A prediction is graded against the live value of \
-             this notebook's agent (`snap`), shown only once you have answered."
-                .to_string(),
+            t(
+                "## Check your understanding\n\nAnswer each question in the code cell below it: \
+                 replace `'?'` with the letter of your choice, or `\"?\"` with your prediction \
+                 (a number), and run the cell. A prediction is graded against the live value of \
+                 this notebook's agent (`snap`), shown only once you have answered.",
+                "## 小测验：检验你的理解\n\n在每道题下面的代码单元格里作答：把 `'?'` 换成你选的字母，\
+                 或把 `\"?\"` 换成你预测的数（一个数字），然后运行单元格。预测题对照本笔记本中智能体\
+                 （`snap`）的实时数值评分，实时数值只在你作答之后才显示。",
+            )
+            .to_string(),
         ),
         Cell::Code("use ppo_tutor::lesson::quiz;".to_string()),
     ];
     for (i, question) in lesson.quiz.iter().enumerate() {
         let n = i + 1;
-        let mut text = format!("**Question {n}.** {}", question.prompt);
+        let mut text = tr!(
+            "**Question {n}.** {}",
+            "**第 {n} 题。** {}",
+            question.prompt
+        );
         let code = match &question.kind {
             QuestionKind::Choice { choices, .. } => {
                 text.push('\n');
@@ -350,10 +397,10 @@ pub fn quiz_cells(lesson: &Lesson) -> Vec<Cell> {
                 format!("quiz::answer(\"{}\", {n}, '?')", lesson.id)
             }
             QuestionKind::Predict { tolerance, .. } => {
-                let _ = write!(
-                    text,
-                    "\n\n(An answer within ±{tolerance} of the live value counts.)"
-                );
+                text.push_str(&tr!(
+                    "\n\n(An answer within ±{tolerance} of the live value counts.)",
+                    "\n\n（与实时数值相差不超过 ±{tolerance} 即算答对。）"
+                ));
                 format!("quiz::predict(\"{}\", {n}, \"?\", &snap)", lesson.id)
             }
         };
@@ -408,18 +455,29 @@ fn parse_recipe(text: &str) -> Vec<Piece> {
 
 /// The notebook's first cell.
 fn title_markdown(lesson: &Lesson) -> String {
-    let engine = match lesson.env {
-        crate::lesson::Environment::CartPole => "the real PPO and CartPole",
-        crate::lesson::Environment::Pendulum => "the real PPOContinuous and Pendulum",
+    let (engine, engine_zh) = match lesson.env {
+        crate::lesson::Environment::CartPole => {
+            ("the real PPO and CartPole", "真实的 PPO 和 CartPole")
+        }
+        crate::lesson::Environment::Pendulum => (
+            "the real PPOContinuous and Pendulum",
+            "真实的 PPOContinuous 和 Pendulum",
+        ),
     };
-    format!(
-        "# Lesson {}: {}\n\n{}\n\nThis notebook mirrors lesson {} of the terminal app \
+    tr!(
+        "# Lesson {n}: {title}\n\n{summary}\n\nThis notebook mirrors lesson {n} of the terminal app \
          (`cargo run --release`), on the [evcxr](https://github.com/evcxr/evcxr) Rust \
          kernel. Every number below comes from {engine} of the `ppo-tutor` crate. The \
          first cell compiles the crate: the very first time, with candle, in a few \
          minutes; in later kernels, once evcxr's cache (`:cache`) holds candle, in under \
          a minute. After that each cell takes a second or two.",
-        lesson.order, lesson.title, lesson.summary, lesson.order
+        "# 第 {n} 课：{title}\n\n{summary}\n\n本笔记本对应终端应用（`cargo run --release`）的第 {n} 课，\
+         运行在 [evcxr](https://github.com/evcxr/evcxr) Rust 内核上。下面的每个数都来自 \
+         `ppo-tutor` 库中{engine_zh}。第一个单元格会编译这个库：第一次连同 candle 一起编译，需要几分钟；\
+         之后的内核里，evcxr 的缓存（`:cache`）已存有 candle，不到一分钟即可完成。此后每个单元格只需一两秒。",
+        n = lesson.order,
+        title = lesson.title,
+        summary = lesson.summary,
     )
 }
 
@@ -434,10 +492,15 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
         step.text(Face::Notebook)
     );
     if !step.python.is_empty() {
+        let source = match (Lang::current(), lesson.env) {
+            (Lang::En, _) => format!("The {}", lesson.env.python_source()),
+            (Lang::Zh, crate::lesson::Environment::CartPole) => "原教程代码".to_string(),
+            (Lang::Zh, crate::lesson::Environment::Pendulum) => "书中代码".to_string(),
+        };
         let _ = write!(
             md,
-            "\n**The {} (PyTorch):**\n\n```python\n{}\n```\n",
-            lesson.env.python_source(),
+            "\n**{source} (PyTorch){}**\n\n```python\n{}\n```\n",
+            t(":", "："),
             step.python.trim()
         );
     }
@@ -447,7 +510,8 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
     {
         let _ = write!(
             md,
-            "\n**ppo-tutor (`src/{path}`):**\n\n```rust\n{}\n```\n",
+            "\n**ppo-tutor (`src/{path}`){}**\n\n```rust\n{}\n```\n",
+            t(":", "："),
             code.trim_end()
         );
     }
@@ -456,6 +520,12 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
 
 /// The comment that opens a cell of a step's live values.
 pub const LIVE_VALUES: &str = "// This step's live values, from the training run `snap`:";
+
+/// [`LIVE_VALUES`] in the current language.
+#[must_use]
+pub fn live_values_comment() -> &'static str {
+    t(LIVE_VALUES, "// 本节的实时数值，来自训练运行 `snap`：")
+}
 
 /// What a notebook has shown of its snapshot `snap` so far: live values by name, views
 /// (`plot`, `cartpole`, `clip_chart`) by name, experiments as `lab:NAME`.
@@ -488,7 +558,8 @@ fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
     let mut cells = Vec::new();
     if !tensors.is_empty() {
         cells.push(Cell::Code(format!(
-            "{LIVE_VALUES}\nsnap.show(&[{}])",
+            "{}\nsnap.show(&[{}])",
+            live_values_comment(),
             tensors.join(", ")
         )));
     }
@@ -501,8 +572,9 @@ fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
             continue;
         }
         match view.as_str() {
-            "plot" => cells.push(Cell::Code(format!(
+            "plot" => cells.push(Cell::Code(tr!(
                 "snap.return_plot(\"PPO on {}\")?",
+                "snap.return_plot(\"{} 上的 PPO\")?",
                 lesson.env.as_str()
             ))),
             "pendulum" => cells.push(Cell::Code("snap.pendulum()".to_string())),
@@ -510,9 +582,13 @@ fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
             "clip_chart" => cells.push(Cell::Code("snap.clip_chart()".to_string())),
             "lab" => {
                 if let Some(e) = step.lab {
-                    cells.push(Cell::Code(format!(
+                    cells.push(Cell::Code(tr!(
                         "// This step's experiment, as `ppo-tutor lab {name}` runs it in a terminal:\n\
                          // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.\n\
+                         let lab = ppo_tutor::notebook::lab({name:?}, &[0, 1, 2, 3, 4], LAB_EPISODES)?;\n\
+                         lab",
+                        "// 本节的实验，与终端里 `ppo-tutor lab {name}` 的运行方式相同：\n\
+                         // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。\n\
                          let lab = ppo_tutor::notebook::lab({name:?}, &[0, 1, 2, 3, 4], LAB_EPISODES)?;\n\
                          lab",
                         name = e.name()
@@ -523,6 +599,15 @@ fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
         }
     }
     cells
+}
+
+/// The starter `name` of lesson folder `dir` in the current language (`exercise.zh.rs`
+/// beside `exercise.rs`).
+fn starter_file(dir: &str, name: &str) -> String {
+    match (Lang::current(), name.strip_suffix(".rs")) {
+        (Lang::Zh, Some(stem)) => format!("{dir}/{stem}.zh.rs"),
+        _ => format!("{dir}/{name}"),
+    }
 }
 
 /// A lesson's Rust file as a cell: the file without its `//!` header.
@@ -587,8 +672,9 @@ fn intro(ex: &dyn Exercise) -> Result<String, BuildError> {
             lesson: m.lesson.to_string(),
             name: m.name.to_string(),
         })?;
-    Ok(format!(
+    Ok(tr!(
         "### The same on candle tensors: `{}`\n\n{text}\n",
+        "### 同样的计算，用 candle 张量：`{}`\n\n{text}\n",
         m.name
     ))
 }
@@ -603,15 +689,25 @@ fn exercise_cells(lesson: &Lesson, file: &str, root: &Path) -> Result<Vec<Cell>,
     };
     let (shared, own) = by_starter(registered(lesson, file)?);
     let list: Vec<String> = ex.names().iter().map(|n| format!("`{n}`")).collect();
-    let mut md = format!("## Exercise: {}\n\n", list.join(" and "));
-    md.push_str(
+    let mut md = tr!(
+        "## Exercise: {}\n\n",
+        "## 练习：{}\n\n",
+        list.join(t(" and ", " 和 "))
+    );
+    md.push_str(t(
         "Replace each `todo!()` in the next cell with your code and run it; the cell after it \
          grades your function with the same checks, hints and messages as \
          `ppo-tutor grade` in a terminal. A function that never returns cannot be \
          interrupted: the grader reports it after 10 s, then restart the kernel.\n",
-    );
+        "把下一个单元格里的每个 `todo!()` 换成你的代码并运行；再下一个单元格会给你的函数评分，\
+         检查项、提示和消息都与终端里的 `ppo-tutor grade` 相同。永不返回的函数无法中断：\
+         评分器会在 10 s 后报告它，之后请重启内核。\n",
+    ));
     if !ex.hints.is_empty() {
-        md.push_str("\n<details><summary>Hints</summary>\n\n");
+        md.push_str(t(
+            "\n<details><summary>Hints</summary>\n\n",
+            "\n<details><summary>提示</summary>\n\n",
+        ));
         for (i, h) in ex.hints.iter().enumerate() {
             let _ = writeln!(md, "{}. {h}", i + 1);
         }
@@ -620,7 +716,7 @@ fn exercise_cells(lesson: &Lesson, file: &str, root: &Path) -> Result<Vec<Cell>,
     let dir = format!("lessons/{}", folder(lesson));
     let mut cells = vec![Cell::Markdown(md)];
     if let Some(first) = shared.first() {
-        let starter = read(root, &format!("{dir}/{}", first.meta().starter))?;
+        let starter = read(root, &starter_file(&dir, first.meta().starter))?;
         cells.push(Cell::Code(without_header(&starter)));
     }
     for ex in &shared {
@@ -628,7 +724,7 @@ fn exercise_cells(lesson: &Lesson, file: &str, root: &Path) -> Result<Vec<Cell>,
     }
     for ex in &own {
         cells.push(Cell::Markdown(intro(*ex)?));
-        let starter = read(root, &format!("{dir}/{}", ex.meta().starter))?;
+        let starter = read(root, &starter_file(&dir, ex.meta().starter))?;
         cells.push(Cell::Code(candle_cell(&starter)));
         cells.push(Cell::Code(grade_cell(ex.name())));
     }

@@ -168,6 +168,24 @@ impl Kernel {
         })
     }
 
+    /// Starts a context for a notebook in folder `dir` (the folder Jupyter would run it
+    /// in, which its `:dep` path is relative to) whose runtime process speaks `lang`
+    /// (`PPO_TUTOR_LANG`, which the library reads in every cell), whatever an earlier
+    /// notebook in this process set.
+    ///
+    /// # Errors
+    /// [`KernelError::Io`] if `dir` cannot be entered, as [`Kernel::start`], or evcxr's
+    /// failure to restart its runtime.
+    pub fn start_in(lang: crate::i18n::Lang, dir: &Path) -> Result<Self, KernelError> {
+        std::env::set_current_dir(dir).map_err(|source| KernelError::Io {
+            what: format!("entering {}", dir.display()),
+            source,
+        })?;
+        let mut kernel = Self::start()?;
+        kernel.run(&format!(":env PPO_TUTOR_LANG={}\n:restart", lang.code()))?;
+        Ok(kernel)
+    }
+
     /// Runs one cell (code or `:` command) and returns what it printed.
     ///
     /// # Errors

@@ -21,6 +21,8 @@
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
 
+use crate::i18n::{pad_left, pad_right, t};
+use crate::tr;
 use serde::Serialize;
 
 use super::config::{Algorithm, PpoConfig};
@@ -89,11 +91,26 @@ impl Experiment {
     #[must_use]
     pub fn question(self) -> &'static str {
         match self {
-            Self::Eps => "What does the clip range do, and what happens without a clip?",
-            Self::Epochs => "How many passes over one episode help, and when do they hurt?",
-            Self::ActorLr => "What does a ten times larger actor step do to PPO?",
-            Self::TargetKl => "Can early stopping rescue too many epochs?",
-            Self::Reinforce => "What do the ratio, the clip and the epochs buy over REINFORCE?",
+            Self::Eps => t(
+                "What does the clip range do, and what happens without a clip?",
+                "截断范围起什么作用？不截断又会怎样？",
+            ),
+            Self::Epochs => t(
+                "How many passes over one episode help, and when do they hurt?",
+                "在一个回合的数据上训练几轮有帮助？什么时候反而有害？",
+            ),
+            Self::ActorLr => t(
+                "What does a ten times larger actor step do to PPO?",
+                "策略网络的步长放大十倍，PPO 会怎样？",
+            ),
+            Self::TargetKl => t(
+                "Can early stopping rescue too many epochs?",
+                "提前停止能挽救轮数过多的训练吗？",
+            ),
+            Self::Reinforce => t(
+                "What do the ratio, the clip and the epochs buy over REINFORCE?",
+                "与 REINFORCE 相比，比率、截断和多轮训练带来了什么？",
+            ),
         }
     }
 
@@ -111,12 +128,12 @@ impl Experiment {
             Self::Eps => vec![
                 first(format!("ε = {}", base.eps)),
                 arm("ε = 0.05".into(), with(&|c| c.eps = 0.05)),
-                arm("no clip".into(), with(&|c| c.no_clip = true)),
+                arm(t("no clip", "不截断").into(), with(&|c| c.no_clip = true)),
             ],
             Self::Epochs => vec![
-                first(format!("{} epochs", base.epochs)),
-                arm("1 epoch".into(), with(&|c| c.epochs = 1)),
-                arm("40 epochs".into(), with(&|c| c.epochs = 40)),
+                first(tr!("{} epochs", "{} 轮", base.epochs)),
+                arm(t("1 epoch", "1 轮").into(), with(&|c| c.epochs = 1)),
+                arm(t("40 epochs", "40 轮").into(), with(&|c| c.epochs = 40)),
             ],
             Self::ActorLr => vec![
                 first(format!("actor_lr = {:.0e}", base.actor_lr)),
@@ -126,10 +143,10 @@ impl Experiment {
                 ),
             ],
             Self::TargetKl => vec![
-                first(format!("{} epochs", base.epochs)),
-                arm("40 epochs".into(), with(&|c| c.epochs = 40)),
+                first(tr!("{} epochs", "{} 轮", base.epochs)),
+                arm(t("40 epochs", "40 轮").into(), with(&|c| c.epochs = 40)),
                 arm(
-                    "40 epochs, target_kl = 0.01".into(),
+                    t("40 epochs, target_kl = 0.01", "40 轮，target_kl = 0.01").into(),
                     with(&|c| {
                         c.epochs = 40;
                         c.target_kl = Some(0.01);
@@ -139,7 +156,7 @@ impl Experiment {
             Self::Reinforce => vec![
                 first("PPO".into()),
                 arm(
-                    "REINFORCE + baseline".into(),
+                    t("REINFORCE + baseline", "REINFORCE + 基线").into(),
                     with(&|c| c.algorithm = Algorithm::Reinforce),
                 ),
             ],
@@ -252,11 +269,12 @@ impl ArmResult {
     pub fn summary(&self) -> String {
         let (mean, std) = self.final_mean_std();
         let reach = self.first_reaching(400.0).map_or_else(
-            || "never reaches 400".to_string(),
-            |e| format!("reaches 400 at episode {e}"),
+            || t("never reaches 400", "始终没有达到 400").to_string(),
+            |e| tr!("reaches 400 at episode {e}", "在第 {e} 回合达到 400"),
         );
-        format!(
+        tr!(
             "{}: {mean:.1} ± {std:.1}, worst seed {:.1}; its mean curve {reach}",
+            "{}：{mean:.1} ± {std:.1}，最差的随机种子 {:.1}；均值曲线{reach}",
             self.label,
             self.worst_final()
         )
@@ -282,20 +300,26 @@ impl LabResult {
     #[must_use]
     pub fn table(&self) -> Vec<String> {
         let mut lines = vec![format!(
-            "{:<30} {:>15} {:>9} {:>9} {:>8} {:>6}",
-            format!("setting (last {LAST} returns)"),
-            "mean ± std",
+            "{} {} {:>9} {} {:>8} {}",
+            pad_right(
+                &tr!(
+                    "setting (last {LAST} returns)",
+                    "设置（最后 {LAST} 个回报）"
+                ),
+                30
+            ),
+            pad_left(t("mean ± std", "均值 ± 标准差"), 15),
             "approx_kl",
-            "clip frac",
+            pad_left(t("clip frac", "截断比例"), 9),
             "max|r−1|",
-            "epochs"
+            pad_left(t("epochs", "轮数"), 6)
         )];
         for arm in &self.arms {
             let (mean, std) = arm.final_mean_std();
             let u = arm.mean_updates();
             lines.push(format!(
-                "{:<30} {:>15} {:>9.4} {:>9.3} {:>8.3} {:>6.1}",
-                arm.label,
+                "{} {:>15} {:>9.4} {:>9.3} {:>8.3} {:>6.1}",
+                pad_right(&arm.label, 30),
                 format!("{mean:.1} ± {std:.1}"),
                 u.approx_kl,
                 u.clip_fraction,
