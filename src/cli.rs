@@ -109,23 +109,7 @@ pub(crate) fn episodes_bar(
     )
 }
 
-/// How many terminal columns `text` takes (a Chinese character takes two).
-#[must_use]
-pub fn width(text: &str) -> usize {
-    ratatui::text::Span::raw(text).width()
-}
-
-/// `text` followed by spaces up to `columns` terminal columns (`{:<n}` by width).
-#[must_use]
-pub fn pad(text: &str, columns: usize) -> String {
-    format!("{text}{}", " ".repeat(columns.saturating_sub(width(text))))
-}
-
-/// `text` after spaces up to `columns` terminal columns (`{:>n}` by width).
-#[must_use]
-pub fn pad_left(text: &str, columns: usize) -> String {
-    format!("{}{text}", " ".repeat(columns.saturating_sub(width(text))))
-}
+pub use crate::i18n::{pad_left, pad_right as pad, width};
 
 /// ` (see --help)` in the current language, after a usage error.
 #[must_use]

@@ -4,17 +4,8 @@ use std::process::{Command, Output};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
-/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
-/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
-/// English tests read).
-fn english() -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    cmd.env("PPO_TUTOR_LANG", "en")
-        .env_remove("LC_ALL")
-        .env_remove("LC_MESSAGES")
-        .env("LANG", "C.UTF-8");
-    cmd
-}
+mod common;
+use common::english;
 
 /// The binary with no language setting at all but `env` (the locale variables and
 /// `PPO_TUTOR_LANG` are removed first).

@@ -4,7 +4,7 @@
 //! Reference data: `tests/fixtures/pendulum_gymnasium.json` (Gymnasium 1.4.0
 //! `Pendulum-v1`, numpy 2.4.6; see `tests/parity_pendulum.rs`).
 
-use std::process::{Command, Output};
+use std::process::Output;
 
 use ppo_tutor::env::PendulumTrajectory;
 use serde::Deserialize;
@@ -24,17 +24,8 @@ fn fixture() -> Result<Fixture, Box<dyn std::error::Error>> {
     Ok(serde_json::from_str(&std::fs::read_to_string(path)?)?)
 }
 
-/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
-/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
-/// English tests read).
-fn english() -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    cmd.env("PPO_TUTOR_LANG", "en")
-        .env_remove("LC_ALL")
-        .env_remove("LC_MESSAGES")
-        .env("LANG", "C.UTF-8");
-    cmd
-}
+mod common;
+use common::english;
 
 fn run(args: &[&str]) -> std::io::Result<Output> {
     run_env(args, &[])

@@ -5,7 +5,7 @@
 use std::collections::BTreeSet;
 use std::io::Read;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use portable_pty::{CommandBuilder, PtySize, native_pty_system};
 use serde_json::Value;
@@ -29,17 +29,8 @@ const PYTORCH_NAMES: [&str; 10] = [
     "critic.fc2.weight",
 ];
 
-/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
-/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
-/// English tests read).
-fn english() -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    cmd.env("PPO_TUTOR_LANG", "en")
-        .env_remove("LC_ALL")
-        .env_remove("LC_MESSAGES")
-        .env("LANG", "C.UTF-8");
-    cmd
-}
+mod common;
+use common::english;
 
 fn ppo_tutor(args: &[&str]) -> Result<Output, std::io::Error> {
     english().args(args).output()

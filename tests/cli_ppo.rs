@@ -1,7 +1,7 @@
 //! `ppo-tutor train`, `replay` and `play` as a user runs them, including bad input.
 
 use std::collections::HashMap;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use candle_core::{Device, Tensor};
 use serde_json::Value;
@@ -13,17 +13,8 @@ const FIXTURE: &str = concat!(
     "/tests/fixtures/ppo_update_pytorch.json"
 );
 
-/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
-/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
-/// English tests read).
-fn english() -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    cmd.env("PPO_TUTOR_LANG", "en")
-        .env_remove("LC_ALL")
-        .env_remove("LC_MESSAGES")
-        .env("LANG", "C.UTF-8");
-    cmd
-}
+mod common;
+use common::english;
 
 fn ppo_tutor(args: &[&str]) -> Result<Output, std::io::Error> {
     english().args(args).output()

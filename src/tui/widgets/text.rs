@@ -176,23 +176,7 @@ fn inline(text: &str, theme: Theme) -> Vec<Span<'static>> {
     spans
 }
 
-/// The columns `s` takes on a terminal (a CJK character takes two, a combining mark none).
-#[must_use]
-pub fn width(s: &str) -> usize {
-    Span::raw(s).width()
-}
-
-/// `s` padded with spaces on the right to `columns` display columns (unchanged if wider).
-#[must_use]
-pub fn pad_right(s: &str, columns: usize) -> String {
-    format!("{s}{}", " ".repeat(columns.saturating_sub(width(s))))
-}
-
-/// `s` padded with spaces on the left to `columns` display columns (unchanged if wider).
-#[must_use]
-pub fn pad_left(s: &str, columns: usize) -> String {
-    format!("{}{s}", " ".repeat(columns.saturating_sub(width(s))))
-}
+pub use crate::i18n::{pad_left, pad_right, width};
 
 /// `s` cut to at most `columns` display columns, never through a wide character.
 #[must_use]

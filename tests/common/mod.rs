@@ -1,0 +1,16 @@
+//! What the binary's tests share.
+
+use std::process::Command;
+
+/// The binary in English whatever the machine's locale: `PPO_TUTOR_LANG=en`, and no
+/// `LC_ALL`/`LC_MESSAGES`, `LANG=C.UTF-8` (a Chinese CI locale must not change what the
+/// English tests read).
+#[must_use]
+pub fn english() -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    cmd.env("PPO_TUTOR_LANG", "en")
+        .env_remove("LC_ALL")
+        .env_remove("LC_MESSAGES")
+        .env("LANG", "C.UTF-8");
+    cmd
+}
