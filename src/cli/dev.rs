@@ -129,15 +129,15 @@ mod runner {
         for lesson in &course.lessons {
             notebooks.push((build::folder(lesson), build::notebook_cells(root, lesson)?));
         }
+        // English in notebooks/, Chinese (`--lang zh`) in notebooks/zh/.
+        std::fs::create_dir_all(root.join(build::notebook_dir()))
+            .with_context(|| format!("creating {}", build::notebook_dir()))?;
         for (folder, cells) in &notebooks {
             if !args.lessons.is_empty() && !args.lessons.iter().any(|f| folder.contains(f.as_str()))
             {
                 continue;
             }
             let started = Instant::now();
-            // English in notebooks/, Chinese (`--lang zh`) in notebooks/zh/.
-            std::fs::create_dir_all(root.join(build::notebook_dir()))
-                .with_context(|| format!("creating {}", build::notebook_dir()))?;
             let name = build::notebook_file(folder);
             let outputs = Kernel::start_in(
                 crate::i18n::Lang::current(),
