@@ -24,9 +24,13 @@
 #[cfg(feature = "app")]
 pub mod build;
 #[cfg(feature = "app")]
+pub mod check;
+#[cfg(feature = "app")]
 pub mod ipynb;
 #[cfg(feature = "notebook-runner")]
 pub mod kernel;
+#[cfg(feature = "app")]
+pub mod native;
 
 use std::fmt::Write as _;
 
@@ -52,6 +56,22 @@ fn emit(mime: &str, content: &str) {
     println!("{}", block(mime, content));
 }
 
+/// What a notebook cell shows for a value of the library: its rich outputs, as
+/// `(mime type, content)` pairs in the order evcxr receives them. Each type's
+/// `evcxr_display` prints exactly these; the default test tier reads them directly
+/// (`tests/notebook_code.rs` runs every notebook's code without evcxr).
+pub trait Rich {
+    /// The outputs, at most one per mime type.
+    fn rich(&self) -> Vec<(&'static str, String)>;
+}
+
+/// Prints a value's rich outputs as evcxr's blocks (what `evcxr_display` does).
+fn emit_rich(value: &impl Rich) {
+    for (mime, content) in value.rich() {
+        emit(mime, &content);
+    }
+}
+
 /// An HTML fragment with a plain-text fallback; a notebook shows the HTML.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Html {
@@ -74,8 +94,16 @@ impl Html {
 
     /// evcxr's display hook: the HTML and its text fallback.
     pub fn evcxr_display(&self) {
-        emit("text/plain", &self.text);
-        emit("text/html", &self.html);
+        emit_rich(self);
+    }
+}
+
+impl Rich for Html {
+    fn rich(&self) -> Vec<(&'static str, String)> {
+        vec![
+            ("text/plain", self.text.clone()),
+            ("text/html", self.html.clone()),
+        ]
     }
 }
 
@@ -92,7 +120,13 @@ impl Svg {
 
     /// evcxr's display hook.
     pub fn evcxr_display(&self) {
-        emit("image/svg+xml", &self.0);
+        emit_rich(self);
+    }
+}
+
+impl Rich for Svg {
+    fn rich(&self) -> Vec<(&'static str, String)> {
+        vec![("image/svg+xml", self.0.clone())]
     }
 }
 
@@ -237,7 +271,13 @@ pub fn tensor_html(t: &TensorView) -> Html {
 impl TensorView {
     /// evcxr's display hook: the tensor as an HTML table.
     pub fn evcxr_display(&self) {
-        tensor_html(self).evcxr_display();
+        emit_rich(self);
+    }
+}
+
+impl Rich for TensorView {
+    fn rich(&self) -> Vec<(&'static str, String)> {
+        tensor_html(self).rich()
     }
 }
 
@@ -379,10 +419,17 @@ impl LabResult {
 
     /// evcxr's display hook: the table, then the figure.
     pub fn evcxr_display(&self) {
-        emit("text/plain", &self.table().join("\n"));
+        emit_rich(self);
+    }
+}
+
+impl Rich for LabResult {
+    fn rich(&self) -> Vec<(&'static str, String)> {
+        let mut out = vec![("text/plain", self.table().join("\n"))];
         if let Ok(svg) = self.plot() {
-            emit("image/svg+xml", svg.as_str());
+            out.push(("image/svg+xml", svg.0));
         }
+        out
     }
 }
 
@@ -463,7 +510,14 @@ pub fn report_html(report: &Report) -> Html {
 impl Report {
     /// evcxr's display hook: the report, marks coloured.
     pub fn evcxr_display(&self) {
-        report_html(self).evcxr_display();
+        emit_rich(self);
+    }
+}
+
+#[cfg(feature = "exercises")]
+impl Rich for Report {
+    fn rich(&self) -> Vec<(&'static str, String)> {
+        report_html(self).rich()
     }
 }
 

@@ -31,6 +31,16 @@ pub enum DevCommand {
                       then check the result with `cargo test --test notebooks`."
     )]
     Notebooks(NotebooksArgs),
+    /// Regenerate tests/notebook_code/ (every notebook's code as plain Rust) from the
+    /// lessons and notebooks/src/.
+    #[command(
+        long_about = "Regenerate tests/notebook_code/{en,zh}/ from the lessons and the recipes \
+                      in notebooks/src/: each notebook's code cells in order as one Rust \
+                      function, which `cargo test --test notebook_code` compiles against the \
+                      crate and runs without evcxr. Needs no feature; `dev notebooks` writes \
+                      them too. In the repository run:\n  cargo run -- dev notebook-code"
+    )]
+    NotebookCode,
 }
 
 /// Arguments of `dev notebooks`.
@@ -48,7 +58,29 @@ pub struct NotebooksArgs {
 pub fn run(args: &DevArgs) -> anyhow::Result<ExitCode> {
     match &args.command {
         DevCommand::Notebooks(args) => notebooks(args),
+        DevCommand::NotebookCode => notebook_code(),
     }
+}
+
+/// The checkout this binary was built from: its lessons are the embedded ones.
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+/// `dev notebook-code`: writes every notebook's code as plain Rust.
+fn notebook_code() -> anyhow::Result<ExitCode> {
+    let root = std::path::Path::new(ROOT);
+    if !root.join("notebooks").join("src").is_dir() {
+        anyhow::bail!(
+            "{} has no notebooks/src: run `{}` in a checkout of ppo-tutor",
+            root.display(),
+            crate::notebook::native::REGENERATE_CODE
+        );
+    }
+    let written = crate::notebook::native::write_all(root)?;
+    println!(
+        "wrote {} files in tests/notebook_code/; check them with `cargo test --test notebook_code`",
+        written.len()
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 /// The message for a build without the notebook runner.
@@ -88,9 +120,7 @@ mod runner {
     use crate::notebook::ipynb::{notebook_json, to_text};
     use crate::notebook::kernel::{self, Kernel};
 
-    /// The checkout this binary was built from: its lessons are the embedded ones, so its
-    /// recipes and notebooks are the ones to regenerate.
-    const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+    use super::ROOT;
 
     /// evcxr's work folder: `tmp/evcxr` in the target folder holding this binary
     /// (`target/debug/ppo-tutor`), the folder `tests/notebooks.rs` uses, so the kernel's
@@ -152,7 +182,13 @@ mod runner {
                 started.elapsed().as_secs_f64()
             );
         }
-        println!("check them with `cargo test --test notebooks`");
+        let written = crate::notebook::native::write_all(root)?;
+        println!(
+            "{} files of plain Rust in tests/notebook_code/; check them with \
+             `cargo test --test notebook_code` and \
+             `cargo test --features full-tests --test notebooks`",
+            written.len()
+        );
         Ok(ExitCode::SUCCESS)
     }
 }

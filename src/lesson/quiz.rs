@@ -604,10 +604,15 @@ impl Verdict {
 
     /// Shows the verdict as a notebook cell's output (the evcxr kernel calls this).
     pub fn evcxr_display(&self) {
-        println!(
-            "EVCXR_BEGIN_CONTENT text/plain\n{}\nEVCXR_END_CONTENT",
-            self.text
-        );
+        for (mime, content) in crate::notebook::Rich::rich(self) {
+            println!("EVCXR_BEGIN_CONTENT {mime}\n{content}\nEVCXR_END_CONTENT");
+        }
+    }
+}
+
+impl crate::notebook::Rich for Verdict {
+    fn rich(&self) -> Vec<(&'static str, String)> {
+        vec![("text/plain", self.text.clone())]
     }
 }
 

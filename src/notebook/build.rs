@@ -731,6 +731,25 @@ fn exercise_cells(lesson: &Lesson, file: &str, root: &Path) -> Result<Vec<Cell>,
     Ok(cells)
 }
 
+/// The code cells of `lesson`'s exercise as its notebook shows them (starters and grading
+/// cells, in order); empty for a lesson without one.
+///
+/// # Errors
+/// As [`notebook_cells`].
+pub fn exercise_code_cells(root: &Path, lesson: &Lesson) -> Result<Vec<String>, BuildError> {
+    if lesson.exercise.is_none() {
+        return Ok(Vec::new());
+    }
+    let file = format!("{}/{}.rs", recipe_dir(), folder(lesson));
+    Ok(exercise_cells(lesson, &file, root)?
+        .into_iter()
+        .filter_map(|c| match c {
+            Cell::Code(code) => Some(code),
+            Cell::Markdown(_) => None,
+        })
+        .collect())
+}
+
 /// The code cells that define the reference solutions of `lesson`'s exercises (from
 /// `root/lessons/NN-slug/`), in the notebook's form; empty for a lesson without one. Run
 /// them, then each exercise's [`grade_cell`], to check that the solutions pass in a kernel.
