@@ -1,6 +1,10 @@
 //! The numbers the lessons quote, computed here. Each test runs the experiment a lesson
 //! describes and checks that the lesson's sentence states its result, so a change to the
 //! PPO or to the text that makes a claim false fails.
+//!
+//! The two long multi-seed tests (the clip lab's experiments, about 60 s; the entropy and
+//! gradient-clipping switches over five seeds, about 40 s) run in the full tier only:
+//! `cargo test --features full-tests`.
 
 use ppo_tutor::plot::smoothed_returns;
 use ppo_tutor::ppo::lab::{self, ArmResult, Experiment, LabResult};
@@ -227,6 +231,10 @@ fn late_falls(runs: &[SeedRun]) -> usize {
 /// Lesson 13: over seeds 0–4, neither the entropy bonus nor gradient-norm clipping helps the
 /// seed's update on CartPole.
 #[test]
+#[cfg_attr(
+    not(feature = "full-tests"),
+    ignore = "full tier (cargo test --features full-tests): 15 runs of 500 episodes, about 40 s"
+)]
 fn the_beyond_lesson_states_what_the_switches_do_over_five_seeds() -> TestResult {
     let entropy = five_seeds(&PpoConfig {
         entropy_coef: 0.01,
@@ -425,6 +433,10 @@ fn first_500(arm: &ArmResult) -> Vec<usize> {
 
 /// Lessons 4, 12 and 14 and the README: what every experiment of the clip lab shows.
 #[test]
+#[cfg_attr(
+    not(feature = "full-tests"),
+    ignore = "full tier (cargo test --features full-tests): every clip-lab experiment over its seeds, about 60 s"
+)]
 fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
     let labs = lab_runs()?;
     let get = |e: Experiment| labs.iter().find(|l| l.experiment == e).ok_or("missing lab");

@@ -358,6 +358,10 @@ fn compare_candle(file: &Path, f: LossesFn, mistake: Option<&str>) -> TestResult
 /// wrong answers get the file grader's diagnosis and text. About 4 s a grading in place
 /// (3 s of it training CartPole), and 2 s more to build each file for the comparison.
 #[test]
+#[cfg_attr(
+    not(feature = "full-tests"),
+    ignore = "full tier (cargo test --features full-tests): compiles candle for the grading project, about 4 minutes cold"
+)]
 fn the_candle_exercise_grades_in_place_like_from_a_file() -> TestResult {
     let started = std::time::Instant::now();
     let report = in_process::ppo_losses(sol11_candle::ppo_losses);

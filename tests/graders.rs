@@ -491,6 +491,10 @@ fn grade_candle(text: &str, limit: Duration) -> Result<Report, Box<dyn std::erro
 /// catalogued wrong answer fails naming its mistake, and compile errors, returned errors,
 /// non-scalar losses, panics and endless loops are reported.
 #[test]
+#[cfg_attr(
+    not(feature = "full-tests"),
+    ignore = "full tier (cargo test --features full-tests): compiles candle for the grading project, about 4 minutes cold"
+)]
 fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> TestResult {
     use grade::exercises::ppo_losses;
     let exercise = grade::find("ppo_losses")?;

@@ -101,6 +101,25 @@ pub fn is_driver() -> bool {
 /// # Errors
 /// [`KernelError::Io`] when `tmp` cannot be created or the driver cannot start.
 pub fn relaunch(root: &Path, tmp: &Path) -> Result<ExitStatus, KernelError> {
+    spawn_driver(root, tmp, &[])?
+        .wait()
+        .map_err(|source| KernelError::Io {
+            what: "waiting for the notebook driver".into(),
+            source,
+        })
+}
+
+/// Starts this binary again as a driver, as [`relaunch`] does, with the extra environment
+/// `envs`, and returns at once: `tests/notebooks.rs` runs one driver per language side by
+/// side, each with its own work folder `tmp`.
+///
+/// # Errors
+/// As [`relaunch`].
+pub fn spawn_driver(
+    root: &Path,
+    tmp: &Path,
+    envs: &[(&str, &str)],
+) -> Result<std::process::Child, KernelError> {
     let io = |what: String| move |source| KernelError::Io { what, source };
     std::fs::create_dir_all(tmp).map_err(io(format!("creating {}", tmp.display())))?;
     // Pin the kernel's dependency versions to ours (cargo keeps a lock file's versions).
@@ -118,8 +137,9 @@ pub fn relaunch(root: &Path, tmp: &Path) -> Result<ExitStatus, KernelError> {
         .env("XDG_CACHE_HOME", tmp.join("cache"))
         .env_remove("CARGO_TARGET_DIR")
         .env_remove("CARGO_BUILD_TARGET_DIR")
+        .envs(envs.iter().copied())
         .current_dir(root.join("notebooks"))
-        .status()
+        .spawn()
         .map_err(io(format!("starting the driver {}", exe.display())))
 }
 

@@ -4,7 +4,7 @@ use std::process::{Command, Output};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
-mod common;
+use crate::common;
 use common::english;
 
 /// The binary with no language setting at all but `env` (the locale variables and

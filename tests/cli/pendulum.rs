@@ -24,7 +24,7 @@ fn fixture() -> Result<Fixture, Box<dyn std::error::Error>> {
     Ok(serde_json::from_str(&std::fs::read_to_string(path)?)?)
 }
 
-mod common;
+use crate::common;
 use common::english;
 
 fn run(args: &[&str]) -> std::io::Result<Output> {

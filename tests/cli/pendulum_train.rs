@@ -29,7 +29,7 @@ const PYTORCH_NAMES: [&str; 10] = [
     "critic.fc2.weight",
 ];
 
-mod common;
+use crate::common;
 use common::english;
 
 fn ppo_tutor(args: &[&str]) -> Result<Output, std::io::Error> {

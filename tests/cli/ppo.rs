@@ -13,7 +13,7 @@ const FIXTURE: &str = concat!(
     "/tests/fixtures/ppo_update_pytorch.json"
 );
 
-mod common;
+use crate::common;
 use common::english;
 
 fn ppo_tutor(args: &[&str]) -> Result<Output, std::io::Error> {

@@ -16,8 +16,8 @@ use serde_json::Value;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
-const PPO_FIXTURE: &str = include_str!("fixtures/ppo_update_pytorch.json");
-const MA_FIXTURE: &str = include_str!("fixtures/moving_average.json");
+const PPO_FIXTURE: &str = include_str!("../fixtures/ppo_update_pytorch.json");
+const MA_FIXTURE: &str = include_str!("../fixtures/moving_average.json");
 
 /// Flattens nested JSON lists of numbers.
 fn flat(v: &Value) -> Vec<f64> {

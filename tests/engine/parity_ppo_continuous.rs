@@ -34,7 +34,7 @@ const FIXTURE_PATH: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/tests/fixtures/ppo_continuous_update_pytorch.json"
 );
-const FIXTURE: &str = include_str!("fixtures/ppo_continuous_update_pytorch.json");
+const FIXTURE: &str = include_str!("../fixtures/ppo_continuous_update_pytorch.json");
 
 /// Flattens nested JSON lists of numbers.
 fn flat(v: &Value) -> Vec<f64> {

@@ -1,0 +1,10 @@
+//! The command line, run as a user runs it (the built binary), in one test binary: the
+//! lessons and exercise commands, training, replay and checkpoints of both agents, and
+//! their errors.
+
+mod common;
+
+mod commands;
+mod pendulum;
+mod pendulum_train;
+mod ppo;
