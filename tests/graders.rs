@@ -340,6 +340,11 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
         let (code, text) = ppo_tutor(d, &["reset", name])?;
         assert_eq!(code, 0, "{text}");
     }
+    // Grading the candle exercise's file compiles candle for its grading project (minutes,
+    // cold): its own test does that, in the full tier. Here its starter, just written, is
+    // taken away again, so the table shows it missing and nothing is compiled.
+    let (candle, _) = grade::starter("ppo_losses").ok_or("no candle starter")?;
+    std::fs::remove_file(d.join(candle))?;
     std::fs::copy(
         Path::new(ROOT).join("lessons/07-td-target/solution.rs"),
         d.join("lessons/07-td-target/exercise.rs"),
@@ -351,6 +356,10 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     let score = format!("score: 2/{} exercises pass", grade::exercise_names().len());
     assert!(text.contains(&score), "{text}");
     assert!(text.contains("not started (todo!() left)"), "{text}");
+    assert!(
+        text.contains("missing: ppo-tutor reset ppo_losses"),
+        "{text}"
+    );
     let state = std::fs::read_to_string(d.join("state.json"))?;
     assert!(
         state.contains("td_target") && state.contains("td_delta"),

@@ -28,7 +28,8 @@ pub enum DevCommand {
                       (the first run compiles ppo-tutor and candle inside it: several minutes).\n\n\
                       Needs the `notebook-runner` feature; in the repository run:\n  \
                       cargo run --features notebook-runner -- dev notebooks [LESSONS]...\n\
-                      then check the result with `cargo test --test notebooks`."
+                      then check the result with `cargo test --test notebook_code` and \
+                      `cargo test --features full-tests --test notebooks`."
     )]
     Notebooks(NotebooksArgs),
     /// Regenerate tests/notebook_code/ (every notebook's code as plain Rust) from the

@@ -4,6 +4,13 @@
 //! Editors save in different ways (write in place, or write a temporary file and rename it
 //! over the original), so the watcher watches each file's folder and reports the watched
 //! files that changed in it, once per burst of events ([`DEBOUNCE`]).
+//!
+//! The system reports reads too (opening a file is an event on Linux), and the grader reads
+//! the file it grades: a watcher that took every event for a save graded again and again
+//! with no save at all. A file counts as saved only when its content changed since it was
+//! last seen: its length and modification time are compared first (a `stat`, which is no
+//! event), then its content's hash, so a read, or a save that writes the same text, is not a
+//! save.
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -62,17 +69,18 @@ impl SaveWatcher {
     ) -> Result<Self, WatchError> {
         let files: Vec<PathBuf> = files.iter().map(|f| absolute(f)).collect();
         let wanted = files.clone();
+        let mut seen: Vec<Seen> = files.iter().map(|f| Seen::of(f)).collect();
         let mut debouncer = new_debouncer(DEBOUNCE, move |result: DebounceEventResult| {
             let Ok(events) = result else { return };
-            let mut saved: Vec<PathBuf> = wanted
-                .iter()
-                .filter(|f| {
-                    events
-                        .iter()
-                        .any(|e| e.kind == DebouncedEventKind::Any && same_file(&e.path, f))
-                })
-                .cloned()
-                .collect();
+            let mut saved: Vec<PathBuf> = Vec::new();
+            for (f, last) in wanted.iter().zip(seen.iter_mut()) {
+                let touched = events
+                    .iter()
+                    .any(|e| e.kind == DebouncedEventKind::Any && same_file(&e.path, f));
+                if touched && last.changed(f) {
+                    saved.push(f.clone());
+                }
+            }
             saved.dedup();
             if !saved.is_empty() {
                 on_save(saved);
@@ -110,6 +118,53 @@ impl SaveWatcher {
     #[must_use]
     pub fn files(&self) -> &[PathBuf] {
         &self.files
+    }
+}
+
+/// What the watcher last saw of a file: its length and modification time, and its
+/// content's hash (`None` while the file does not exist).
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct Seen {
+    stat: Option<(u64, Option<std::time::SystemTime>)>,
+    hash: Option<u64>,
+}
+
+impl Seen {
+    fn stat(path: &Path) -> Option<(u64, Option<std::time::SystemTime>)> {
+        let m = std::fs::metadata(path).ok()?;
+        Some((m.len(), m.modified().ok()))
+    }
+
+    fn hash(path: &Path) -> Option<u64> {
+        use std::hash::{Hash as _, Hasher as _};
+        let bytes = std::fs::read(path).ok()?;
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        bytes.hash(&mut h);
+        Some(h.finish())
+    }
+
+    fn of(path: &Path) -> Self {
+        Self {
+            stat: Self::stat(path),
+            hash: Self::hash(path),
+        }
+    }
+
+    /// Whether the file's content differs from what was last seen (a file that appeared or
+    /// disappeared changed); remembers what it sees now. A read changes nothing: the length
+    /// and time are the same, so the file is not even read.
+    fn changed(&mut self, path: &Path) -> bool {
+        let stat = Self::stat(path);
+        if stat == self.stat {
+            return false;
+        }
+        self.stat = stat;
+        let hash = Self::hash(path);
+        if hash == self.hash {
+            return false;
+        }
+        self.hash = hash;
+        true
     }
 }
 
@@ -161,6 +216,46 @@ mod tests {
         std::fs::write(&tmp, "// renamed\n")?;
         std::fs::rename(&tmp, &watched)?;
         assert!(rx.recv_timeout(Duration::from_secs(5)).is_ok());
+        Ok(())
+    }
+
+    #[test]
+    fn reading_the_file_or_saving_the_same_text_is_not_a_save()
+    -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let watched = dir.path().join("exercise.rs");
+        std::fs::write(&watched, "// start\n")?;
+        let (tx, rx) = mpsc::channel();
+        let _watcher = SaveWatcher::new(std::slice::from_ref(&watched), move |saved| {
+            let _ = tx.send(saved);
+        })?;
+        std::thread::sleep(Duration::from_millis(100));
+        // What a grader does: open and read the file, several times.
+        for _ in 0..5 {
+            let _ = std::fs::read_to_string(&watched)?;
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        assert!(
+            rx.recv_timeout(DEBOUNCE * 4).is_err(),
+            "a read was taken for a save"
+        );
+        // The same text written again (an editor's save with no edit).
+        std::fs::write(&watched, "// start\n")?;
+        assert!(
+            rx.recv_timeout(DEBOUNCE * 4).is_err(),
+            "the same text was taken for a save"
+        );
+        // A real edit is a save, once, and reading it afterwards is not another.
+        std::fs::write(&watched, "// edited\n")?;
+        assert!(
+            rx.recv_timeout(Duration::from_secs(5)).is_ok(),
+            "the edit was missed"
+        );
+        let _ = std::fs::read_to_string(&watched)?;
+        assert!(
+            rx.recv_timeout(DEBOUNCE * 4).is_err(),
+            "reading the saved file was taken for another save"
+        );
         Ok(())
     }
 
