@@ -28,8 +28,8 @@
 //!
 //! The test never writes a notebook. Regenerate them (sources and outputs) with
 //! `cargo run --features notebook-runner -- dev notebooks` (add `07` for one lesson). Run a
-//! few with `cargo test --features full-tests --test notebooks -- 07 08` (lesson folders containing those
-//! strings).
+//! few with `cargo test --features full-tests --test notebooks -- 07 08` (lesson folders
+//! containing those strings).
 //!
 //! The first run compiles ppo-tutor and candle inside evcxr (a few minutes, cached under
 //! `target/tmp/evcxr`); later runs take about a second per cell.
@@ -38,14 +38,13 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::{Context as _, Result, bail, ensure};
+use anyhow::{Context as _, Result, ensure};
 use ppo_tutor::i18n::Lang;
 use ppo_tutor::lesson::{Course, Lesson};
 use ppo_tutor::notebook::build::{self, Cell, REGENERATE};
 use ppo_tutor::notebook::check;
 use ppo_tutor::notebook::ipynb::notebook_json;
 use ppo_tutor::notebook::kernel::{self, Kernel};
-use serde_json::Value;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
