@@ -203,14 +203,32 @@ fn report_clap_error(err: &clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         }
         _ => {
-            let rendered = err.render().to_string();
-            let line = rendered
-                .lines()
-                .find(|l| !l.trim().is_empty())
-                .unwrap_or("error: invalid arguments");
-            eprintln!("{line}{}", see_help());
+            eprintln!(
+                "{}{}",
+                usage_error_line(&err.render().to_string()),
+                see_help()
+            );
             ExitCode::from(EXIT_USAGE)
         }
+    }
+}
+
+/// A clap error as one line: its first line, and for a missing argument the arguments it
+/// lists on the lines below (`error: the following required arguments were not provided:
+/// <EXERCISE>`), which the first line alone would leave out.
+fn usage_error_line(rendered: &str) -> String {
+    let mut lines = rendered.lines().skip_while(|l| l.trim().is_empty());
+    let Some(first) = lines.next() else {
+        return "error: invalid arguments".to_string();
+    };
+    let listed: Vec<&str> = lines
+        .take_while(|l| l.starts_with(' ') && !l.trim().is_empty())
+        .map(str::trim)
+        .collect();
+    if listed.is_empty() {
+        first.to_string()
+    } else {
+        format!("{first} {}", listed.join(", "))
     }
 }
 
@@ -231,17 +249,34 @@ fn rerun_with_one_candle_thread() -> Option<anyhow::Result<ExitCode>> {
     if exe.file_stem().and_then(|s| s.to_str()) != Some("ppo-tutor") {
         return None;
     }
-    let status = std::process::Command::new(&exe)
+    let mut command = std::process::Command::new(&exe);
+    command
         .args(std::env::args_os().skip(1))
-        .env("RAYON_NUM_THREADS", "1")
-        .status();
-    Some(match status {
+        .env("RAYON_NUM_THREADS", "1");
+    Some(rerun(command, &exe))
+}
+
+/// Runs `command`, this program again with one candle thread. On Unix it replaces this
+/// process (the same PID, so a signal meant for `ppo-tutor` reaches it, and nothing is left
+/// running when it is killed: a child used to outlive a SIGTERM); `exec` returns only when
+/// it fails.
+#[cfg(unix)]
+fn rerun(mut command: std::process::Command, exe: &std::path::Path) -> anyhow::Result<ExitCode> {
+    use std::os::unix::process::CommandExt as _;
+    let e = command.exec();
+    Err(anyhow::Error::new(e).context(format!("re-running {}", exe.display())))
+}
+
+/// Runs `command`, this program again with one candle thread, and exits with its code.
+#[cfg(not(unix))]
+fn rerun(mut command: std::process::Command, exe: &std::path::Path) -> anyhow::Result<ExitCode> {
+    match command.status() {
         Ok(status) => Ok(status
             .code()
             .and_then(|c| u8::try_from(c).ok())
             .map_or(ExitCode::FAILURE, ExitCode::from)),
         Err(e) => Err(anyhow::Error::new(e).context(format!("re-running {}", exe.display()))),
-    })
+    }
 }
 
 /// Runs a parsed command line.

@@ -17,6 +17,70 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
     })
 }
 
+/// Parses a count of episodes: a whole number of at least 1 (`-5` and `0` are refused by
+/// name, not taken for a flag).
+///
+/// # Errors
+/// A message naming what was expected and what was given.
+pub fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(tr!(
+            "expected a whole number of at least 1, got '{s}'",
+            "应为不小于 1 的整数，实际是 '{s}'"
+        )),
+    }
+}
+
+/// Checks an output path given as `flag` before any work is done (issue 25: bad paths were
+/// found only after training): its folder must exist, the path must not be a folder, a
+/// device or anything else that is not a regular file (`--save /dev/full` once replaced
+/// the device node), and with `extensions` its extension must be one of them.
+///
+/// # Errors
+/// One sentence naming the flag, the path and the fix.
+pub fn check_output(
+    flag: &str,
+    path: &std::path::Path,
+    extensions: Option<&[&str]>,
+) -> Result<(), String> {
+    let shown = path.display();
+    if let Ok(meta) = std::fs::symlink_metadata(path)
+        && !meta.is_file()
+    {
+        return Err(tr!(
+            "{flag} {shown}: not a regular file; give the path of a file to write",
+            "{flag} {shown}：不是普通文件；请给出要写入的文件路径"
+        ));
+    }
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if !folder.is_dir() {
+        let folder = folder.display();
+        return Err(tr!(
+            "{flag} {shown}: the folder {folder} does not exist; create it first",
+            "{flag} {shown}：文件夹 {folder} 不存在；请先创建它"
+        ));
+    }
+    if let Some(exts) = extensions {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        if !ext.is_some_and(|e| exts.contains(&e.as_str())) {
+            let list = exts.iter().map(|e| format!("FILE.{e}")).collect::<Vec<_>>();
+            let list = list.join(" / ");
+            return Err(tr!(
+                "{flag} {shown}: cannot tell the format from the extension; use {list}",
+                "{flag} {shown}：无法从扩展名判断格式；请使用 {list}"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The most seeds one `--seeds` list may hold.
 pub const MAX_SEEDS: usize = 256;
 
@@ -116,6 +180,48 @@ pub fn parse_actions(s: &str) -> Result<ActionList, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn output_paths_are_checked_before_any_work() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let ok = dir.path().join("out.svg");
+        assert_eq!(check_output("--plot", &ok, Some(&["png", "svg"])), Ok(()));
+        let exts: Option<&[&str]> = Some(&["png", "svg"]);
+        for (path, want) in [
+            (dir.path().join("out.xyz"), "FILE.png / FILE.svg"),
+            (dir.path().join("out"), "FILE.png / FILE.svg"),
+            (dir.path().join("missing/out.png"), "does not exist"),
+            (dir.path().to_path_buf(), "not a regular file"),
+        ] {
+            let e = check_output("--plot", &path, exts)
+                .err()
+                .unwrap_or_default();
+            assert!(
+                e.contains(want) && e.starts_with("--plot "),
+                "{}: {e}",
+                path.display()
+            );
+        }
+        #[cfg(unix)]
+        {
+            let e = check_output("--save", std::path::Path::new("/dev/null"), None);
+            assert!(e.err().unwrap_or_default().contains("not a regular file"));
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn a_count_is_a_whole_number_of_at_least_one() {
+        assert_eq!(parse_count("12"), Ok(12));
+        assert_eq!(parse_count(" 1 "), Ok(1));
+        for bad in ["0", "-5", "1.5", "", "many"] {
+            let e = parse_count(bad).err().unwrap_or_default();
+            assert!(
+                e.contains("at least 1") && e.contains(&format!("'{bad}'")),
+                "{bad}: {e}"
+            );
+        }
+    }
 
     #[test]
     fn seed_lists_parse_and_reject() {

@@ -28,7 +28,7 @@ pub struct LabArgs {
     #[arg(long, default_value = "0-4", value_parser = parse_seeds, value_name = "LIST")]
     pub seeds: SeedList,
     /// Episodes per run.
-    #[arg(long, default_value_t = 500)]
+    #[arg(long, value_parser = super::args::parse_count, allow_hyphen_values = true, default_value_t = 500)]
     pub episodes: usize,
     /// Write every run's returns, the bands and the statistics as JSON.
     #[arg(long, value_name = "FILE")]

@@ -21,7 +21,7 @@ pub struct ShowArgs {
     #[arg(long)]
     pub step: Option<usize>,
     /// Episodes to train before showing live values (the latest episode's update is shown).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, value_parser = super::args::parse_count, allow_hyphen_values = true, default_value_t = 1)]
     pub episodes: usize,
     /// Seed of the agent and the environment.
     #[arg(long, default_value = "0", value_parser = super::args::parse_seed)]

@@ -33,7 +33,7 @@ pub struct PlayArgs {
     #[arg(long, value_name = "FILE")]
     pub load: PathBuf,
     /// Episodes to play.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, value_parser = super::args::parse_count, allow_hyphen_values = true, default_value_t = 1)]
     pub episodes: usize,
     /// Seed of the first reset and of the action sampling.
     #[arg(long, default_value = "0", value_parser = parse_seed, allow_hyphen_values = true)]

@@ -37,7 +37,7 @@ pub use setup::{Setup, TrainEnv, parse_train_env};
 pub struct TrainArgs {
     /// Episodes to train for (one update per episode) [default: 500 on CartPole, 2000 on
     /// Pendulum-v1].
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::parse_count, allow_hyphen_values = true)]
     pub episodes: Option<usize>,
     /// Seed of the network initialisation, the action sampling and the first env.reset.
     #[arg(long, default_value = "0", value_parser = parse_seed, allow_hyphen_values = true)]
@@ -168,6 +168,20 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(super::EXIT_USAGE));
         }
     };
+    // Every output path is checked before training, not found bad after it.
+    let outputs = [
+        ("--save", args.save.as_deref(), None),
+        ("--json", args.json.as_deref(), None),
+        ("--plot", args.plot.as_deref(), Some(&["png", "svg"][..])),
+    ];
+    for (flag, path, exts) in outputs {
+        if let Some(path) = path
+            && let Err(err) = super::args::check_output(flag, path, exts)
+        {
+            eprintln!("{}{err}", super::error_prefix());
+            return Ok(ExitCode::from(super::EXIT_USAGE));
+        }
+    }
     if let Some(seeds) = &args.seeds {
         return several::run(args, &setup, &seeds.0);
     }

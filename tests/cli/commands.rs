@@ -455,3 +455,109 @@ fn a_wrong_answer_is_graded_in_chinese_with_the_same_exit_code() -> TestResult {
     assert_eq!(en.matches('✗').count(), zh.matches('✗').count());
     Ok(())
 }
+
+/// Issue 25, bug 6: a missing argument is named, and a negative count is refused by name.
+#[test]
+fn a_missing_argument_is_named_and_a_negative_count_refused() -> TestResult {
+    for cmd in ["show", "reset", "play", "replay"] {
+        let out = run(&[cmd])?;
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(2), "{cmd}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{cmd}: {err}");
+        let named = err
+            .split_once("not provided:")
+            .map(|(_, rest)| rest.trim_start())
+            .unwrap_or_default();
+        assert!(
+            named.starts_with('<') || named.starts_with("--"),
+            "{cmd}: the missing argument is not named: {err}"
+        );
+    }
+    let out = run(&["train", "--episodes", "-5"])?;
+    let err = String::from_utf8(out.stderr)?;
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("'-5'") && err.contains("at least 1"),
+        "the count is not refused by name: {err}"
+    );
+    Ok(())
+}
+
+/// Issue 25, bug 7: a SIGTERM ends `ppo-tutor` whole. Without `RAYON_NUM_THREADS` it runs
+/// itself again with one candle thread; that run now replaces the process (same PID)
+/// instead of being a child that outlived its parent.
+#[cfg(target_os = "linux")]
+#[test]
+fn sigterm_leaves_no_process_behind() -> TestResult {
+    let mut child = english()
+        .env_remove("RAYON_NUM_THREADS")
+        .args(["train", "--episodes", "100000", "--quiet"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()?;
+    let pid = child.id();
+    // Wait until the process runs with one candle thread (the re-run has happened).
+    let environ = format!("/proc/{pid}/environ");
+    let started = std::time::Instant::now();
+    while !std::fs::read(&environ)
+        .unwrap_or_default()
+        .split(|b| *b == 0)
+        .any(|v| v == b"RAYON_NUM_THREADS=1")
+    {
+        if started.elapsed() > std::time::Duration::from_secs(10) {
+            let _ = child.kill();
+            return Err("ppo-tutor never ran with RAYON_NUM_THREADS=1".into());
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let children =
+        std::fs::read_to_string(format!("/proc/{pid}/task/{pid}/children")).unwrap_or_default();
+    let term = Command::new("kill")
+        .args(["-TERM", &pid.to_string()])
+        .status()?;
+    assert!(term.success());
+    let _ = child.wait()?;
+    assert!(
+        children.trim().is_empty(),
+        "ppo-tutor ran its work in child processes {children}, which a SIGTERM leaves behind"
+    );
+    Ok(())
+}
+
+/// Issue 25, bugs 4 and 5: output paths are checked before training starts (a 100000-episode
+/// run would take minutes), and a path that is not a regular file is never replaced.
+#[test]
+fn bad_output_paths_are_refused_before_training() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let d = dir.path();
+    let folder = d.join("a-folder");
+    std::fs::create_dir(&folder)?;
+    let cases: [(&str, std::path::PathBuf, &str); 5] = [
+        ("--plot", d.join("out.xyz"), "FILE.png / FILE.svg"),
+        ("--plot", d.join("out"), "FILE.png / FILE.svg"),
+        ("--plot", d.join("no/such/dir/out.png"), "does not exist"),
+        (
+            "--save",
+            d.join("no/such/agent.safetensors"),
+            "does not exist",
+        ),
+        ("--save", folder.clone(), "not a regular file"),
+    ];
+    for (flag, path, want) in cases {
+        let path = path.to_str().ok_or("path")?;
+        let out = run(&["train", "--episodes", "100000", "--quiet", flag, path])?;
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(2), "{flag} {path}: {err}");
+        assert!(
+            err.contains(want) && err.contains(path),
+            "{flag} {path}: {err}"
+        );
+        assert!(
+            out.stdout.is_empty(),
+            "{flag} {path}: refused only after training: {}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+    }
+    assert!(folder.is_dir(), "the folder given to --save was replaced");
+    Ok(())
+}
