@@ -774,3 +774,34 @@ fn l_switches_the_language_live_and_keeps_the_place() -> TestResult {
     );
     Ok(())
 }
+
+/// Issue 25, bug 9: a status line about one lesson (its quiz, its hints) does not follow the
+/// learner into the next.
+#[test]
+fn a_lesson_s_status_line_does_not_follow_into_another_lesson() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "training")?;
+    let hints = app
+        .current_lesson()
+        .and_then(|l| l.exercise.as_ref())
+        .map_or(0, |e| e.hints.len());
+    for _ in 0..=hints {
+        app.update(Action::Hint);
+    }
+    assert!(app.status.contains("hints are shown"), "{}", app.status);
+    app.update(Action::Back);
+    open(&mut app, "cartpole")?;
+    assert!(!app.status.contains("hints"), "{}", app.status);
+
+    open_quiz(&mut app, "what-is-ppo")?;
+    assert!(
+        !app.status.is_empty(),
+        "the quiz says which question is open"
+    );
+    let quiz_status = app.status.clone();
+    app.update(Action::Back);
+    open(&mut app, "cartpole")?;
+    assert_ne!(app.status, quiz_status);
+    assert!(!app.status.contains("question"), "{}", app.status);
+    Ok(())
+}

@@ -910,6 +910,11 @@ impl App {
             self.progress.lesson = l.id.clone();
         }
         self.progress.step = self.step;
+        // A message about the lesson left behind (its quiz, its hints, its grading) does
+        // not follow the learner into another lesson; a warning stays until it is read.
+        if changed && !is_warning(&self.status) {
+            self.status.clear();
+        }
         self.save_progress();
         if changed {
             self.follow_lesson_env();
