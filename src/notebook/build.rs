@@ -49,9 +49,12 @@ pub const REGENERATE: &str = "cargo run --features notebook-runner -- dev notebo
 pub const DEP_CELL: &str =
     ":cache 4000\n:dep ppo-tutor = { path = \"..\", default-features = false }";
 
-/// The first cell of `lesson`'s notebook: [`DEP_CELL`], with the lesson's exercises
-/// (feature `exercises-NN`) when it has any, so that a notebook compiles only the graders
-/// it calls.
+/// The first cell of `lesson`'s notebook: [`DEP_CELL`], with grading (feature
+/// `exercises`) when the lesson has exercises, which its cells grade in place.
+///
+/// Every lesson with exercises asks for the same feature, so that a run of all the notebooks
+/// in one work folder (`tests/notebooks.rs`, `ppo-tutor dev notebooks`) builds the crate
+/// twice, with grading and without, rather than once per lesson.
 ///
 /// A Chinese notebook (in `notebooks/zh/`, current language [`Lang::Zh`]) first sets its
 /// kernel's language: evcxr links the crate into every cell anew, so the library reads it
@@ -62,10 +65,7 @@ pub fn dep_cell(lesson: &Lesson) -> String {
     if lesson.exercise.is_some() {
         cell = cell.replace(
             "default-features = false }",
-            &format!(
-                "default-features = false, features = [\"exercises-{:02}\"] }}",
-                lesson.order
-            ),
+            "default-features = false, features = [\"exercises\"] }",
         );
     }
     match Lang::current() {

@@ -96,7 +96,8 @@ pub fn is_driver() -> bool {
 /// cache and build folder always come from the same builds (a build folder left by older
 /// runs, filled up from a cache written by other builds, failed here: the cached candle and
 /// serde did not load, "can't find crate"), and the user's own kernels stay out of the
-/// tests' way.
+/// tests' way. [`spawn_driver`]'s `envs` may name another (`tests/notebooks.rs` gives its
+/// two drivers, both with fresh or matching build folders, one shared cache).
 ///
 /// # Errors
 /// [`KernelError::Io`] when `tmp` cannot be created or the driver cannot start.
@@ -255,6 +256,21 @@ impl Kernel {
         cells: &[Cell],
         notebook: &str,
     ) -> Result<Vec<Option<Outputs>>, KernelError> {
+        self.run_cells_with(cells, notebook, |_| {})
+    }
+
+    /// [`Kernel::run_cells`], calling `after(index)` once each code cell has run (and
+    /// succeeded): `tests/notebooks.rs` starts its second language once the first cell of
+    /// the first has built the dependencies.
+    ///
+    /// # Errors
+    /// As [`Kernel::run_cells`].
+    pub fn run_cells_with(
+        &mut self,
+        cells: &[Cell],
+        notebook: &str,
+        mut after: impl FnMut(usize),
+    ) -> Result<Vec<Option<Outputs>>, KernelError> {
         let mut outputs = Vec::with_capacity(cells.len());
         for (index, cell) in cells.iter().enumerate() {
             let Cell::Code(code) = cell else {
@@ -268,6 +284,7 @@ impl Kernel {
                 source: Box::new(source),
             })?;
             outputs.push(Some(out));
+            after(index);
         }
         Ok(outputs)
     }
