@@ -52,6 +52,7 @@ pub mod pipeline;
 pub mod plain;
 pub mod prose;
 pub mod report;
+pub mod reset;
 pub mod solutions;
 pub mod spec;
 pub mod value;
@@ -105,11 +106,12 @@ pub fn solution(name: &str) -> Option<&'static str> {
     find(name).ok()?.solution()
 }
 
-/// Writes `name`'s starter back under `root`; returns the path.
+/// Writes `name`'s starter back under `root` (only its function when other exercises share
+/// the file, a changed file kept as `.bak` first); says what it did.
 ///
 /// # Errors
 /// [`GradeError::UnknownExercise`], or [`GradeError::Write`] if the file cannot be written.
-pub fn reset(name: &str, root: &Path) -> Result<PathBuf, GradeError> {
+pub fn reset(name: &str, root: &Path) -> Result<reset::Restored, GradeError> {
     find(name)?.reset(root)
 }
 

@@ -366,7 +366,16 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
         "{state}"
     );
 
-    let (code, _) = ppo_tutor(d, &["reset", "td_delta"])?;
+    // Resetting td_delta keeps td_target's work in the same file (issue 25, bug 3) ...
+    let (code, text) = ppo_tutor(d, &["reset", "td_delta"])?;
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("exercise.rs.bak"), "{text}");
+    let (code, text) = ppo_tutor(d, &["grade", "td_target"])?;
+    assert_eq!(code, 0, "reset td_delta kept td_target: {text}");
+    let (code, text) = ppo_tutor(d, &["grade", "td_delta"])?;
+    assert_eq!(code, 1, "reset restores td_delta's starter: {text}");
+    // ... and resetting td_target, the file's only work, restores the whole starter.
+    let (code, _) = ppo_tutor(d, &["reset", "td_target"])?;
     assert_eq!(code, 0);
     let (code, text) = ppo_tutor(d, &["grade", "td_target"])?;
     assert_eq!(code, 1, "reset restores the starter: {text}");

@@ -358,7 +358,7 @@ fn chinese_starters_are_the_english_code_with_chinese_comments() -> TestResult {
 fn chinese_starters_are_what_reset_writes_in_chinese() -> TestResult {
     let tmp = tempfile::tempdir()?;
     let _zh = Lang::Zh.scoped();
-    let path = ppo_tutor::grade::reset("td_target", tmp.path())?;
+    let path = ppo_tutor::grade::reset("td_target", tmp.path())?.path;
     let written = std::fs::read_to_string(&path)?;
     let expected = std::fs::read_to_string(lessons_dir().join("07-td-target/exercise.zh.rs"))?;
     assert_eq!(written, expected);

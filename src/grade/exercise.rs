@@ -90,26 +90,31 @@ pub trait Exercise: Sync {
         build::first_build_note(m.name, m.backend, cache)
     }
 
-    /// Writes the starter back to `root/<starter path>`; returns the path.
+    /// Writes the starter back to `root/<starter path>`: only this exercise's function when
+    /// other exercises share the file, with the old text kept beside it
+    /// ([`super::reset::restore`]).
     ///
     /// # Errors
     /// [`GradeError::Write`] if the file cannot be written.
-    fn reset(&self, root: &Path) -> Result<PathBuf, GradeError> {
+    fn reset(&self, root: &Path) -> Result<super::reset::Restored, GradeError> {
         let rel = self.starter_path();
         let text = self.starter().ok_or_else(|| GradeError::Write {
             file: PathBuf::from(&rel),
             reason: "no starter is embedded for this exercise".into(),
         })?;
-        let path = root.join(rel);
-        let write_err = |e: std::io::Error| GradeError::Write {
-            file: path.clone(),
-            reason: e.to_string(),
-        };
-        if let Some(dir) = path.parent() {
-            std::fs::create_dir_all(dir).map_err(write_err)?;
-        }
-        std::fs::write(&path, text).map_err(write_err)?;
-        Ok(path)
+        let others: Vec<&str> = super::exercises()
+            .iter()
+            .filter(|e| e.name() != self.name() && e.starter_path() == rel)
+            .map(|e| e.name())
+            .collect();
+        let variants: Vec<&str> = crate::i18n::Lang::ALL
+            .iter()
+            .filter_map(|lang| {
+                let _lang = lang.scoped();
+                self.starter()
+            })
+            .collect();
+        super::reset::restore(&root.join(&rel), self.name(), text, &others, &variants)
     }
 }
 
