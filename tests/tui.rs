@@ -74,15 +74,18 @@ fn show_pendulum_run(app: &mut App) -> TestResult {
 #[test]
 fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResult {
     let mut app = app()?;
+    // A CartPole run of 3 episodes, then a Pendulum lesson.
+    app.show(Session::run(PpoConfig::default(), 0, 3)?);
     open(&mut app, "continuous-actions")?;
     assert_eq!(app.env, Environment::Pendulum);
     let sent: Vec<Command> = app.outbox.drain(..).collect();
     assert!(
         sent.iter()
-            .any(|c| matches!(c, Command::Reset { config, seed: 0 }
+            .any(|c| matches!(c, Command::Switch { config, seed: 0 }
             if config.as_ref() == &RunConfig::Pendulum(PpoContinuousConfig::default()))),
         "{sent:?}"
     );
+    assert_eq!(app.snapshot.episodes, 0, "a fresh Pendulum agent");
     assert_eq!(
         app.snapshot
             .hyper
@@ -105,8 +108,17 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
     assert_eq!(app.env, Environment::CartPole);
     assert!(matches!(
         app.outbox.pop(),
-        Some(Command::Reset { config, .. }) if matches!(config.as_ref(), RunConfig::CartPole(_))
+        Some(Command::Switch { config, .. }) if matches!(config.as_ref(), RunConfig::CartPole(_))
     ));
+    // Issue 25, bug 2: browsing back continues the CartPole run, and the Pendulum one waits.
+    assert_eq!(app.snapshot.episodes, 3, "the CartPole run was thrown away");
+    assert!(
+        app.status.contains("continues after 3 episodes"),
+        "{}",
+        app.status
+    );
+    open(&mut app, "pendulum")?;
+    assert_eq!((app.env, app.snapshot.episodes), (Environment::Pendulum, 2));
     Ok(())
 }
 
@@ -174,7 +186,10 @@ fn keys_move_through_the_course() -> TestResult {
         (1, 0),
         "→ at a lesson's end opens the next"
     );
-    assert!(app.progress.lessons_done.contains("what-is-ppo"));
+    assert!(
+        !app.progress.lessons_done.contains("what-is-ppo"),
+        "skipping the quiz with → does not make the lesson done (issue 25, bug 8)"
+    );
     app.update(Action::Prev);
     assert_eq!((app.lesson, app.step), (0, steps - 1));
     app.update(Action::Lessons);
@@ -257,6 +272,49 @@ fn quitting_saves_progress() -> TestResult {
     assert_eq!((saved.lesson.as_str(), saved.step), ("what-is-ppo", 1));
     let restored = App::new(Course::embedded()?, saved, None);
     assert_eq!((restored.lesson, restored.step), (0, 1));
+    Ok(())
+}
+
+/// Issue 25, bug 2: the worker keeps one session per environment: switching to Pendulum and
+/// back continues the CartPole run where it stopped.
+#[test]
+fn the_worker_keeps_one_session_per_environment() -> TestResult {
+    let config = PpoConfig::default();
+    let (cmd_tx, cmd_rx) = mpsc::channel();
+    let (event_tx, events) = mpsc::channel();
+    let handle = worker::spawn(config.clone(), 5, cmd_rx, event_tx);
+    let wait = || events.recv_timeout(Duration::from_secs(60));
+    let episode = |event: WorkerEvent| match event {
+        WorkerEvent::Episode(s) => Ok(*s),
+        other => Err(format!("expected an episode, got {other:?}")),
+    };
+    for _ in 0..2 {
+        cmd_tx.send(Command::OneEpisode)?;
+        episode(wait()?)?;
+    }
+    let pendulum = RunConfig::Pendulum(PpoContinuousConfig::default());
+    cmd_tx.send(Command::Switch {
+        config: Box::new(pendulum),
+        seed: 0,
+    })?;
+    assert!(matches!(wait()?, WorkerEvent::Reset { seed: 0 }));
+    cmd_tx.send(Command::OneEpisode)?;
+    let s = episode(wait()?)?;
+    assert_eq!((s.env, s.episodes), (Environment::Pendulum, 1));
+    cmd_tx.send(Command::Switch {
+        config: Box::new(RunConfig::CartPole(config.clone())),
+        seed: 9,
+    })?;
+    assert!(matches!(wait()?, WorkerEvent::Resumed { episodes: 2 }));
+    cmd_tx.send(Command::OneEpisode)?;
+    let s = episode(wait()?)?;
+    cmd_tx.send(Command::Quit)?;
+    handle.join().map_err(|_| "the worker panicked")?;
+    assert_eq!(
+        s,
+        Session::run(config, 5, 3)?,
+        "the CartPole run went on from episode 2"
+    );
     Ok(())
 }
 
@@ -423,6 +481,32 @@ fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
     Ok(())
 }
 
+/// Issue 25, bug 8: what a progress file names that the course does not know is not
+/// counted, and an unknown lesson opens the first lesson at its first step.
+#[test]
+fn unknown_lessons_in_the_progress_file_count_for_nothing() -> TestResult {
+    let old: Progress = serde_json::from_str(
+        r#"{"lesson":"gone","step":99,"lessons_done":["gone","also-gone","what-is-ppo"],"exercises_done":["nope","td_target"]}"#,
+    )?;
+    let app = App::new(Course::embedded()?, old, None);
+    assert_eq!((app.lesson, app.step), (0, 0));
+    let done: Vec<&str> = app
+        .progress
+        .lessons_done
+        .iter()
+        .map(String::as_str)
+        .collect();
+    assert_eq!(done, ["what-is-ppo"]);
+    assert_eq!(app.progress.exercises_done.len(), 1);
+    let footer = screen(&app, 160, 50)?;
+    let lessons = app.course.lessons.len();
+    assert!(
+        footer.contains(&format!("lessons done 1/{lessons}")),
+        "{footer}"
+    );
+    Ok(())
+}
+
 /// Opens the quiz of lesson `id` (→ past its last step).
 fn open_quiz(app: &mut App, id: &str) -> TestResult {
     open(app, id)?;
@@ -496,6 +580,12 @@ fn quiz_questions_are_answered_with_keys_and_counted() -> TestResult {
     }
     let (done, _, total) = app.quiz_score();
     assert_eq!(done, answered);
+    for id in ["ratio", "clipping"] {
+        assert!(
+            app.progress.lessons_done.contains(id),
+            "{id}: every question answered makes the lesson done"
+        );
+    }
     let footer = screen(&app, 140, 45)?;
     let right = app.progress.quiz.values().filter(|r| **r).count();
     assert!(

@@ -9,6 +9,8 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::Course;
+
 /// The default state file name (in the working directory).
 pub const STATE_FILE: &str = ".ppo-tutor-state.json";
 
@@ -20,7 +22,8 @@ pub struct Progress {
     pub lesson: String,
     /// The step open last in that lesson (0-based).
     pub step: usize,
-    /// Lessons whose every step has been seen.
+    /// Lessons done: every step seen and, when the lesson has a quiz, every question
+    /// answered (skipping the quiz does not count).
     pub lessons_done: BTreeSet<String>,
     /// Exercises graded as passing.
     pub exercises_done: BTreeSet<String>,
@@ -50,6 +53,14 @@ impl Progress {
     }
 }
 
+/// Where a corrupt progress file is kept: its name with `.bak` added.
+#[must_use]
+pub fn backup_path(path: &Path) -> PathBuf {
+    let mut name = path.as_os_str().to_owned();
+    name.push(".bak");
+    PathBuf::from(name)
+}
+
 impl Progress {
     /// The state file to use: `PPO_TUTOR_STATE` if set, else [`STATE_FILE`].
     #[must_use]
@@ -57,30 +68,82 @@ impl Progress {
         std::env::var_os("PPO_TUTOR_STATE").map_or_else(|| PathBuf::from(STATE_FILE), PathBuf::from)
     }
 
-    /// Loads progress from `path`. A missing file is a fresh start; a corrupt one is a fresh
-    /// start plus a warning naming the file.
+    /// Loads progress from `path`. A missing file is a fresh start; an unreadable or
+    /// corrupt one is a fresh start plus a one-line warning naming the file, and a corrupt
+    /// one is first copied to `<path>.bak` (the next save would overwrite it).
     #[must_use]
     pub fn load(path: &Path) -> (Self, Option<String>) {
+        let file = path.display();
         match std::fs::read_to_string(path) {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => (Self::default(), None),
             Err(e) => (
                 Self::default(),
-                Some(format!(
-                    "could not read {}: {e}; starting fresh",
-                    path.display()
+                Some(crate::tr!(
+                    "could not read {file} ({e}); starting fresh",
+                    "无法读取 {file}（{e}）；从头开始"
                 )),
             ),
             Ok(text) => match serde_json::from_str(&text) {
                 Ok(p) => (p, None),
-                Err(e) => (
-                    Self::default(),
-                    Some(format!(
-                        "{} is not a valid progress file ({e}); starting fresh (it will be overwritten)",
-                        path.display()
-                    )),
-                ),
+                Err(e) => {
+                    let backup = backup_path(path);
+                    let kept = std::fs::write(&backup, &text).is_ok();
+                    let backup = backup.display();
+                    let (line, column) = (e.line(), e.column());
+                    let warning = if kept {
+                        crate::tr!(
+                            "{file} is not valid progress (line {line}, column {column}); kept as {backup}, starting fresh",
+                            "{file} 不是有效的进度文件（第 {line} 行第 {column} 列）；已另存为 {backup}，从头开始"
+                        )
+                    } else {
+                        crate::tr!(
+                            "{file} is not valid progress (line {line}, column {column}) and could not be kept; starting fresh",
+                            "{file} 不是有效的进度文件（第 {line} 行第 {column} 列），也无法另存；从头开始"
+                        )
+                    };
+                    (Self::default(), Some(warning))
+                }
             },
         }
+    }
+
+    /// Forgets what the course does not know (issue 25, bug 8): lessons, quiz questions
+    /// and, given `exercises` (their names), exercises that are not in it, and a saved
+    /// position in a lesson that no longer exists (the first lesson opens at its first
+    /// step, not at the old step number). A step past the lesson's end becomes its last.
+    /// Returns how many entries were dropped.
+    pub fn retain_known(&mut self, course: &Course, exercises: Option<&[&str]>) -> usize {
+        let before = self.lessons_done.len() + self.quiz.len() + self.exercises_done.len();
+        self.lessons_done.retain(|id| course.index_of(id).is_some());
+        self.quiz.retain(|key, _| {
+            key.rsplit_once('#').is_some_and(|(id, n)| {
+                let questions = course
+                    .index_of(id)
+                    .map_or(0, |i| course.lessons[i].quiz.len());
+                n.parse::<usize>()
+                    .is_ok_and(|n| (1..=questions).contains(&n))
+            })
+        });
+        if let Some(known) = exercises {
+            self.exercises_done.retain(|e| known.contains(&e.as_str()));
+        }
+        match course.index_of(&self.lesson) {
+            Some(i) => {
+                let steps = course.lessons[i].steps.len();
+                self.step = self.step.min(steps.saturating_sub(1));
+            }
+            None => {
+                self.lesson = String::new();
+                self.step = 0;
+            }
+        }
+        before - (self.lessons_done.len() + self.quiz.len() + self.exercises_done.len())
+    }
+
+    /// Whether every question of lesson `id` (with `questions` questions) has an answer.
+    #[must_use]
+    pub fn quiz_answered(&self, id: &str, questions: usize) -> bool {
+        (1..=questions).all(|n| self.quiz.contains_key(&Self::quiz_key(id, n)))
     }
 
     /// Saves to `path` atomically (write a sibling temporary file, then rename).
@@ -127,7 +190,43 @@ mod tests {
         std::fs::write(&path, "{not json")?;
         let (after, warning) = Progress::load(&path);
         assert_eq!(after, Progress::default());
-        assert!(warning.is_some_and(|w| w.contains("state.json")));
+        let warning = warning.ok_or("no warning")?;
+        assert!(warning.contains("state.json"), "{warning}");
+        // Kept before anything overwrites it, and the warning says where, in one short line.
+        let backup = dir.path().join("state.json.bak");
+        assert_eq!(std::fs::read_to_string(&backup)?, "{not json");
+        assert!(warning.contains("state.json.bak"), "{warning}");
+        assert!(!warning.contains('\n'));
+        Ok(())
+    }
+
+    #[test]
+    fn what_the_course_does_not_know_is_forgotten() -> Result<(), Box<dyn std::error::Error>> {
+        let course = Course::embedded()?;
+        let first = &course.lessons[0];
+        let mut p = Progress {
+            lesson: "no-such-lesson".into(),
+            step: 99,
+            ..Progress::default()
+        };
+        p.lessons_done.insert("no-such-lesson".into());
+        p.lessons_done.insert(first.id.clone());
+        p.exercises_done.insert("no_such_exercise".into());
+        p.exercises_done.insert("td_target".into());
+        p.record_quiz("no-such-lesson", 1, true);
+        p.record_quiz(&first.id, first.quiz.len() + 1, true);
+        p.record_quiz(&first.id, 1, true);
+        assert_eq!(p.retain_known(&course, Some(&["td_target"])), 4);
+        assert_eq!(p.lessons_done.len(), 1);
+        assert_eq!(p.exercises_done.len(), 1);
+        assert_eq!(p.quiz.len(), 1);
+        // An unknown lesson opens the first lesson at its first step, not at step 99.
+        assert_eq!((p.lesson.as_str(), p.step), ("", 0));
+        // A known lesson past its end opens at its last step.
+        p.lesson = first.id.clone();
+        p.step = 99;
+        p.retain_known(&course, None);
+        assert_eq!(p.step, first.steps.len() - 1);
         Ok(())
     }
 }

@@ -133,6 +133,20 @@ pub enum TrainState {
     Finished,
 }
 
+/// A run set aside when a lesson on the other environment opened: what the app showed of
+/// it, to show again when the learner comes back.
+#[derive(Debug, Clone)]
+pub struct ParkedRun {
+    /// Its latest snapshot.
+    pub snapshot: Snapshot,
+    /// Its seed.
+    pub seed: u64,
+    /// Paused or finished (a running one is paused when set aside).
+    pub train: TrainState,
+    /// The curve overlaid on its plot, if any.
+    pub previous: Option<PreviousCurve>,
+}
+
 /// Everything the app shows and remembers.
 #[derive(Debug)]
 pub struct App {
@@ -159,6 +173,9 @@ pub struct App {
     pub frame: usize,
     /// The previous run's curve, overlaid on the plot after a sandbox retrain.
     pub previous: Option<PreviousCurve>,
+    /// The other environment's run while its lessons are not open (the worker keeps its
+    /// session): browsing back continues it.
+    pub parked: Option<ParkedRun>,
     /// Hyper-parameters of the current CartPole run (or of the next one, in a Pendulum
     /// lesson).
     pub config: PpoConfig,
@@ -212,7 +229,10 @@ pub const LAB_SEEDS: [u64; 5] = [0, 1, 2, 3, 4];
 impl App {
     /// A new app at the saved position (or the first step).
     #[must_use]
-    pub fn new(course: Course, progress: Progress, progress_path: Option<PathBuf>) -> Self {
+    pub fn new(course: Course, mut progress: Progress, progress_path: Option<PathBuf>) -> Self {
+        // Lessons, questions and exercises the course no longer has are not counted done,
+        // and a lesson that is gone does not open another at its step number.
+        progress.retain_known(&course, Some(&crate::grade::exercise_names()));
         let config = PpoConfig::default();
         let lesson = course.index_of(&progress.lesson).unwrap_or(0);
         let steps = course.lessons.get(lesson).map_or(1, |l| l.steps.len());
@@ -238,6 +258,7 @@ impl App {
             snapshot,
             frame: 0,
             previous: None,
+            parked: None,
             sandbox: Sandbox::new(config.clone(), 0),
             config,
             pendulum,
@@ -489,6 +510,10 @@ impl App {
                 .map(|l| l.id.clone())
                 .unwrap_or_default();
             self.progress.record_quiz(&id, i + 1, verdict.right);
+            let questions = self.current_lesson().map_or(0, |l| l.quiz.len());
+            if self.progress.quiz_answered(&id, questions) {
+                self.progress.lessons_done.insert(id);
+            }
             self.save_progress();
             let (answered, right, total) = self.quiz_score();
             self.status = crate::tr!(
@@ -811,6 +836,8 @@ impl App {
             WorkerEvent::Reset { seed } => {
                 self.status = crate::tr!("fresh agent, seed {seed}", "新的智能体，随机种子 {seed}");
             }
+            // The app showed the run it set aside already (`follow_lesson_env`).
+            WorkerEvent::Resumed { .. } => {}
             WorkerEvent::Error(message) => {
                 self.train = TrainState::Paused;
                 self.status = crate::tr!("training stopped: {message}", "训练已停止：{message}");
@@ -819,6 +846,10 @@ impl App {
     }
 
     fn on_episode(&mut self, snapshot: Snapshot) {
+        // An episode of the run just set aside, finished before the worker switched.
+        if snapshot.env != self.env {
+            return;
+        }
         self.show(snapshot);
         // A start-up warning stays until the learner does something.
         if self.train == TrainState::Paused
@@ -856,21 +887,23 @@ impl App {
         if self.step + 1 < lesson.steps.len() {
             self.go_to(self.lesson, self.step + 1);
         } else if !lesson.quiz.is_empty() {
-            let id = lesson.id.clone();
-            self.progress.lessons_done.insert(id);
+            // Done once its quiz is answered (see `answered`), not by reaching it.
             self.open_question(0);
         } else {
             self.leave_lesson();
         }
     }
 
-    /// Marks the open lesson done and opens the next one.
+    /// Opens the next lesson, marking the open one done unless its quiz has a question
+    /// without an answer (skipping the quiz with → does not make a lesson done).
     fn leave_lesson(&mut self) {
         let Some(lesson) = self.current_lesson() else {
             return;
         };
         let id = lesson.id.clone();
-        self.progress.lessons_done.insert(id);
+        if self.progress.quiz_answered(&id, lesson.quiz.len()) {
+            self.progress.lessons_done.insert(id);
+        }
         if self.lesson + 1 < self.course.lessons.len() {
             self.go_to(self.lesson + 1, 0);
         } else {
@@ -921,8 +954,9 @@ impl App {
         }
     }
 
-    /// A lesson on the other environment starts a fresh run there (paused), with that
-    /// environment's settings in force; the previous run's curve is not overlaid.
+    /// A lesson on the other environment continues that environment's run if one was set
+    /// aside, else starts a fresh one there (paused), with that environment's settings in
+    /// force; the run left behind is set aside, not thrown away (issue 25, bug 2).
     fn follow_lesson_env(&mut self) {
         let Some(env) = self.current_lesson().map(|l| l.env) else {
             return;
@@ -930,18 +964,51 @@ impl App {
         if env == self.env {
             return;
         }
-        self.previous = None;
-        let run = match env {
+        let config = match env {
             Environment::CartPole => RunConfig::CartPole(self.config.clone()),
             Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
         };
-        self.reset_agent(run, self.seed, false);
-        self.status = crate::tr!(
-            "a {} lesson: fresh agent, seed {} (t trains, e one episode)",
-            "这是 {} 的课：新的智能体，随机种子 {}（t 训练，e 训练一个回合）",
-            env.as_str(),
-            self.seed
-        );
+        self.outbox.push(Command::Switch {
+            config: Box::new(config.clone()),
+            seed: self.seed,
+        });
+        let first = config.first_snapshot(self.seed);
+        let left = ParkedRun {
+            snapshot: std::mem::replace(&mut self.snapshot, first),
+            seed: self.seed,
+            train: match self.train {
+                TrainState::Running => TrainState::Paused,
+                other => other,
+            },
+            previous: self.previous.take(),
+        };
+        self.frame = 0;
+        self.env = env;
+        self.train = TrainState::Paused;
+        match self.parked.take().filter(|p| p.snapshot.env == env) {
+            Some(back) => {
+                let episodes = back.snapshot.episodes;
+                self.show(back.snapshot);
+                self.seed = back.seed;
+                self.train = back.train;
+                self.previous = back.previous;
+                self.status = crate::tr!(
+                    "a {} lesson: its run continues after {episodes} episodes, seed {} (t trains)",
+                    "这是 {} 的课：接着之前的训练（已训练 {episodes} 个回合，随机种子 {}；t 训练）",
+                    env.as_str(),
+                    self.seed
+                );
+            }
+            None => {
+                self.status = crate::tr!(
+                    "a {} lesson: fresh agent, seed {} (t trains, e one episode)",
+                    "这是 {} 的课：新的智能体，随机种子 {}（t 训练，e 训练一个回合）",
+                    env.as_str(),
+                    self.seed
+                );
+            }
+        }
+        self.parked = Some(left);
     }
 
     /// Writes the progress file (atomically); a failure becomes a status message.

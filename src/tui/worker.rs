@@ -28,6 +28,16 @@ pub enum Command {
         /// Seeds the agent's weights, its sampling and the environment's first reset.
         seed: u64,
     },
+    /// Go to `config`'s environment (paused): the current session is kept aside, and the
+    /// one kept for that environment, if any, continues where it stopped; otherwise a fresh
+    /// agent starts from `config` and `seed`. One live session per environment, so browsing
+    /// from a CartPole lesson to a Pendulum one and back loses no training (issue 25, bug 2).
+    Switch {
+        /// The environment and hyper-parameters of a fresh run there.
+        config: Box<RunConfig>,
+        /// The seed of a fresh run there.
+        seed: u64,
+    },
     /// End the thread.
     Quit,
 }
@@ -43,6 +53,12 @@ pub enum WorkerEvent {
     Reset {
         /// The seed used.
         seed: u64,
+    },
+    /// The session kept for the environment switched to continues (after
+    /// [`Command::Switch`]), after this many episodes.
+    Resumed {
+        /// Its episodes so far.
+        episodes: usize,
     },
     /// Training cannot go on; the message names the episode and the fix.
     Error(String),
@@ -62,6 +78,8 @@ pub fn spawn(
 
 fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Sender<WorkerEvent>) {
     let mut session = start(config, seed, events);
+    // The other environment's session, kept while its lessons are not open.
+    let mut parked: Option<Session> = None;
     let mut running = false;
     let mut one_more = false;
     loop {
@@ -89,6 +107,29 @@ fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Send
                 if session.is_some() {
                     let _ = events.send(WorkerEvent::Reset { seed });
                 }
+            }
+            Some(Command::Switch { config, seed }) => {
+                running = false;
+                one_more = false;
+                let env = config.env();
+                let kept = parked.take();
+                let (back, other) = match kept {
+                    Some(s) if s.snapshot().env == env => (Some(s), None),
+                    other => (None, other),
+                };
+                let left = session.take();
+                session = if let Some(s) = back {
+                    let episodes = s.snapshot().episodes;
+                    let _ = events.send(WorkerEvent::Resumed { episodes });
+                    Some(s)
+                } else {
+                    let fresh = start(*config, seed, events);
+                    if fresh.is_some() {
+                        let _ = events.send(WorkerEvent::Reset { seed });
+                    }
+                    fresh
+                };
+                parked = left.filter(|s| s.snapshot().env != env).or(other);
             }
             None => {}
         }

@@ -28,6 +28,16 @@ fn fmt(v: f64) -> String {
     }
 }
 
+/// One value of `t` as a cell: integers (`int64` actions) as integers, as PyTorch prints
+/// them, not `1.0000`.
+fn fmt_in(t: &TensorView, v: f64) -> String {
+    if t.dtype.starts_with("int") && v.is_finite() && v.fract() == 0.0 {
+        format!("{v:.0}")
+    } else {
+        fmt(v)
+    }
+}
+
 /// Sub-column names for 4-wide and 2-wide tensors.
 fn sub_names(t: &TensorView) -> Vec<String> {
     match (t.name.as_str(), t.cols()) {
@@ -64,8 +74,8 @@ pub fn lines(
             tr!(
                 "  min {}  max {}  mean {}",
                 "  最小 {}  最大 {}  均值 {}",
-                fmt(lo),
-                fmt(hi),
+                fmt_in(t, lo),
+                fmt_in(t, hi),
                 fmt(mean)
             )
         });
@@ -121,7 +131,7 @@ pub fn lines(
                 for k in 0..c {
                     let i = row * c + k;
                     let (text, mark) = t.values.get(i).map_or((String::new(), Mark::Plain), |&v| {
-                        (fmt(v), t.marks.get(i).copied().unwrap_or_default())
+                        (fmt_in(t, v), t.marks.get(i).copied().unwrap_or_default())
                     });
                     spans.push(Span::styled(format!(" {text:>11}"), style_of(mark, theme)));
                 }
@@ -155,10 +165,43 @@ pub fn lines(
         ];
         // Long series (returns) show their latest values.
         let skip = t.values.len().saturating_sub(8);
-        let shown: Vec<String> = t.values[skip..].iter().map(|&v| fmt(v)).collect();
+        let shown: Vec<String> = t.values[skip..].iter().map(|&v| fmt_in(t, v)).collect();
         let more = if skip > 0 { "…, " } else { "" };
         spans.push(Span::raw(format!("[{more}{}]", shown.join(", "))));
         out.push(Line::from(spans));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 25: `int64` actions show as integers, floats keep four decimals.
+    #[test]
+    fn integers_show_as_integers() {
+        let view = |dtype: &'static str| TensorView {
+            name: "actions".into(),
+            shape: vec![2, 1],
+            dtype,
+            labels: Vec::new(),
+            values: vec![0.0, 1.0],
+            marks: vec![Mark::Plain; 2],
+        };
+        let ints = view("int64");
+        let text = |t: &TensorView| -> String {
+            lines(std::slice::from_ref(t), 0, 20, Theme { color: false })
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("\n")
+        };
+        let shown = text(&ints);
+        assert!(
+            !shown.contains("1.0000") && shown.contains("  1"),
+            "{shown}"
+        );
+        let shown = text(&view("float32"));
+        assert!(shown.contains("1.0000"), "{shown}");
+    }
 }
