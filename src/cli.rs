@@ -81,6 +81,8 @@ pub enum Command {
     Watch(grade::WatchArgs),
     /// Restore an exercise's starter file (lessons/NN-slug/exercise.rs).
     Reset(grade::ResetArgs),
+    /// Write every exercise's starter into a folder, to do the exercises outside the clone.
+    Init(grade::InitArgs),
     /// Developer commands that regenerate the course's content (`dev notebooks`).
     #[command(hide = true)]
     Dev(dev::DevArgs),
@@ -293,6 +295,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
                 | Command::Pendulum(_)
                 | Command::Lessons
                 | Command::Reset(_)
+                | Command::Init(_)
                 | Command::Dev(_)
         )
     );
@@ -311,6 +314,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Grade(args)) => grade::run(&args),
         Some(Command::Watch(args)) => grade::watch(&args),
         Some(Command::Reset(args)) => grade::reset(&args),
+        Some(Command::Init(args)) => grade::init(&args),
         Some(Command::Dev(args)) => dev::run(&args),
         None => {
             crate::tui::run()?;

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
+use anyhow::Context as _;
 use clap::Args;
 
 use crate::grade::{self, GradeError, GradeOptions, Report};
@@ -22,9 +23,10 @@ pub struct GradeArgs {
     /// exercise_candle.rs for ppo_losses).
     #[arg(long, value_name = "PATH")]
     pub file: Option<PathBuf>,
-    /// Seconds the learner's code may run on all cases of one exercise.
-    #[arg(long, default_value_t = 10, value_name = "SECS")]
-    pub time_limit: u64,
+    /// Seconds the learner's code may run on all cases of one exercise (at least 1).
+    #[arg(long, default_value_t = 10, value_name = "SECS",
+          value_parser = super::args::parse_count, allow_hyphen_values = true)]
+    pub time_limit: usize,
 }
 
 /// Arguments of `ppo-tutor watch`.
@@ -33,15 +35,25 @@ pub struct WatchArgs {
     /// The exercise to start with; by default the first one in course order that has not
     /// passed yet.
     pub exercise: Option<String>,
-    /// Seconds the learner's code may run on all cases of one exercise.
-    #[arg(long, default_value_t = 10, value_name = "SECS")]
-    pub time_limit: u64,
+    /// Seconds the learner's code may run on all cases of one exercise (at least 1).
+    #[arg(long, default_value_t = 10, value_name = "SECS",
+          value_parser = super::args::parse_count, allow_hyphen_values = true)]
+    pub time_limit: usize,
+}
+
+/// Arguments of `ppo-tutor init`.
+#[derive(Debug, Args)]
+pub struct InitArgs {
+    /// The folder to write the exercises in (created if needed); the current folder by
+    /// default. Run `grade`, `watch` and the tutor from there.
+    pub dir: Option<PathBuf>,
 }
 
 /// Arguments of `ppo-tutor reset`.
 #[derive(Debug, Args)]
 pub struct ResetArgs {
-    /// The exercise whose starter file to restore (the whole file is rewritten).
+    /// The exercise whose starter to restore: its function only when the lesson's file holds
+    /// other exercises, else the whole file; a changed file is first kept as FILE.bak.
     pub exercise: String,
 }
 
@@ -57,7 +69,7 @@ fn usage(message: &str) -> ExitCode {
 /// Grading cannot happen at all (no rustc, unwritable cache).
 pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     let opts = GradeOptions {
-        time_limit: Duration::from_secs(args.time_limit.max(1)),
+        time_limit: seconds(args.time_limit),
         ..GradeOptions::default()
     };
     let Some(name) = &args.exercise else {
@@ -69,7 +81,7 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
         }
         return grade_all(&opts);
     };
-    note_first_build(name, &opts);
+    note_first_build(name, args.file.as_deref(), &opts);
     let report = match grade::grade(name, args.file.as_deref(), &opts) {
         Err(e @ GradeError::UnknownExercise { .. }) => return Ok(usage(&e.to_string())),
         Err(e @ GradeError::Read { .. }) => {
@@ -85,11 +97,22 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
             && let Ok(exercise) = grade::find(name)
         {
             let path = exercise.solution_path();
-            writeln!(
-                std::io::stdout(),
-                "  {}",
-                tr!("The reference solution: {path}", "参考答案：{path}")
-            )?;
+            let mut out = std::io::stdout();
+            if Path::new(&path).is_file() {
+                writeln!(
+                    out,
+                    "  {}",
+                    tr!("The reference solution: {path}", "参考答案：{path}")
+                )?;
+            } else if let Some(code) = grade::solution(name) {
+                // Outside the course folder (after `ppo-tutor init`) the file is not there:
+                // the binary carries every reference solution.
+                writeln!(
+                    out,
+                    "  {}\n\n{code}",
+                    t("The reference solution:", "参考答案：")
+                )?;
+            }
         }
         Ok(ExitCode::SUCCESS)
     } else {
@@ -97,12 +120,23 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     }
 }
 
-/// Says so before a grading whose first build is slow (minutes, with no other output).
-fn note_first_build(name: &str, opts: &GradeOptions) {
-    if let Some(note) = grade::find(name)
-        .ok()
-        .and_then(|e| e.first_build_note(&opts.cache_dir))
-    {
+/// `--time-limit`'s count of seconds (at least 1, by its parser) as a duration.
+fn seconds(count: usize) -> Duration {
+    Duration::from_secs(u64::try_from(count).unwrap_or(u64::MAX))
+}
+
+/// Says so before a grading whose first build is slow (minutes, with no other output):
+/// only when the file to grade (`file`, else the exercise's starter) exists, since a
+/// missing file is reported without building anything (issue 25, bug 10).
+fn note_first_build(name: &str, file: Option<&Path>, opts: &GradeOptions) {
+    let Ok(exercise) = grade::find(name) else {
+        return;
+    };
+    let starter = PathBuf::from(exercise.starter_path());
+    if !file.unwrap_or(&starter).is_file() {
+        return;
+    }
+    if let Some(note) = exercise.first_build_note(&opts.cache_dir) {
         eprintln!("{note}");
     }
 }
@@ -120,7 +154,7 @@ fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
     let exercises = grade::exercises();
     for exercise in exercises {
         let (name, path) = (exercise.name(), exercise.starter_path());
-        note_first_build(name, opts);
+        note_first_build(name, None, opts);
         let result = match grade::grade(name, None, opts) {
             Ok(report) => {
                 if report.passed() {
@@ -191,16 +225,89 @@ pub fn reset(args: &ResetArgs) -> anyhow::Result<ExitCode> {
     match grade::reset(&args.exercise, Path::new(".")) {
         Err(e @ GradeError::UnknownExercise { .. }) => Ok(usage(&e.to_string())),
         Err(e) => Err(e.into()),
-        Ok(path) => {
-            let path = path.display();
-            writeln!(
-                std::io::stdout(),
-                "{}",
+        Ok(done) => {
+            let (name, path) = (&args.exercise, done.path.display());
+            let mut out = std::io::stdout();
+            let line = if done.only_function {
+                tr!(
+                    "restored {name}'s starter in {path} (the file's other exercises are kept)",
+                    "已在 {path} 中恢复 {name} 的初始代码（文件里的其他练习保持不变）"
+                )
+            } else {
                 tr!("restored the starter {path}", "已恢复初始文件 {path}")
-            )?;
+            };
+            writeln!(out, "{line}")?;
+            if let Some(backup) = &done.backup {
+                let backup = backup.display();
+                writeln!(
+                    out,
+                    "{}",
+                    tr!(
+                        "your previous version is in {backup}",
+                        "你之前的版本保存在 {backup}"
+                    )
+                )?;
+            }
             Ok(ExitCode::SUCCESS)
         }
     }
+}
+
+/// Writes every exercise's starter under `dir` (default: the current folder), keeping any
+/// file already there, so the exercises can be done outside the course's clone.
+///
+/// # Errors
+/// The folder cannot be created or a file cannot be written.
+pub fn init(args: &InitArgs) -> anyhow::Result<ExitCode> {
+    let dir = args.dir.clone().unwrap_or_else(|| PathBuf::from("."));
+    if dir.exists() && !dir.is_dir() {
+        let shown = dir.display();
+        return Ok(usage(&tr!(
+            "{shown} is not a folder: give a folder to write the exercises in",
+            "{shown} 不是文件夹：请给出存放练习的文件夹"
+        )));
+    }
+    let mut out = std::io::stdout();
+    let (mut written, mut kept) = (0, 0);
+    let mut seen = std::collections::BTreeSet::new();
+    for exercise in grade::exercises() {
+        let rel = exercise.starter_path();
+        if !seen.insert(rel.clone()) {
+            continue;
+        }
+        let path = dir.join(&rel);
+        let shown = path.display();
+        if path.exists() {
+            kept += 1;
+            writeln!(out, "{}", tr!("kept     {shown}", "保留     {shown}"))?;
+            continue;
+        }
+        let text = exercise.starter().ok_or_else(|| {
+            anyhow::anyhow!(tr!(
+                "no starter is embedded for {rel}",
+                "{rel} 没有内置的初始文件"
+            ))
+        })?;
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)
+                .with_context(|| tr!("creating {}", "创建 {}", parent.display()))?;
+        }
+        std::fs::write(&path, text).with_context(|| tr!("writing {shown}", "写入 {shown}"))?;
+        written += 1;
+        writeln!(out, "{}", tr!("wrote    {shown}", "写入     {shown}"))?;
+    }
+    let shown = dir.display();
+    writeln!(
+        out,
+        "{}",
+        tr!(
+            "{written} starters written, {kept} kept. In {shown}: `ppo-tutor watch` grades on \
+             every save, `ppo-tutor grade` shows the score.",
+            "写入 {written} 个初始文件，保留 {kept} 个。在 {shown} 中：`ppo-tutor watch` 每次保存都会\
+             评测，`ppo-tutor grade` 显示得分。"
+        )
+    )?;
+    Ok(ExitCode::SUCCESS)
 }
 
 /// The first exercise at or after `from` in course order that has not passed yet.
@@ -217,7 +324,7 @@ fn next_pending(from: usize, progress: &Progress) -> Option<usize> {
 pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
     use std::io::IsTerminal;
     let opts = GradeOptions {
-        time_limit: Duration::from_secs(args.time_limit.max(1)),
+        time_limit: seconds(args.time_limit),
         ..GradeOptions::default()
     };
     let all = grade::exercises();
@@ -255,16 +362,35 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
     loop {
         let exercise = all[current];
         let (name, path) = (exercise.name(), PathBuf::from(exercise.starter_path()));
+        // Without a name, exercises whose file is missing are skipped (said once each).
+        if !path.exists()
+            && args.exercise.is_none()
+            && let Some(next) = (current + 1..all.len()).find(|&i| {
+                !progress.exercises_done.contains(all[i].name())
+                    && Path::new(&all[i].starter_path()).exists()
+            })
+        {
+            let shown = path.display();
+            eprintln!(
+                "{}",
+                tr!(
+                    "skipping {name}: {shown} is missing (`ppo-tutor reset {name}` writes it)",
+                    "跳过 {name}：找不到 {shown}（`ppo-tutor reset {name}` 会写入它）"
+                )
+            );
+            current = next;
+            continue;
+        }
         if !path.exists() {
             let shown = path.display();
             eprintln!(
                 "{}{}",
                 super::error_prefix(),
                 tr!(
-                    "{shown} is missing: `ppo-tutor reset {name}` writes the starter there \
-                     (run ppo-tutor from the course folder)",
-                    "找不到 {shown}：`ppo-tutor reset {name}` 会在那里写入初始文件\
-                     （请在课程文件夹中运行 ppo-tutor）"
+                    "{shown} is missing: `ppo-tutor reset {name}` writes the starter there, \
+                     `ppo-tutor init` every starter (exercises live under the current folder)",
+                    "找不到 {shown}：`ppo-tutor reset {name}` 会在那里写入初始文件，\
+                     `ppo-tutor init` 会写入全部初始文件（练习文件位于当前文件夹下）"
                 )
             );
             return Ok(ExitCode::FAILURE);
@@ -278,7 +404,7 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
                 print!("\x1b[2J\x1b[H");
             }
             keep_screen = false;
-            note_first_build(name, &opts);
+            note_first_build(name, None, &opts);
             let passed = match grade::grade(name, None, &opts) {
                 Ok(report) => {
                     print!("{}", report.render());

@@ -112,10 +112,12 @@ pub fn build(
 #[must_use]
 pub fn first_build_note(name: &str, backend: Backend, cache: &Path) -> Option<String> {
     (backend == Backend::Cargo && cargo::first_build_pending(name, cache)).then(|| {
-        format!(
-            "Compiling candle for the candle exercise's grader in {} (the first time only: \
+        let dir = cargo::project_dir(name, cache);
+        let dir = dir.display();
+        crate::tr!(
+            "Compiling candle for the candle exercise's grader in {dir} (the first time only: \
              a few minutes)…",
-            cargo::project_dir(name, cache).display()
+            "正在 {dir} 里为 candle 练习的评分程序编译 candle（只有第一次需要，约几分钟）……"
         )
     })
 }

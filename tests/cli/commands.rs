@@ -322,7 +322,7 @@ fn every_subcommand_takes_lang_and_the_help_explains_it() -> TestResult {
     }
     for sub in [
         "cartpole", "pendulum", "lessons", "show", "train", "lab", "play", "replay", "grade",
-        "watch", "reset",
+        "watch", "reset", "init",
     ] {
         let out = run(&[sub, "--lang", "zh", "--help"])?;
         assert!(out.status.success(), "{sub} --lang zh --help");
@@ -559,5 +559,175 @@ fn bad_output_paths_are_refused_before_training() -> TestResult {
         );
     }
     assert!(folder.is_dir(), "the folder given to --save was replaced");
+    Ok(())
+}
+
+/// Issue 25, bug 10: grading the candle exercise when its file is missing announces no
+/// candle build (nothing is built: the file is reported missing), in either language; and
+/// `--time-limit 0` (an exercise that could never run) is refused by name.
+#[test]
+fn a_missing_candle_file_builds_nothing_and_time_limit_0_is_refused() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    for lang in ["en", "zh"] {
+        let out = with_env(&[])
+            .args(["--lang", lang, "grade", "ppo_losses"])
+            .current_dir(dir.path())
+            .env("PPO_TUTOR_STATE", dir.path().join("state.json"))
+            .env("PPO_TUTOR_GRADE_CACHE", dir.path().join("cache"))
+            .output()?;
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(1), "{lang}: {err}");
+        assert!(
+            !err.contains("Compiling candle") && !err.contains("编译 candle"),
+            "{lang}: a build is announced for a missing file: {err}"
+        );
+        assert!(
+            err.contains("exercise_candle.rs"),
+            "{lang}: the missing file is not named: {err}"
+        );
+        assert!(
+            !dir.path().join("cache").join("ppo_losses").exists(),
+            "{lang}: a grading project was set up for a missing file"
+        );
+    }
+    for cmd in ["grade", "watch"] {
+        let out = run(&[cmd, "td_target", "--time-limit", "0"])?;
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(2), "{cmd}: {err}");
+        assert!(
+            err.contains("--time-limit") && err.contains("at least 1"),
+            "{cmd}: --time-limit 0 is not refused by name: {err}"
+        );
+    }
+    Ok(())
+}
+
+/// Issue 25, bug 3: `reset` of one exercise in a file that holds others restores only that
+/// function, keeps the others' work, and keeps the old file as `.bak`, saying where.
+#[test]
+fn reset_restores_one_function_and_keeps_a_backup() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let reset = |name: &str| {
+        with_env(&[])
+            .args(["--lang", "en", "reset", name])
+            .current_dir(dir.path())
+            .output()
+    };
+    let out = reset("gae_rollout")?;
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let file = dir.path().join("lessons/15-beyond-the-seed/exercise.rs");
+    let starter = std::fs::read_to_string(&file)?;
+    // The learner's work in two of the file's functions.
+    let mut mine = String::new();
+    let mut rest = starter.as_str();
+    for (name, marker) in [
+        (
+            "pub fn td_target_truncation(",
+            "unimplemented!(\"mine: td_target_truncation\")",
+        ),
+        (
+            "pub fn gae_rollout(",
+            "unimplemented!(\"mine: gae_rollout\")",
+        ),
+    ] {
+        let at = rest.find(name).ok_or(name)?;
+        let todo = at + rest[at..].find("todo!()").ok_or("no todo!()")?;
+        mine.push_str(&rest[..todo]);
+        mine.push_str(marker);
+        rest = &rest[todo + "todo!()".len()..];
+    }
+    mine.push_str(rest);
+    std::fs::write(&file, &mine)?;
+
+    let out = reset("gae_rollout")?;
+    let said = String::from_utf8(out.stdout)?;
+    assert_eq!(out.status.code(), Some(0), "{said}");
+    let now = std::fs::read_to_string(&file)?;
+    assert!(
+        now.contains("mine: td_target_truncation"),
+        "the other exercise's work was lost"
+    );
+    assert!(
+        !now.contains("mine: gae_rollout"),
+        "gae_rollout was not reset"
+    );
+    assert_eq!(
+        now.matches("todo!()").count(),
+        starter.matches("todo!()").count() - 1
+    );
+    let backup = dir
+        .path()
+        .join("lessons/15-beyond-the-seed/exercise.rs.bak");
+    assert_eq!(std::fs::read_to_string(&backup)?, mine);
+    assert!(
+        said.contains("exercise.rs.bak") && said.contains("other exercises are kept"),
+        "{said}"
+    );
+    Ok(())
+}
+
+/// Issue 25, section 3: `init DIR` writes every starter so the exercises can be done outside
+/// the clone (keeping files already there), `watch` with no name skips missing files, and a
+/// pass shows the embedded reference solution where no solution file exists.
+#[test]
+fn init_writes_every_starter_outside_the_clone() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let course = dir.path().join("course");
+    let ppo = |args: &[&str], cwd: &std::path::Path| {
+        with_env(&[])
+            .args(["--lang", "en"])
+            .args(args)
+            .current_dir(cwd)
+            .env("PPO_TUTOR_STATE", dir.path().join("state.json"))
+            .env("PPO_TUTOR_GRADE_CACHE", dir.path().join("cache"))
+            .output()
+    };
+    let out = ppo(&["init", "course"], dir.path())?;
+    let said = String::from_utf8(out.stdout)?;
+    assert_eq!(out.status.code(), Some(0), "{said}");
+    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut starters = 0;
+    for lesson in std::fs::read_dir(repo.join("lessons"))? {
+        let lesson = lesson?.path();
+        for file in ["exercise.rs", "exercise_candle.rs"] {
+            if lesson.join(file).exists() {
+                let name = lesson.file_name().ok_or("no name")?;
+                let written = course.join("lessons").join(name).join(file);
+                assert_eq!(
+                    std::fs::read_to_string(&written)?,
+                    std::fs::read_to_string(lesson.join(file))?,
+                    "{}",
+                    written.display()
+                );
+                starters += 1;
+            }
+        }
+    }
+    assert!(
+        said.contains(&format!("{starters} starters written, 0 kept")),
+        "{said}"
+    );
+    // A second init keeps the learner's files.
+    let td = course.join("lessons/07-td-target/exercise.rs");
+    let solution = std::fs::read_to_string(repo.join("lessons/07-td-target/solution.rs"))?;
+    std::fs::write(&td, &solution)?;
+    let said = String::from_utf8(ppo(&["init", "course"], dir.path())?.stdout)?;
+    assert!(
+        said.contains(&format!("0 starters written, {starters} kept")),
+        "{said}"
+    );
+    assert_eq!(std::fs::read_to_string(&td)?, solution);
+    // Graded from there: a pass shows the reference itself (no solution.rs outside the clone).
+    let out = ppo(&["grade", "td_target"], &course)?;
+    let said = String::from_utf8(out.stdout)?;
+    assert_eq!(out.status.code(), Some(0), "{said}");
+    assert!(
+        said.contains("The reference solution:") && said.contains("pub fn td_target("),
+        "{said}"
+    );
+    // `init` into a file is a usage error.
+    std::fs::write(dir.path().join("a-file"), "")?;
+    let out = ppo(&["init", "a-file"], dir.path())?;
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
     Ok(())
 }
