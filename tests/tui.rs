@@ -113,7 +113,7 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
     // Issue 25, bug 2: browsing back continues the CartPole run, and the Pendulum one waits.
     assert_eq!(app.snapshot.episodes, 3, "the CartPole run was thrown away");
     assert!(
-        app.status.contains("continues after 3 episodes"),
+        app.status.contains("continues after episode 3"),
         "{}",
         app.status
     );

@@ -993,7 +993,7 @@ impl App {
                 self.train = back.train;
                 self.previous = back.previous;
                 self.status = crate::tr!(
-                    "a {} lesson: its run continues after {episodes} episodes, seed {} (t trains)",
+                    "a {} lesson: its run continues after episode {episodes}, seed {} (t trains)",
                     "这是 {} 的课：接着之前的训练（已训练 {episodes} 个回合，随机种子 {}；t 训练）",
                     env.as_str(),
                     self.seed
