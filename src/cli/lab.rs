@@ -83,18 +83,6 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
         }
         return Ok(ExitCode::SUCCESS);
     };
-    if args.episodes == 0 {
-        eprintln!(
-            "{}{}{}",
-            super::error_prefix(),
-            t(
-                "invalid --episodes 0: expected at least 1",
-                "--episodes 0 无效：至少为 1"
-            ),
-            super::see_help()
-        );
-        return Ok(ExitCode::from(super::EXIT_USAGE));
-    }
     let base = PpoConfig {
         num_episodes: args.episodes,
         ..PpoConfig::default()
