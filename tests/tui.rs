@@ -895,3 +895,28 @@ fn a_lesson_s_status_line_does_not_follow_into_another_lesson() -> TestResult {
     assert!(!app.status.contains("question"), "{}", app.status);
     Ok(())
 }
+
+/// Issue 25, section 2: at 80×24 the key bar keeps stepping, help and quit (the least
+/// essential keys make room), in both languages; a warning comes first in the status line.
+#[test]
+fn the_key_bar_keeps_help_and_quit_at_80x24() -> TestResult {
+    for (lang, help, quit) in [
+        (Lang::En, "? help", "q quit"),
+        (Lang::Zh, "? 帮助", "q 退出"),
+    ] {
+        let _lang = lang.scoped();
+        let mut app = app()?;
+        let text = screen(&app, 80, 24)?;
+        let keys = text.lines().nth(22).ok_or("no key bar")?;
+        assert!(keys.contains(help) && keys.contains(quit), "{keys}");
+        assert!(keys.contains("←/→"), "{keys}");
+        app.status = format!(
+            "{}a long warning about /some/long/path/.ppo-tutor-state.json",
+            ppo_tutor::tui::app::warning()
+        );
+        let text = screen(&app, 80, 24)?;
+        let status = text.lines().nth(23).ok_or("no status line")?;
+        assert!(status.contains("/some/long/path"), "{status}");
+    }
+    Ok(())
+}

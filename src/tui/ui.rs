@@ -378,14 +378,31 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         ("?", t("help", "帮助")),
         ("q", t("quit", "退出")),
     ];
+    // On a narrow terminal the least essential keys go first (`?` lists them all), so that
+    // stepping, training, help and quit always show (issue 25: at 80×24 in Chinese `q 退出`
+    // was cut to `q`).
+    const DROP_ORDER: [&str; 6] = ["e", "r", "s", "L", "l", "t"];
+    let width_of = |(k, what): &(&str, &str)| 3 + text::width(k) + text::width(what);
+    let mut shown: Vec<(&str, &str)> = keys.to_vec();
+    for drop in DROP_ORDER {
+        if shown.iter().map(width_of).sum::<usize>() <= usize::from(area.width) {
+            break;
+        }
+        shown.retain(|(k, _)| *k != drop);
+    }
     let mut spans = Vec::new();
-    for (k, what) in keys {
+    for (k, what) in shown {
         spans.push(Span::styled(format!(" {k}"), theme.key()));
         spans.push(Span::raw(format!(" {what} ")));
     }
     // What stays first (the open exercise, the counts), the latest message last: a long
-    // message is cut at the right edge, the counts never are.
+    // message is cut at the right edge, the counts never are. A warning (a corrupt progress
+    // file, a grader that cannot start) goes first instead, so it is read whole.
     let mut parts = Vec::new();
+    let warning = super::app::is_warning(&app.status);
+    if warning {
+        parts.push(app.status.clone());
+    }
     let exercise = app.exercise_names();
     if !exercise.is_empty() {
         let state = if app.exercise_done() {
@@ -416,7 +433,7 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         "quiz {right}/{questions} right ({answered} answered)",
         "小测验答对 {right}/{questions}（已答 {answered}）"
     ));
-    if !app.status.is_empty() {
+    if !app.status.is_empty() && !warning {
         parts.push(app.status.clone());
     }
     let status = format!(" {}", parts.join(" · "));
