@@ -14,6 +14,25 @@ use crate::i18n::t;
 use crate::lesson::Progress;
 use crate::tr;
 
+/// `--time-limit`, shared by `grade` and `watch`.
+#[derive(Debug, Args)]
+pub struct TimeLimit {
+    /// Seconds the learner's code may run on all cases of one exercise (at least 1).
+    #[arg(long, default_value_t = 10, value_name = "SECS",
+          value_parser = super::args::parse_count, allow_hyphen_values = true)]
+    pub time_limit: usize,
+}
+
+impl TimeLimit {
+    /// The grading options with this limit.
+    fn options(&self) -> GradeOptions {
+        GradeOptions {
+            time_limit: Duration::from_secs(u64::try_from(self.time_limit).unwrap_or(u64::MAX)),
+            ..GradeOptions::default()
+        }
+    }
+}
+
 /// Arguments of `ppo-tutor grade`.
 #[derive(Debug, Args)]
 pub struct GradeArgs {
@@ -23,10 +42,9 @@ pub struct GradeArgs {
     /// exercise_candle.rs for ppo_losses).
     #[arg(long, value_name = "PATH")]
     pub file: Option<PathBuf>,
-    /// Seconds the learner's code may run on all cases of one exercise (at least 1).
-    #[arg(long, default_value_t = 10, value_name = "SECS",
-          value_parser = super::args::parse_count, allow_hyphen_values = true)]
-    pub time_limit: usize,
+    /// How long the learner's code may run.
+    #[command(flatten)]
+    pub limit: TimeLimit,
 }
 
 /// Arguments of `ppo-tutor watch`.
@@ -35,10 +53,9 @@ pub struct WatchArgs {
     /// The exercise to start with; by default the first one in course order that has not
     /// passed yet.
     pub exercise: Option<String>,
-    /// Seconds the learner's code may run on all cases of one exercise (at least 1).
-    #[arg(long, default_value_t = 10, value_name = "SECS",
-          value_parser = super::args::parse_count, allow_hyphen_values = true)]
-    pub time_limit: usize,
+    /// How long the learner's code may run.
+    #[command(flatten)]
+    pub limit: TimeLimit,
 }
 
 /// Arguments of `ppo-tutor init`.
@@ -68,10 +85,7 @@ fn usage(message: &str) -> ExitCode {
 /// # Errors
 /// Grading cannot happen at all (no rustc, unwritable cache).
 pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
-    let opts = GradeOptions {
-        time_limit: seconds(args.time_limit),
-        ..GradeOptions::default()
-    };
+    let opts = args.limit.options();
     let Some(name) = &args.exercise else {
         if args.file.is_some() {
             return Ok(usage(t(
@@ -118,11 +132,6 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     } else {
         Ok(ExitCode::FAILURE)
     }
-}
-
-/// `--time-limit`'s count of seconds (at least 1, by its parser) as a duration.
-fn seconds(count: usize) -> Duration {
-    Duration::from_secs(u64::try_from(count).unwrap_or(u64::MAX))
 }
 
 /// Says so before a grading whose first build is slow (minutes, with no other output):
@@ -323,10 +332,7 @@ fn next_pending(from: usize, progress: &Progress) -> Option<usize> {
 /// Grading cannot happen at all (no rustc), or the exercise's folder cannot be watched.
 pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
     use std::io::IsTerminal;
-    let opts = GradeOptions {
-        time_limit: seconds(args.time_limit),
-        ..GradeOptions::default()
-    };
+    let opts = args.limit.options();
     let all = grade::exercises();
     let (progress, _) = Progress::load(&Progress::default_path());
     let start = match &args.exercise {

@@ -24,14 +24,6 @@ pub struct Restored {
     pub only_function: bool,
 }
 
-/// The backup's path: the file's name with `.bak` added (`exercise.rs.bak`).
-#[must_use]
-pub fn backup_path(path: &Path) -> PathBuf {
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(".bak");
-    path.with_file_name(name)
-}
-
 /// Restores exercise `name`'s starter `starter` in `path`. `others` are the exercises
 /// sharing the file, and `variants` the file's starters in every language (the same code,
 /// other comments). When one of the others holds work (its function differs from every
@@ -87,7 +79,7 @@ pub fn restore(
             only_function,
         });
     }
-    let backup = backup_path(path);
+    let backup = crate::lesson::progress::backup_path(path);
     std::fs::write(&backup, &current).map_err(write_err(&backup))?;
     std::fs::write(path, text).map_err(write_err(path))?;
     Ok(Restored {

@@ -53,7 +53,8 @@ impl Progress {
     }
 }
 
-/// Where a corrupt progress file is kept: its name with `.bak` added.
+/// Where a file's previous text is kept: its name with `.bak` added (a corrupt progress
+/// file here, an exercise file before `reset` in `grade::reset`).
 #[must_use]
 pub fn backup_path(path: &Path) -> PathBuf {
     let mut name = path.as_os_str().to_owned();

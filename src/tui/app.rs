@@ -795,7 +795,12 @@ impl App {
     /// The current run's environment and settings, as the worker's session was started.
     #[must_use]
     pub fn run_config(&self) -> RunConfig {
-        match self.env {
+        self.config_for(self.env)
+    }
+
+    /// A run on `env` with that environment's settings in force.
+    fn config_for(&self, env: Environment) -> RunConfig {
+        match env {
             Environment::CartPole => RunConfig::CartPole(self.config.clone()),
             Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
         }
@@ -964,10 +969,7 @@ impl App {
         if env == self.env {
             return;
         }
-        let config = match env {
-            Environment::CartPole => RunConfig::CartPole(self.config.clone()),
-            Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
-        };
+        let config = self.config_for(env);
         self.outbox.push(Command::Switch {
             config: Box::new(config.clone()),
             seed: self.seed,

@@ -18,6 +18,14 @@ fn with_env(env: &[(&str, &str)]) -> Command {
     cmd
 }
 
+/// [`with_env`] with its progress file and grading cache in `dir` (not the user's).
+fn sandboxed(dir: &std::path::Path) -> Command {
+    let mut cmd = with_env(&[]);
+    cmd.env("PPO_TUTOR_STATE", dir.join("state.json"))
+        .env("PPO_TUTOR_GRADE_CACHE", dir.join("cache"));
+    cmd
+}
+
 fn run(args: &[&str]) -> std::io::Result<Output> {
     english().args(args).output()
 }
@@ -411,10 +419,8 @@ fn a_wrong_answer_is_graded_in_chinese_with_the_same_exit_code() -> TestResult {
     std::fs::write(&file, wrong)?;
     let file = file.to_str().ok_or("path")?;
     let grade = |lang: &str| {
-        with_env(&[])
+        sandboxed(dir.path())
             .args(["--lang", lang, "grade", "td_target", "--file", file])
-            .env("PPO_TUTOR_STATE", dir.path().join("state.json"))
-            .env("PPO_TUTOR_GRADE_CACHE", dir.path().join("cache"))
             .env("NO_COLOR", "1")
             .output()
     };
@@ -569,11 +575,9 @@ fn bad_output_paths_are_refused_before_training() -> TestResult {
 fn a_missing_candle_file_builds_nothing_and_time_limit_0_is_refused() -> TestResult {
     let dir = tempfile::tempdir()?;
     for lang in ["en", "zh"] {
-        let out = with_env(&[])
+        let out = sandboxed(dir.path())
             .args(["--lang", lang, "grade", "ppo_losses"])
             .current_dir(dir.path())
-            .env("PPO_TUTOR_STATE", dir.path().join("state.json"))
-            .env("PPO_TUTOR_GRADE_CACHE", dir.path().join("cache"))
             .output()?;
         let err = String::from_utf8(out.stderr)?;
         assert_eq!(out.status.code(), Some(1), "{lang}: {err}");
@@ -608,7 +612,7 @@ fn a_missing_candle_file_builds_nothing_and_time_limit_0_is_refused() -> TestRes
 fn reset_restores_one_function_and_keeps_a_backup() -> TestResult {
     let dir = tempfile::tempdir()?;
     let reset = |name: &str| {
-        with_env(&[])
+        sandboxed(dir.path())
             .args(["--lang", "en", "reset", name])
             .current_dir(dir.path())
             .output()
@@ -674,12 +678,10 @@ fn init_writes_every_starter_outside_the_clone() -> TestResult {
     let dir = tempfile::tempdir()?;
     let course = dir.path().join("course");
     let ppo = |args: &[&str], cwd: &std::path::Path| {
-        with_env(&[])
+        sandboxed(dir.path())
             .args(["--lang", "en"])
             .args(args)
             .current_dir(cwd)
-            .env("PPO_TUTOR_STATE", dir.path().join("state.json"))
-            .env("PPO_TUTOR_GRADE_CACHE", dir.path().join("cache"))
             .output()
     };
     let out = ppo(&["init", "course"], dir.path())?;
