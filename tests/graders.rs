@@ -444,7 +444,8 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     assert!(tutor_screen(&app)?.contains("exercise td_target, td_delta: pending"));
 
     app.update(Action::Hint);
-    assert_eq!(app.overlay, Overlay::Exercise(0));
+    assert_eq!(app.overlay, Overlay::Exercise);
+    assert_eq!(app.exercise.scroll(), 0);
     assert_eq!(app.exercise.hints_shown, 1);
     let text = tutor_screen(&app)?;
     let hints = app

@@ -11,8 +11,8 @@ use ppo_tutor::i18n::Lang;
 use ppo_tutor::lesson::{Course, Environment, Progress, RunConfig, Session};
 use ppo_tutor::ppo::{PpoConfig, PpoContinuousConfig};
 use ppo_tutor::tui::app::{App, Overlay, TrainState};
+use ppo_tutor::tui::components::sandbox::Field;
 use ppo_tutor::tui::keys::Action;
-use ppo_tutor::tui::sandbox::Field;
 use ppo_tutor::tui::theme::Theme;
 use ppo_tutor::tui::ui::View;
 use ppo_tutor::tui::worker::{self, Command, WorkerEvent};
@@ -47,7 +47,7 @@ fn every_step_of_every_lesson() -> TestResult {
         }
         show_pendulum_run(&mut app)?;
         // After a lesson's last step come its questions: the first one's screen, then on.
-        if let Overlay::Quiz(0) = app.overlay {
+        if app.overlay == Overlay::Quiz && app.quiz.question() == 0 {
             let lesson = app.current_lesson().ok_or("no lesson")?;
             let name = format!("{:02}-{}-quiz", lesson.order, lesson.id);
             let questions = lesson.quiz.len();
@@ -113,7 +113,7 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
     // Issue 25, bug 2: browsing back continues the CartPole run, and the Pendulum one waits.
     assert_eq!(app.snapshot.episodes, 3, "the CartPole run was thrown away");
     assert!(
-        app.status.contains("continues after episode 3"),
+        app.status.text().contains("continues after episode 3"),
         "{}",
         app.status
     );
@@ -174,8 +174,8 @@ fn keys_move_through_the_course() -> TestResult {
         app.update(Action::Next);
     }
     assert_eq!(
-        app.overlay,
-        Overlay::Quiz(0),
+        (app.overlay, app.quiz.question()),
+        (Overlay::Quiz, 0),
         "→ at a lesson's end opens its quiz"
     );
     for _ in 0..app.course.lessons[0].quiz.len() {
@@ -193,7 +193,10 @@ fn keys_move_through_the_course() -> TestResult {
     app.update(Action::Prev);
     assert_eq!((app.lesson, app.step), (0, steps - 1));
     app.update(Action::Lessons);
-    assert_eq!(app.overlay, Overlay::Lessons(0));
+    assert_eq!(
+        (app.overlay, app.lesson_list.selected),
+        (Overlay::Lessons, 0)
+    );
     app.update(Action::Down);
     app.update(Action::Down);
     app.update(Action::Enter);
@@ -339,7 +342,7 @@ fn the_worker_sends_its_session_snapshot_after_each_episode() -> TestResult {
         "the app shows what the session computed"
     );
     let last = expected.returns.last().ok_or("no return")?;
-    assert_eq!(app.status, format!("episode 2: return {last}"));
+    assert_eq!(app.status.text(), format!("episode 2: return {last}"));
     let frames = expected.observation_count();
     assert!(frames > 1);
     for _ in 0..frames {
@@ -415,24 +418,28 @@ fn x_runs_the_step_s_experiment_and_the_panel_shows_its_result() -> TestResult {
     let mut app = app()?;
     app.update(Action::RunLab);
     assert!(
-        app.lab_request.is_none(),
+        app.lab.request.is_none(),
         "no experiment outside the lab steps"
     );
-    assert!(app.status.contains("no experiment"), "{}", app.status);
+    assert!(
+        app.status.text().contains("no experiment"),
+        "{}",
+        app.status
+    );
     open(&mut app, "clip-lab")?;
     app.update(Action::Next); // Experiment 1: the clip range
     let before = screen(&app, 140, 45)?;
     assert!(before.contains("x runs the experiment"), "{before}");
     app.update(Action::RunLab);
-    let (experiment, base) = app.lab_request.take().ok_or("x asked for no experiment")?;
+    let (experiment, base) = app.lab.request.take().ok_or("x asked for no experiment")?;
     assert_eq!((experiment, base.num_episodes), (Experiment::Eps, 500));
     assert!(matches!(
-        app.labs.get(&experiment),
+        app.lab.get(&experiment),
         Some(LabState::Running { done: 0, .. })
     ));
     app.update(Action::RunLab);
     assert!(
-        app.lab_request.is_none(),
+        app.lab.request.is_none(),
         "a running experiment is not started twice"
     );
     // What the event loop's thread sends back, from a short run.
@@ -460,7 +467,7 @@ fn x_runs_the_step_s_experiment_and_the_panel_shows_its_result() -> TestResult {
         after.contains("ε = 0.05 vs ε = 0.2") && after.contains("no clip vs ε = 0.2"),
         "{after}"
     );
-    assert!(app.status.contains("lab eps: done"));
+    assert!(app.status.text().contains("lab eps: done"));
     Ok(())
 }
 
@@ -514,7 +521,7 @@ fn open_quiz(app: &mut App, id: &str) -> TestResult {
     for _ in 0..steps {
         app.update(Action::Next);
     }
-    assert_eq!(app.overlay, Overlay::Quiz(0));
+    assert_eq!((app.overlay, app.quiz.question()), (Overlay::Quiz, 0));
     Ok(())
 }
 
@@ -532,7 +539,7 @@ fn quiz_questions_are_answered_with_keys_and_counted() -> TestResult {
         open_quiz(&mut app, id)?;
         let questions = app.current_lesson().ok_or("no lesson")?.quiz.clone();
         for (i, q) in questions.iter().enumerate() {
-            assert_eq!(app.overlay, Overlay::Quiz(i));
+            assert_eq!((app.overlay, app.quiz.question()), (Overlay::Quiz, i));
             match &q.kind {
                 QuestionKind::Choice {
                     answer, explain, ..
@@ -605,7 +612,7 @@ fn saving_the_exercise_file_grades_it_one_grading_at_a_time() -> TestResult {
     open(&mut app, "td-target")?;
     app.on_saved();
     assert!(app.exercise.grading);
-    assert_eq!(app.overlay, Overlay::Exercise(0));
+    assert_eq!(app.overlay, Overlay::Exercise);
     let names = app.exercise.request.take().ok_or("no grading requested")?;
     assert_eq!(names, vec!["td_target".to_string(), "td_delta".to_string()]);
     app.on_saved();
@@ -721,7 +728,7 @@ fn every_step_in_chinese(width: u16, height: u16) -> TestResult {
             app.update(Action::Next);
         }
         show_pendulum_run(&mut app)?;
-        if let Overlay::Quiz(0) = app.overlay {
+        if app.overlay == Overlay::Quiz && app.quiz.question() == 0 {
             let lesson = app.current_lesson().ok_or("no lesson")?;
             let name = format!("zh-{size}-{:02}-{}-quiz", lesson.order, lesson.id);
             let questions = lesson.quiz.len();
@@ -849,9 +856,9 @@ fn l_switches_the_language_live_and_keeps_the_place() -> TestResult {
         app.update(Action::Next);
     }
     app.update(Action::Next);
-    assert_eq!(app.overlay, Overlay::Quiz(1));
+    assert_eq!((app.overlay, app.quiz.question()), (Overlay::Quiz, 1));
     app.update(Action::Language);
-    assert_eq!(app.overlay, Overlay::Quiz(1));
+    assert_eq!((app.overlay, app.quiz.question()), (Overlay::Quiz, 1));
     let quiz = checked_screen(&app, 160, 50)?;
     assert!(quiz.contains("检验一下：第 2/"), "{quiz}");
     app.update(Action::Language);
@@ -878,21 +885,196 @@ fn a_lesson_s_status_line_does_not_follow_into_another_lesson() -> TestResult {
     for _ in 0..=hints {
         app.update(Action::Hint);
     }
-    assert!(app.status.contains("hints are shown"), "{}", app.status);
+    assert!(
+        app.status.text().contains("hints are shown"),
+        "{}",
+        app.status
+    );
     app.update(Action::Back);
     open(&mut app, "cartpole")?;
-    assert!(!app.status.contains("hints"), "{}", app.status);
+    assert!(!app.status.text().contains("hints"), "{}", app.status);
 
     open_quiz(&mut app, "what-is-ppo")?;
     assert!(
-        !app.status.is_empty(),
+        !app.status.text().is_empty(),
         "the quiz says which question is open"
     );
     let quiz_status = app.status.clone();
     app.update(Action::Back);
     open(&mut app, "cartpole")?;
     assert_ne!(app.status, quiz_status);
-    assert!(!app.status.contains("question"), "{}", app.status);
+    assert!(!app.status.text().contains("question"), "{}", app.status);
+    Ok(())
+}
+
+/// Issue 25, section 4: a status message belongs to the face that set it and goes when that
+/// face closes; the lesson view's own messages and warnings stay.
+#[test]
+fn each_face_s_status_line_goes_when_it_closes() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "training")?;
+    app.update(Action::Hint);
+    assert_eq!(app.overlay, Overlay::Exercise);
+    assert!(app.status.text().contains("hint 1/"), "{}", app.status);
+    app.update(Action::Back);
+    assert_eq!(
+        app.status.text(),
+        "",
+        "the hint's message closed with the panel"
+    );
+
+    open_quiz(&mut app, "what-is-ppo")?;
+    assert!(app.status.text().contains("question 1/"), "{}", app.status);
+    app.update(Action::Back);
+    assert_eq!(
+        app.status.text(),
+        "",
+        "the quiz's message closed with the quiz"
+    );
+
+    app.update(Action::OneEpisode);
+    let said = app.status.text().to_string();
+    for face in [Action::Help, Action::Lessons, Action::Sandbox] {
+        app.update(face);
+        app.update(Action::Back);
+        assert_eq!(
+            app.status.text(),
+            said,
+            "{face:?} keeps the lesson view's message"
+        );
+    }
+
+    let warning = format!(
+        "{}the progress file was corrupt",
+        ppo_tutor::tui::app::warning()
+    );
+    app.say(warning.clone());
+    app.update(Action::Help);
+    app.update(Action::Back);
+    open(&mut app, "cartpole")?;
+    assert_eq!(app.status.text(), warning, "a warning stays until read");
+    Ok(())
+}
+
+/// Issue 25, section 2: at 80×24 a quiz question's feedback (each choice's explanation)
+/// scrolls, and the panel says that more follows; the keys stay on its last row.
+#[test]
+fn quiz_feedback_scrolls_at_80x24_and_says_more_follows() -> TestResult {
+    use ppo_tutor::lesson::quiz::{QuestionKind, letter_of};
+    let mut app = app()?;
+    let mut scrolled = 0;
+    let ids: Vec<String> = app.course.lessons.iter().map(|l| l.id.clone()).collect();
+    for id in ids {
+        open_quiz(&mut app, &id)?;
+        let Some(QuestionKind::Choice { answer, .. }) =
+            app.quiz_question(0).map(|q| q.kind.clone())
+        else {
+            continue;
+        };
+        app.update(Action::Type(letter_of(answer)));
+        let text = screen(&app, 80, 24)?;
+        assert!(
+            text.contains("Esc back to the lesson"),
+            "{id}: the keys show\n{text}"
+        );
+        if !text.contains("more lines: ↓ scrolls") {
+            continue;
+        }
+        scrolled += 1;
+        for _ in 0..200 {
+            app.update(Action::Down);
+        }
+        let end = screen(&app, 80, 24)?;
+        assert!(end.contains("lines above: ↑ scrolls"), "{id}\n{end}");
+        assert!(
+            !end.contains("more lines: ↓ scrolls"),
+            "{id}: ↓ reaches the end\n{end}"
+        );
+        let verdict = app.quiz.verdict.clone().ok_or("no verdict")?;
+        let last = verdict.text.lines().last().unwrap_or_default();
+        let tail: String = last
+            .chars()
+            .rev()
+            .take(8)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect();
+        assert!(
+            end.replace(['│', '\n'], "")
+                .replace(' ', "")
+                .contains(&tail.replace(' ', "")),
+            "{id}: the feedback's last words {tail:?} show at the end\n{end}"
+        );
+        app.update(Action::Back);
+    }
+    assert!(
+        scrolled > 0,
+        "some feedback is longer than an 80×24 quiz panel"
+    );
+    Ok(())
+}
+
+/// Issue 25, section 2: answering a question again shows that only the first answer counts.
+#[test]
+fn answering_again_says_only_the_first_answer_counts() -> TestResult {
+    use ppo_tutor::lesson::quiz::{QuestionKind, letter_of};
+    let mut app = app()?;
+    open_quiz(&mut app, "what-is-ppo")?;
+    let Some(QuestionKind::Choice { answer, .. }) = app.quiz_question(0).map(|q| q.kind.clone())
+    else {
+        return Err("lesson 1's quiz opens with a choice".into());
+    };
+    app.update(Action::Type(letter_of((answer + 1) % 4)));
+    assert!(!screen(&app, 160, 50)?.contains("first answer counts"));
+    app.update(Action::Type(letter_of(answer)));
+    let text = screen(&app, 160, 50)?;
+    assert!(
+        text.contains("Only your first answer counts toward the score (it was not right)"),
+        "{text}"
+    );
+    assert_eq!(app.progress.quiz.get("what-is-ppo#1"), Some(&false));
+    Ok(())
+}
+
+/// Issue 25, section 2: the explanation says when more of it is below, and ↓ stops at its
+/// end (so ↑ moves at once after holding ↓).
+#[test]
+fn the_explanation_says_more_follows_and_stops_at_its_end() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "gae")?;
+    let text = screen(&app, 80, 24)?;
+    assert!(text.contains("more lines: ↓ scrolls"), "{text}");
+    for _ in 0..1000 {
+        app.update(Action::ScrollDown);
+    }
+    let end = app.explanation.scroll();
+    assert!(end > 0 && end < 1000, "{end}");
+    let text = screen(&app, 80, 24)?;
+    assert!(!text.contains("more lines: ↓ scrolls"), "{text}");
+    assert!(text.contains("lines above: ↑ scrolls"), "{text}");
+    app.update(Action::ScrollUp);
+    assert_eq!(app.explanation.scroll(), end - 1);
+    Ok(())
+}
+
+/// The worker's confirmation of a fresh agent does not overwrite what the app said when it
+/// asked for it ("a Pendulum-v1 lesson: fresh agent …").
+#[test]
+fn the_worker_s_reset_does_not_overwrite_the_lesson_s_message() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "continuous-actions")?;
+    assert!(
+        app.status.text().contains("Pendulum-v1 lesson"),
+        "{}",
+        app.status
+    );
+    app.on_worker(WorkerEvent::Reset { seed: 0 });
+    assert!(
+        app.status.text().contains("Pendulum-v1 lesson"),
+        "{}",
+        app.status
+    );
     Ok(())
 }
 
@@ -910,10 +1092,10 @@ fn the_key_bar_keeps_help_and_quit_at_80x24() -> TestResult {
         let keys = text.lines().nth(22).ok_or("no key bar")?;
         assert!(keys.contains(help) && keys.contains(quit), "{keys}");
         assert!(keys.contains("←/→"), "{keys}");
-        app.status = format!(
+        app.say(format!(
             "{}a long warning about /some/long/path/.ppo-tutor-state.json",
             ppo_tutor::tui::app::warning()
-        );
+        ));
         let text = screen(&app, 80, 24)?;
         let status = text.lines().nth(23).ok_or("no status line")?;
         assert!(status.contains("/some/long/path"), "{status}");

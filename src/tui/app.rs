@@ -1,87 +1,60 @@
-//! The app's state and its one `update`: every key and worker event goes through here.
+//! The app: what it shares (the course, the live run, the progress, the status line) and
+//! the routing of every key to the face that is open. Each face owns its state, its keys
+//! and its drawing (`super::components`); `update` hands the action to the open one and
+//! applies its [`Reply`].
 
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use crate::grade::Report;
 use crate::i18n::{Lang, LangGuard, t};
-use crate::lesson::quiz::QuestionKind;
 use crate::lesson::{Course, Environment, Lesson, Progress, RunConfig, Snapshot, Step};
 use crate::ppo::lab::Experiment;
 use crate::ppo::{PpoConfig, PpoContinuousConfig};
 
+use super::components::exercise::{self, ExercisePanel};
+use super::components::explanation::Explanation;
+use super::components::help::Help;
+use super::components::lab::Lab;
+use super::components::lessons::LessonList;
+use super::components::quiz::Quiz;
+use super::components::sandbox::Sandbox;
+use super::components::{Component, Ctx, Owner, Reply, Status};
 use super::keys::Action;
-use super::sandbox::{Outcome, Sandbox};
 use super::widgets::lab::LabState;
 use super::worker::{Command, WorkerEvent};
 
-/// Prefix of a status message that episode updates must not overwrite (English; see
-/// [`warning`] for the current language's).
-pub const WARNING: &str = "warning: ";
+pub use super::components::exercise::Graded;
+pub use super::components::lab::LAB_SEEDS;
+pub use super::components::{WARNING, is_warning, warning};
 
-/// The current language's prefix of a status message that episode updates must not
-/// overwrite: `warning: ` or `警告：`.
-#[must_use]
-pub fn warning() -> &'static str {
-    t(WARNING, "警告：")
-}
-
-/// Whether `status` is a warning (in either language), which episode updates keep.
-#[must_use]
-pub fn is_warning(status: &str) -> bool {
-    Lang::ALL
-        .iter()
-        .any(|l| status.starts_with(l.pick(WARNING, "警告：")))
-}
-
-/// Which overlay covers the lesson, if any.
+/// Which face covers the lesson, if any (each face's state is its component in [`App`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Overlay {
     /// None: the lesson step.
     #[default]
     None,
-    /// The key map.
+    /// The key map ([`App::help`]).
     Help,
-    /// The lesson list; the field is the highlighted row.
-    Lessons(usize),
-    /// The sandbox (its state, the highlighted setting included, is [`App::sandbox`]).
+    /// The lesson list ([`App::lesson_list`]).
+    Lessons,
+    /// The sandbox ([`App::sandbox`]).
     Sandbox,
-    /// The exercise panel (status, hints, grading result); the field is the scroll offset.
-    Exercise(u16),
-    /// The open lesson's quiz, after its last step; the field is the question (from 0).
-    Quiz(usize),
+    /// The exercise panel ([`App::exercise`]).
+    Exercise,
+    /// The open lesson's quiz, after its last step ([`App::quiz`]).
+    Quiz,
 }
 
-/// The answer being typed to the open quiz question, and its verdict once given.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct QuizState {
-    /// The prediction typed so far (digits, `.`, `-`).
-    pub input: String,
-    /// The verdict on the latest answer (or why it could not be graded yet).
-    pub verdict: Option<crate::lesson::quiz::Verdict>,
-}
-
-/// The grading of one exercise function: its report, or why grading could not run.
-#[derive(Debug, Clone)]
-pub struct Graded {
-    /// The function graded, as `ppo-tutor grade` names it.
-    pub name: String,
-    /// The grader's report, or why grading could not run.
-    pub result: Result<Report, String>,
-}
-
-impl From<(String, Result<Report, String>)> for Graded {
-    /// A `(name, result)` pair, as a grading loop builds it.
-    fn from((name, result): (String, Result<Report, String>)) -> Self {
-        Self { name, result }
-    }
-}
-
-impl Graded {
-    /// Whether the function was graded and passed every check.
+impl Overlay {
+    /// The owner of the status messages this face sets.
     #[must_use]
-    pub fn passed(&self) -> bool {
-        self.result.as_ref().is_ok_and(Report::passed)
+    pub fn owner(self) -> Owner {
+        match self {
+            Self::None | Self::Help => Owner::App,
+            Self::Lessons => Owner::Lessons,
+            Self::Sandbox => Owner::Sandbox,
+            Self::Exercise => Owner::Exercise,
+            Self::Quiz => Owner::Quiz,
+        }
     }
 }
 
@@ -104,21 +77,6 @@ impl PreviousCurve {
             t("before (returns)", "之前（回报）").to_string()
         }
     }
-}
-
-/// The exercise of the open lesson: grading, its last result, and the hints revealed.
-#[derive(Debug, Clone, Default)]
-pub struct ExerciseState {
-    /// A grading is running on a background thread.
-    pub grading: bool,
-    /// The last grading of this lesson's functions.
-    pub graded: Vec<Graded>,
-    /// How many of the lesson's hints are shown.
-    pub hints_shown: usize,
-    /// Functions to grade, taken by the event loop (which runs the grader off the UI thread).
-    pub request: Option<Vec<String>>,
-    /// A save came in while grading: grade again when this grading ends.
-    pub regrade: bool,
 }
 
 /// Whether the worker is training.
@@ -156,14 +114,24 @@ pub struct App {
     pub lesson: usize,
     /// Current step index within the lesson.
     pub step: usize,
-    /// Scroll offset of the explanation.
-    pub text_scroll: u16,
-    /// Whether the explanation shows its details blocks opened (`d`).
-    pub details_open: bool,
+    /// The step's explanation: its scroll and details blocks.
+    pub explanation: Explanation,
     /// Scroll offset of the live tensors.
     pub tensor_scroll: usize,
-    /// The open overlay.
+    /// The open face.
     pub overlay: Overlay,
+    /// The key map.
+    pub help: Help,
+    /// The lesson list.
+    pub lesson_list: LessonList,
+    /// The sandbox's settings being edited.
+    pub sandbox: Sandbox,
+    /// The open lesson's exercise: grading, hints, the panel.
+    pub exercise: ExercisePanel,
+    /// The open quiz question and its answer.
+    pub quiz: Quiz,
+    /// The clip-lab experiments started in this session.
+    pub lab: Lab,
     /// Training state.
     pub train: TrainState,
     /// The live values after the latest episode, as the worker's session sent them.
@@ -185,10 +153,8 @@ pub struct App {
     pub env: Environment,
     /// Seed of the current run.
     pub seed: u64,
-    /// The sandbox overlay's settings being edited.
-    pub sandbox: Sandbox,
-    /// A one-line status message (warnings, errors, confirmations).
-    pub status: String,
+    /// The one-line status message (warnings, errors, confirmations) and who set it.
+    pub status: Status,
     /// Saved progress.
     pub progress: Progress,
     /// Where progress is saved (`None` in tests).
@@ -197,19 +163,26 @@ pub struct App {
     pub quit: bool,
     /// Commands for the worker, collected by `update` and sent by the event loop.
     pub outbox: Vec<Command>,
-    /// The open lesson's exercise.
-    pub exercise: ExerciseState,
-    /// The clip-lab experiments started in this session, by experiment.
-    pub labs: BTreeMap<Experiment, LabState>,
-    /// An experiment to start, taken by the event loop (which runs it off the UI thread).
-    pub lab_request: Option<(Experiment, PpoConfig)>,
-    /// The open quiz question's answer.
-    pub quiz: QuizState,
     /// Whether the language key switches only this thread's language (tests, which render
     /// both languages on parallel threads) rather than the whole process's (the app).
     pub thread_language: bool,
     /// This thread's language while [`App::thread_language`] switched it.
     language_guard: Option<LangGuard>,
+}
+
+/// What the faces read of `app` (a macro, not a method, so that a face borrowed mutably
+/// beside it is a disjoint field).
+macro_rules! ctx {
+    ($app:expr) => {{
+        let lesson = $app.course.lessons.get($app.lesson);
+        Ctx {
+            course: &$app.course,
+            lesson,
+            step: lesson.and_then(|l| l.steps.get($app.step)),
+            progress: &$app.progress,
+            snapshot: &$app.snapshot,
+        }
+    }};
 }
 
 /// A return as the app prints it: CartPole's whole numbers as they are, Pendulum's to one
@@ -222,9 +195,6 @@ pub fn return_text(r: f64) -> String {
         format!("{r:.1}")
     }
 }
-
-/// Seeds every clip-lab experiment runs in the app (as `ppo-tutor lab`'s default).
-pub const LAB_SEEDS: [u64; 5] = [0, 1, 2, 3, 4];
 
 impl App {
     /// A new app at the saved position (or the first step).
@@ -250,32 +220,37 @@ impl App {
             course,
             lesson,
             step,
-            text_scroll: 0,
-            details_open: false,
+            explanation: Explanation::default(),
             tensor_scroll: 0,
             overlay: Overlay::None,
+            help: Help::default(),
+            lesson_list: LessonList::default(),
+            sandbox: Sandbox::new(config.clone(), 0),
+            exercise: ExercisePanel::default(),
+            quiz: Quiz::default(),
+            lab: Lab::default(),
             train: TrainState::Paused,
             snapshot,
             frame: 0,
             previous: None,
             parked: None,
-            sandbox: Sandbox::new(config.clone(), 0),
             config,
             pendulum,
             env,
             seed: 0,
-            status: String::new(),
+            status: Status::default(),
             progress,
             progress_path,
             quit: false,
             outbox: Vec::new(),
-            exercise: ExerciseState::default(),
-            labs: BTreeMap::new(),
-            lab_request: None,
-            quiz: QuizState::default(),
             thread_language: false,
             language_guard: None,
         }
+    }
+
+    /// Sets the status line on behalf of the lesson view and the run.
+    pub fn say(&mut self, text: impl Into<String>) {
+        self.status.set(Owner::App, text);
     }
 
     /// Switches the language live (the `L` key): English ⇄ 中文. The course is reloaded in
@@ -301,23 +276,26 @@ impl App {
                 let steps = self.current_lesson().map_or(1, |l| l.steps.len());
                 self.step = step.min(steps.saturating_sub(1));
                 let quiz = self.current_lesson().map_or(0, |l| l.quiz.len());
-                match self.overlay {
-                    Overlay::Quiz(i) if i >= quiz => self.overlay = Overlay::None,
-                    Overlay::Lessons(i) if i >= self.course.lessons.len() => {
-                        self.overlay = Overlay::Lessons(self.lesson);
-                    }
-                    _ => {}
+                if self.overlay == Overlay::Quiz && self.quiz.question() >= quiz {
+                    self.overlay = Overlay::None;
                 }
-                self.quiz = QuizState::default();
-                self.status = crate::tr!("language: {}", "语言：{}", next.name());
+                let lessons = self.course.lessons.len();
+                if self.lesson_list.selected >= lessons {
+                    self.lesson_list.open(self.lesson);
+                }
+                self.quiz.clear_answer();
+                self.status.set(
+                    self.overlay.owner(),
+                    crate::tr!("language: {}", "语言：{}", next.name()),
+                );
             }
             Err(e) => {
-                self.status = crate::tr!(
+                self.say(crate::tr!(
                     "{}could not load the lessons in {}: {e}",
                     "{}无法加载{}课程：{e}",
                     warning(),
                     next.name()
-                );
+                ));
             }
         }
     }
@@ -334,6 +312,12 @@ impl App {
         self.current_lesson()?.steps.get(self.step)
     }
 
+    /// What the faces read of the app.
+    #[must_use]
+    pub fn ctx(&self) -> Ctx<'_> {
+        ctx!(self)
+    }
+
     /// Steps seen before the current one over the whole course, and the total.
     #[must_use]
     pub fn position(&self) -> (usize, usize) {
@@ -344,56 +328,105 @@ impl App {
         (before + self.step + 1, self.course.total_steps())
     }
 
-    /// Applies one action from the keyboard or mouse.
+    /// Applies one action from the keyboard or mouse: the open face answers it, the app
+    /// applies the reply.
     pub fn update(&mut self, action: Action) {
         if action == Action::Language {
             // Over every overlay: the same screen, in the other language.
             self.switch_language();
             return;
         }
-        match self.overlay {
-            Overlay::Help => match action {
-                Action::Quit => self.quit(),
-                Action::Help | Action::Back | Action::Enter => self.overlay = Overlay::None,
-                _ => {}
-            },
-            Overlay::Lessons(i) => self.update_lessons(action, i),
-            Overlay::Sandbox => self.update_sandbox(action),
-            Overlay::Exercise(scroll) => self.update_exercise(action, scroll),
-            Overlay::Quiz(i) => self.update_quiz(action, i),
-            Overlay::None => self.update_main(action),
+        let open = self.overlay;
+        let ctx = ctx!(self);
+        let reply = match open {
+            Overlay::None => self.explanation.handle(action, &ctx),
+            Overlay::Help => self.help.handle(action, &ctx),
+            Overlay::Lessons => self.lesson_list.handle(action, &ctx),
+            Overlay::Sandbox => self.sandbox.handle(action, &ctx),
+            Overlay::Exercise => self.exercise.handle(action, &ctx),
+            Overlay::Quiz => self.quiz.handle(action, &ctx),
+        };
+        self.apply(open, reply);
+    }
+
+    /// Applies what the face `from` replied.
+    fn apply(&mut self, from: Overlay, reply: Reply) {
+        let owner = from.owner();
+        match reply {
+            Reply::Stay => {}
+            Reply::Say(text) => self.status.set(owner, text),
+            Reply::Close => self.close(from),
+            Reply::Pass(action) => self.update_main(action),
+            Reply::Quit => self.quit(),
+            Reply::Open(lesson) => {
+                self.close(from);
+                self.go_to(lesson, 0);
+            }
+            Reply::Retrain => {
+                self.close(from);
+                self.retrain();
+            }
+            Reply::Answered(i, verdict) => self.record_answer(i, verdict.right),
+            Reply::Finished => {
+                self.close(from);
+                self.leave_lesson();
+            }
         }
     }
 
+    /// Closes the face `which` (if open), and the status messages it set.
+    fn close(&mut self, which: Overlay) {
+        if self.overlay == which {
+            self.overlay = Overlay::None;
+        }
+        self.status.close(which.owner());
+    }
+
+    /// Opens the face `which` over the lesson (closing the one open, and its messages).
+    fn open(&mut self, which: Overlay) {
+        if self.overlay != which {
+            self.close(self.overlay);
+            self.overlay = which;
+        }
+    }
+
+    /// The lesson view's keys (no face open, or a key the open face passed on).
     fn update_main(&mut self, action: Action) {
         match action {
             Action::Quit => self.quit(),
             Action::Next => self.next_step(),
             Action::Prev => self.prev_step(),
-            Action::ScrollDown => self.text_scroll = self.text_scroll.saturating_add(1),
-            Action::ScrollUp => self.text_scroll = self.text_scroll.saturating_sub(1),
-            Action::Details => self.details_open = !self.details_open,
             Action::TensorDown => self.tensor_scroll = self.tensor_scroll.saturating_add(5),
             Action::TensorUp => self.tensor_scroll = self.tensor_scroll.saturating_sub(5),
-            Action::Lessons => self.overlay = Overlay::Lessons(self.lesson),
-            Action::Help => self.overlay = Overlay::Help,
+            Action::Lessons => {
+                self.lesson_list.open(self.lesson);
+                self.open(Overlay::Lessons);
+            }
+            Action::Help => self.open(Overlay::Help),
             Action::Sandbox => {
                 self.sandbox = Sandbox::for_run(&self.run_config(), &self.config, self.seed);
-                self.overlay = Overlay::Sandbox;
+                self.open(Overlay::Sandbox);
             }
             Action::TrainToggle => self.toggle_training(),
             Action::OneEpisode => {
                 if self.train != TrainState::Finished {
                     self.train = TrainState::Paused;
                     self.outbox.push(Command::OneEpisode);
-                    self.status = t("training one episode", "正在训练一个回合").into();
+                    self.say(t("training one episode", "正在训练一个回合"));
                 }
             }
             Action::ResetAgent => self.reset_agent(self.run_config(), self.seed, false),
             Action::Grade => self.request_grade(),
             Action::Hint => self.reveal_hint(),
-            Action::RunLab => self.request_lab(),
-            Action::Back
+            Action::RunLab => {
+                let experiment = self.current_step().and_then(|s| s.lab);
+                let said = self.lab.start(experiment, self.lab_base());
+                self.say(said);
+            }
+            Action::ScrollDown
+            | Action::ScrollUp
+            | Action::Details
+            | Action::Back
             | Action::Enter
             | Action::Up
             | Action::Down
@@ -419,167 +452,59 @@ impl App {
         (answered, right, total)
     }
 
+    /// Opens question `i` of the open lesson's quiz.
     fn open_question(&mut self, i: usize) {
-        self.quiz = QuizState::default();
-        self.overlay = Overlay::Quiz(i);
-        let total = self.current_lesson().map_or(0, |l| l.quiz.len());
-        let how = match self.quiz_question(i).map(|q| &q.kind) {
-            Some(QuestionKind::Predict { .. }) => t("type a number, Enter", "输入一个数，按 Enter"),
-            _ => t("a–d answers", "按 a–d 作答"),
-        };
-        self.status = crate::tr!(
-            "check your understanding: question {}/{total} ({how})",
-            "检验一下：第 {}/{total} 题（{how}）",
-            i + 1
-        );
+        let said = self.quiz.open(i, &ctx!(self));
+        self.open(Overlay::Quiz);
+        self.status.set(Owner::Quiz, said);
     }
 
-    fn update_quiz(&mut self, action: Action, i: usize) {
-        let Some(question) = self.quiz_question(i).cloned() else {
-            self.overlay = Overlay::None;
-            return;
-        };
-        match action {
-            Action::Type(c) => match &question.kind {
-                QuestionKind::Choice { .. } => {
-                    if c.is_ascii_lowercase() {
-                        let verdict = question.choose(c);
-                        self.answered(i, verdict);
-                    }
-                }
-                QuestionKind::Predict { .. } => {
-                    if self.quiz.verdict.as_ref().is_none_or(|v| !v.answered)
-                        && (c.is_ascii_digit() || c == '.' || c == '-')
-                        && self.quiz.input.len() < 16
-                    {
-                        self.quiz.input.push(c);
-                    }
-                }
-            },
-            Action::Erase => {
-                if self.quiz.verdict.as_ref().is_none_or(|v| !v.answered) {
-                    self.quiz.input.pop();
-                }
-            }
-            Action::Enter => {
-                if let QuestionKind::Predict { .. } = question.kind {
-                    if self.quiz.verdict.as_ref().is_some_and(|v| v.answered) {
-                        return;
-                    }
-                    let verdict = match self.quiz.input.parse::<f64>() {
-                        Ok(v) => question.predict(v, &self.snapshot),
-                        Err(_) => {
-                            self.status = t(
-                                "type a number first (digits, '.', '-')",
-                                "先输入一个数（数字、'.'、'-'）",
-                            )
-                            .into();
-                            return;
-                        }
-                    };
-                    self.answered(i, verdict);
-                }
-            }
-            Action::Next => {
-                let total = self.current_lesson().map_or(0, |l| l.quiz.len());
-                if i + 1 < total {
-                    self.open_question(i + 1);
-                } else {
-                    self.overlay = Overlay::None;
-                    self.leave_lesson();
-                }
-            }
-            Action::Prev => {
-                if i > 0 {
-                    self.open_question(i - 1);
-                } else {
-                    self.overlay = Overlay::None;
-                }
-            }
-            Action::Back => self.overlay = Overlay::None,
-            Action::Up | Action::ScrollUp | Action::Down | Action::ScrollDown => {}
-            other => self.update_main(other),
+    /// Records an answer to question `i` (from 0) of the open lesson's quiz (the first
+    /// one counts), marks the lesson done once every question has one, and says the score.
+    fn record_answer(&mut self, i: usize, right: bool) {
+        let id = self
+            .current_lesson()
+            .map(|l| l.id.clone())
+            .unwrap_or_default();
+        self.progress.record_quiz(&id, i + 1, right);
+        let questions = self.current_lesson().map_or(0, |l| l.quiz.len());
+        if self.progress.quiz_answered(&id, questions) {
+            self.progress.lessons_done.insert(id);
         }
-    }
-
-    /// Shows `verdict` and records a real answer (the first one counts).
-    fn answered(&mut self, i: usize, verdict: crate::lesson::quiz::Verdict) {
-        if verdict.answered {
-            let id = self
-                .current_lesson()
-                .map(|l| l.id.clone())
-                .unwrap_or_default();
-            self.progress.record_quiz(&id, i + 1, verdict.right);
-            let questions = self.current_lesson().map_or(0, |l| l.quiz.len());
-            if self.progress.quiz_answered(&id, questions) {
-                self.progress.lessons_done.insert(id);
-            }
-            self.save_progress();
-            let (answered, right, total) = self.quiz_score();
-            self.status = crate::tr!(
-                "{} · quiz {right} right of {answered} answered ({total} questions) · n next",
-                "{} · 小测验已答 {answered} 题，答对 {right} 题（共 {total} 题）· n 下一题",
-                if verdict.right {
+        self.save_progress();
+        let (answered, right_total, total) = self.quiz_score();
+        self.status.set(
+            Owner::Quiz,
+            crate::tr!(
+                "{} · quiz {right_total} right of {answered} answered ({total} questions) · n next",
+                "{} · 小测验已答 {answered} 题，答对 {right_total} 题（共 {total} 题）· n 下一题",
+                if right {
                     t("right", "答对了")
                 } else {
                     t("not quite", "不太对")
                 }
-            );
-        } else {
-            self.status = verdict.text.lines().next().unwrap_or_default().to_string();
-        }
-        self.quiz.verdict = Some(verdict);
-    }
-
-    fn update_exercise(&mut self, action: Action, scroll: u16) {
-        match action {
-            Action::Quit => self.quit(),
-            Action::Grade => self.request_grade(),
-            Action::Hint => self.reveal_hint(),
-            Action::Up | Action::ScrollUp => {
-                self.overlay = Overlay::Exercise(scroll.saturating_sub(1))
-            }
-            Action::Down | Action::ScrollDown => {
-                self.overlay = Overlay::Exercise(scroll.saturating_add(1));
-            }
-            Action::Back | Action::Enter => self.overlay = Overlay::None,
-            _ => {}
-        }
+            ),
+        );
     }
 
     /// The function names the open lesson grades (empty without an exercise).
     #[must_use]
     pub fn exercise_names(&self) -> Vec<String> {
-        self.current_lesson()
-            .and_then(|l| l.exercise.as_ref())
-            .map(|e| e.names().into_iter().map(String::from).collect())
-            .unwrap_or_default()
+        exercise::names(self.current_lesson())
     }
 
     /// Whether every function of the open lesson's exercise has passed (then its reference
     /// solution may be shown).
     #[must_use]
     pub fn exercise_done(&self) -> bool {
-        let names = self.exercise_names();
-        !names.is_empty()
-            && names
-                .iter()
-                .all(|n| self.progress.exercises_done.contains(n))
+        exercise::done(self.current_lesson(), &self.progress)
     }
 
     /// The open lesson's exercise files, as `ppo-tutor grade` finds them (relative to the
     /// current folder), each once.
     #[must_use]
     pub fn exercise_files(&self) -> Vec<PathBuf> {
-        let mut files: Vec<PathBuf> = self
-            .exercise_names()
-            .iter()
-            .filter_map(|n| crate::grade::find(n).ok())
-            .map(|e| PathBuf::from(e.starter_path()))
-            .collect();
-        files.sort();
-        files.dedup();
-        files
+        exercise::files(self.current_lesson())
     }
 
     /// An exercise file of the open lesson was saved: grade it (after the grading under
@@ -593,46 +518,36 @@ impl App {
             return;
         }
         self.request_grade();
-        self.status = crate::tr!("saved: {}", "已保存：{}", self.status);
+        let said = crate::tr!("saved: {}", "已保存：{}", self.status);
+        self.status.set(Owner::Exercise, said);
     }
 
     fn request_grade(&mut self) {
         let names = self.exercise_names();
         if names.is_empty() {
-            self.status = t(
+            self.say(t(
                 "this lesson has no exercise to grade",
                 "本课没有要评测的练习",
-            )
-            .into();
+            ));
             return;
         }
-        self.overlay = Overlay::Exercise(0);
-        if self.exercise.grading {
-            self.status = t("already grading…", "正在评测……").into();
-            return;
-        }
-        self.exercise.grading = true;
-        self.status = crate::tr!("grading {}…", "正在评测 {}……", names.join(", "));
-        self.exercise.request = Some(names);
+        self.open(Overlay::Exercise);
+        let said = self.exercise.request_grade(names);
+        self.status.set(Owner::Exercise, said);
     }
 
     fn reveal_hint(&mut self) {
-        let Some(exercise) = self.current_lesson().and_then(|l| l.exercise.as_ref()) else {
-            self.status = t("this lesson has no exercise", "本课没有练习").into();
+        let Some(total) = self
+            .current_lesson()
+            .and_then(|l| l.exercise.as_ref())
+            .map(|e| e.hints.len())
+        else {
+            self.say(t("this lesson has no exercise", "本课没有练习"));
             return;
         };
-        let total = exercise.hints.len();
-        self.overlay = Overlay::Exercise(0);
-        if self.exercise.hints_shown < total {
-            self.exercise.hints_shown += 1;
-            self.status = crate::tr!(
-                "hint {}/{total}",
-                "提示 {}/{total}",
-                self.exercise.hints_shown
-            );
-        } else {
-            self.status = crate::tr!("all {total} hints are shown", "{total} 条提示已全部显示");
-        }
+        self.open(Overlay::Exercise);
+        let said = self.exercise.reveal_hint(total);
+        self.status.set(Owner::Exercise, said);
     }
 
     /// What the clip-lab experiments start from in the app: the seed's settings, with the
@@ -645,149 +560,57 @@ impl App {
         }
     }
 
-    /// Starts the current step's experiment (`x`), unless it is running or done.
-    fn request_lab(&mut self) {
-        let Some(experiment) = self.current_step().and_then(|s| s.lab) else {
-            self.status = t(
-                "this step has no experiment to run (the clip-lab lesson has them)",
-                "本节没有可运行的实验（截断实验室那一课里有）",
-            )
-            .into();
-            return;
-        };
-        if matches!(
-            self.labs.get(&experiment),
-            Some(LabState::Running { .. } | LabState::Done(_))
-        ) {
-            self.status = crate::tr!(
-                "lab {}: already started in this session",
-                "实验 {}：本次会话中已经启动过",
-                experiment.name()
-            );
-            return;
-        }
-        let base = self.lab_base();
-        let total = experiment.arms(&base).len() * LAB_SEEDS.len() * base.num_episodes;
-        self.labs
-            .insert(experiment, LabState::Running { done: 0, total });
-        self.lab_request = Some((experiment, base));
-        self.status = crate::tr!(
-            "lab {}: running on every core",
-            "实验 {}：正在所有 CPU 核心上运行",
-            experiment.name()
-        );
-    }
-
     /// Applies an experiment's progress or its end.
     pub fn on_lab(&mut self, experiment: Experiment, state: LabState) {
-        match &state {
-            LabState::Done(_) => {
-                self.status = crate::tr!("lab {}: done", "实验 {}：完成", experiment.name());
-            }
-            LabState::Failed(m) => {
-                self.status = crate::tr!(
-                    "{}lab {}: {m}",
-                    "{}实验 {}：{m}",
-                    warning(),
-                    experiment.name()
-                );
-            }
-            LabState::Running { .. } => {}
+        if let Some(said) = self.lab.on_event(experiment, state) {
+            self.say(said);
         }
-        self.labs.insert(experiment, state);
     }
 
     /// Applies a finished grading: shows it, and records passed exercises in the progress.
     pub fn on_graded(&mut self, graded: impl IntoIterator<Item = impl Into<Graded>>) {
         let graded: Vec<Graded> = graded.into_iter().map(Into::into).collect();
-        self.exercise.grading = false;
-        let passed: Vec<&str> = graded
-            .iter()
-            .filter(|g| g.passed())
-            .map(|g| g.name.as_str())
-            .collect();
-        for name in &passed {
-            self.progress.exercises_done.insert((*name).to_string());
-        }
-        self.status = if passed.len() == graded.len() {
-            t(
-                "passed: the reference solution is shown in the exercise panel",
-                "通过：练习面板里显示了参考答案",
-            )
-            .into()
-        } else {
-            crate::tr!(
-                "{}/{} passed: see the exercise panel",
-                "{}/{} 通过：详见练习面板",
-                passed.len(),
-                graded.len()
-            )
-        };
-        self.exercise.graded = graded;
+        let said = self.exercise.on_graded(graded, &mut self.progress);
+        self.status.set(Owner::Exercise, said);
         self.save_progress();
         if std::mem::take(&mut self.exercise.regrade) {
             self.request_grade();
         }
     }
 
-    fn update_lessons(&mut self, action: Action, i: usize) {
-        let n = self.course.lessons.len();
-        match action {
-            Action::Quit => self.quit(),
-            Action::Up | Action::ScrollUp => self.overlay = Overlay::Lessons(i.saturating_sub(1)),
-            Action::Down | Action::ScrollDown => {
-                self.overlay = Overlay::Lessons((i + 1).min(n.saturating_sub(1)))
-            }
-            Action::Enter => {
-                self.go_to(i, 0);
-                self.overlay = Overlay::None;
-            }
-            Action::Lessons | Action::Back => self.overlay = Overlay::None,
-            _ => {}
+    /// Retrains with the sandbox's settings, keeping the current run's curve on the plot
+    /// for comparison.
+    fn retrain(&mut self) {
+        let s = &self.snapshot;
+        if !s.returns.is_empty() {
+            let smoothed = !s.moving_average.is_empty();
+            let values = if smoothed {
+                s.moving_average.clone()
+            } else {
+                s.returns.clone()
+            };
+            self.previous = Some(PreviousCurve { smoothed, values });
         }
+        self.reset_agent(self.sandbox.run_config(), self.sandbox.seed, true);
     }
-
-    fn update_sandbox(&mut self, action: Action) {
-        match self.sandbox.update(action) {
-            Outcome::Stay => {}
-            Outcome::Close => self.overlay = Overlay::None,
-            Outcome::Quit => self.quit(),
-            Outcome::Retrain => {
-                self.overlay = Overlay::None;
-                // Keep the current run's smoothed curve on the plot for comparison.
-                let s = &self.snapshot;
-                if !s.returns.is_empty() {
-                    let smoothed = !s.moving_average.is_empty();
-                    let values = if smoothed {
-                        s.moving_average.clone()
-                    } else {
-                        s.returns.clone()
-                    };
-                    self.previous = Some(PreviousCurve { smoothed, values });
-                }
-                self.reset_agent(self.sandbox.run_config(), self.sandbox.seed, true);
-            }
-        }
-    }
-
     fn toggle_training(&mut self) {
         match self.train {
             TrainState::Paused => {
                 self.train = TrainState::Running;
                 self.outbox.push(Command::Run);
-                self.status = t("training…", "训练中……").into();
+                self.say(t("training…", "训练中……"));
             }
             TrainState::Running => {
                 self.train = TrainState::Paused;
                 self.outbox.push(Command::Pause);
-                self.status = t("paused", "已暂停").into();
+                self.say(t("paused", "已暂停"));
             }
             TrainState::Finished => {
-                self.status = crate::tr!(
+                self.say(crate::tr!(
                     "all {} episodes done: r resets the agent, s opens the sandbox",
                     "全部 {} 个回合已训练完：按 r 重置智能体，按 s 打开沙盒",
                     self.run_config().num_episodes()
-                );
+                ));
             }
         }
     }
@@ -823,7 +646,10 @@ impl App {
             self.outbox.push(Command::Run);
             self.train = TrainState::Running;
         }
-        self.status = crate::tr!("fresh agent, seed {seed}", "新的智能体，随机种子 {seed}");
+        self.say(crate::tr!(
+            "fresh agent, seed {seed}",
+            "新的智能体，随机种子 {seed}"
+        ));
     }
 
     /// Applies one event from the training worker.
@@ -832,20 +658,24 @@ impl App {
             WorkerEvent::Episode(snapshot) => self.on_episode(*snapshot),
             WorkerEvent::Finished => {
                 self.train = TrainState::Finished;
-                self.status = crate::tr!(
+                self.say(crate::tr!(
                     "finished {} episodes",
                     "已训练完 {} 个回合",
                     self.snapshot.returns.len()
-                );
+                ));
             }
-            WorkerEvent::Reset { seed } => {
-                self.status = crate::tr!("fresh agent, seed {seed}", "新的智能体，随机种子 {seed}");
-            }
+            // The app said so when it asked (`reset_agent`, `follow_lesson_env`); saying it
+            // again here would overwrite what it said since ("a Pendulum-v1 lesson: …",
+            // "training…").
+            WorkerEvent::Reset { .. } => {}
             // The app showed the run it set aside already (`follow_lesson_env`).
             WorkerEvent::Resumed { .. } => {}
             WorkerEvent::Error(message) => {
                 self.train = TrainState::Paused;
-                self.status = crate::tr!("training stopped: {message}", "训练已停止：{message}");
+                self.say(crate::tr!(
+                    "training stopped: {message}",
+                    "训练已停止：{message}"
+                ));
             }
         }
     }
@@ -858,15 +688,15 @@ impl App {
         self.show(snapshot);
         // A start-up warning stays until the learner does something.
         if self.train == TrainState::Paused
-            && !is_warning(&self.status)
+            && !self.status.is_warning()
             && let Some(r) = self.snapshot.returns.last()
         {
-            self.status = crate::tr!(
+            self.say(crate::tr!(
                 "episode {}: return {}",
                 "第 {} 回合：回报 {}",
                 self.snapshot.episodes,
                 return_text(*r)
-            );
+            ));
         }
     }
 
@@ -913,11 +743,10 @@ impl App {
             self.go_to(self.lesson + 1, 0);
         } else {
             self.save_progress();
-            self.status = t(
+            self.say(t(
                 "that was the last step: l opens the lesson list",
                 "这是最后一节了：按 l 打开课程列表",
-            )
-            .into();
+            ));
         }
     }
 
@@ -934,15 +763,11 @@ impl App {
         let lesson = lesson.min(self.course.lessons.len().saturating_sub(1));
         let changed = lesson != self.lesson;
         if changed {
-            let grading = self.exercise.grading;
-            self.exercise = ExerciseState {
-                grading,
-                ..ExerciseState::default()
-            };
+            self.exercise.lesson_changed();
         }
         self.lesson = lesson;
         self.step = step;
-        self.text_scroll = 0;
+        self.explanation.top();
         self.tensor_scroll = 0;
         if let Some(l) = self.current_lesson() {
             self.progress.lesson = l.id.clone();
@@ -950,8 +775,8 @@ impl App {
         self.progress.step = self.step;
         // A message about the lesson left behind (its quiz, its hints, its grading) does
         // not follow the learner into another lesson; a warning stays until it is read.
-        if changed && !is_warning(&self.status) {
-            self.status.clear();
+        if changed {
+            self.status.clear_unless_warning();
         }
         self.save_progress();
         if changed {
@@ -994,20 +819,20 @@ impl App {
                 self.seed = back.seed;
                 self.train = back.train;
                 self.previous = back.previous;
-                self.status = crate::tr!(
+                self.say(crate::tr!(
                     "a {} lesson: its run continues after episode {episodes}, seed {} (t trains)",
                     "这是 {} 的课：接着之前的训练（已训练 {episodes} 个回合，随机种子 {}；t 训练）",
                     env.as_str(),
                     self.seed
-                );
+                ));
             }
             None => {
-                self.status = crate::tr!(
+                self.say(crate::tr!(
                     "a {} lesson: fresh agent, seed {} (t trains, e one episode)",
                     "这是 {} 的课：新的智能体，随机种子 {}（t 训练，e 训练一个回合）",
                     env.as_str(),
                     self.seed
-                );
+                ));
             }
         }
         self.parked = Some(left);
@@ -1018,11 +843,11 @@ impl App {
         if let Some(path) = &self.progress_path
             && let Err(e) = self.progress.save(path)
         {
-            self.status = crate::tr!(
+            self.say(crate::tr!(
                 "could not save progress to {}: {e}",
                 "无法把进度保存到 {}：{e}",
                 path.display()
-            );
+            ));
         }
     }
 

@@ -1,17 +1,18 @@
-//! Drawing only: the app's state to a frame. Nothing here changes state.
+//! Drawing only: the app's state to a frame (the header, the lesson view, the footer; each
+//! open face draws itself, `super::components`). Nothing here changes state.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Clear, Gauge, Paragraph, Widget};
+use ratatui::widgets::{Paragraph, Widget};
 
 use super::app::{App, Overlay, TrainState};
-use super::keys::{help, language_label};
-use super::sandbox::Field;
+use super::components::{Component, panel};
+use super::keys::language_label;
 use super::theme::Theme;
 use super::widgets::{
-    cartpole::CartPoleView, clip::ClipChart, lab::LabPanel, pendulum::PendulumView,
-    plot::ReturnPlot, tensors, text,
+    cartpole::CartPoleView, clip::ClipChart, pendulum::PendulumView, plot::ReturnPlot, tensors,
+    text,
 };
 use crate::i18n::t;
 use crate::lesson::{Environment, TensorView, VIEWS};
@@ -56,13 +57,14 @@ impl Widget for &View<'_> {
         draw_header(app, theme, header, buf);
         draw_body(app, theme, body, buf);
         draw_footer(app, theme, footer, buf);
+        let ctx = app.ctx();
         match app.overlay {
             Overlay::None => {}
-            Overlay::Help => draw_help(theme, area, buf),
-            Overlay::Lessons(i) => draw_lessons(app, theme, i, area, buf),
-            Overlay::Sandbox => draw_sandbox(app, theme, area, buf),
-            Overlay::Exercise(scroll) => draw_exercise(app, theme, scroll, area, buf),
-            Overlay::Quiz(i) => draw_quiz(app, theme, i, area, buf),
+            Overlay::Help => app.help.render(&ctx, theme, area, buf),
+            Overlay::Lessons => app.lesson_list.render(&ctx, theme, area, buf),
+            Overlay::Sandbox => app.sandbox.render(&ctx, theme, area, buf),
+            Overlay::Exercise => app.exercise.render(&ctx, theme, area, buf),
+            Overlay::Quiz => app.quiz.render(&ctx, theme, area, buf),
         }
     }
 }
@@ -119,32 +121,13 @@ fn draw_header(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     .render(area, buf);
 }
 
-fn panel(title: &str, theme: Theme) -> Block<'static> {
-    Block::default()
-        .borders(Borders::ALL)
-        .border_style(theme.border())
-        .title(Span::styled(format!(" {title} "), theme.title()))
-}
-
 fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let Some(step) = app.current_step() else {
         return;
     };
     let [left, right] =
         Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(area);
-    let body = crate::lesson::details::fold(
-        &step.text(crate::lesson::face::Face::Terminal),
-        app.details_open,
-    );
-    let columns = usize::from(left.width.saturating_sub(2));
-    let lines = text::wrap(
-        text::markdown(&body, theme, columns),
-        left.width.saturating_sub(2),
-    );
-    Paragraph::new(lines)
-        .block(panel(&step.title, theme))
-        .scroll((app.text_scroll, 0))
-        .render(left, buf);
+    app.explanation.render(&app.ctx(), theme, left, buf);
     let env = app
         .current_lesson()
         .map_or_else(Default::default, |l| l.env);
@@ -333,24 +316,8 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             let Some(experiment) = app.current_step().and_then(|s| s.lab) else {
                 return;
             };
-            let base = app.lab_base();
-            LabPanel {
-                experiment,
-                arms: experiment
-                    .arms(&base)
-                    .into_iter()
-                    .map(|a| a.label)
-                    .collect(),
-                seeds: crate::tui::app::LAB_SEEDS.len(),
-                episodes: base.num_episodes,
-                state: app.labs.get(&experiment),
-                block: panel(
-                    &tr!("clip lab: {}", "截断实验室：{}", experiment.name()),
-                    theme,
-                ),
-                theme,
-            }
-            .render(area, buf);
+            app.lab
+                .render(experiment, &app.lab_base(), theme, area, buf);
         }
         _ => {
             let trace = s.trace.as_ref();
@@ -399,9 +366,9 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     // message is cut at the right edge, the counts never are. A warning (a corrupt progress
     // file, a grader that cannot start) goes first instead, so it is read whole.
     let mut parts = Vec::new();
-    let warning = super::app::is_warning(&app.status);
+    let warning = app.status.is_warning();
     if warning {
-        parts.push(app.status.clone());
+        parts.push(app.status.to_string());
     }
     let exercise = app.exercise_names();
     if !exercise.is_empty() {
@@ -433,350 +400,9 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         "quiz {right}/{questions} right ({answered} answered)",
         "小测验答对 {right}/{questions}（已答 {answered}）"
     ));
-    if !app.status.is_empty() && !warning {
-        parts.push(app.status.clone());
+    if !app.status.text().is_empty() && !warning {
+        parts.push(app.status.to_string());
     }
     let status = format!(" {}", parts.join(" · "));
     Paragraph::new(vec![Line::from(spans), Line::styled(status, theme.dim())]).render(area, buf);
-}
-
-/// Clears `rect` for an overlay, and the wide glyph (a CJK character) of the text below
-/// that straddles its left edge: the overlay's border would cut that glyph in half, and a
-/// terminal would draw neither.
-fn clear(rect: Rect, buf: &mut Buffer) {
-    Clear.render(rect, buf);
-    if rect.x == 0 {
-        return;
-    }
-    for y in rect.top()..rect.bottom() {
-        let cell = &mut buf[(rect.x - 1, y)];
-        if text::width(cell.symbol()) > 1 {
-            cell.set_symbol(" ");
-        }
-    }
-}
-
-fn centered(area: Rect, width: u16, height: u16) -> Rect {
-    let w = width.min(area.width);
-    let h = height.min(area.height);
-    Rect {
-        x: area.x + (area.width - w) / 2,
-        y: area.y + (area.height - h) / 2,
-        width: w,
-        height: h,
-    }
-}
-
-fn draw_help(theme: Theme, area: Rect, buf: &mut Buffer) {
-    let width = 72.min(area.width);
-    let lines = text::wrap(
-        help().into_iter().map(|(k, what)| {
-            Line::from(vec![
-                Span::styled(format!(" {}", text::pad_right(k, 16)), theme.key()),
-                Span::raw(what),
-            ])
-        }),
-        width.saturating_sub(2),
-    );
-    let rect = centered(
-        area,
-        width,
-        u16::try_from(lines.len() + 2).unwrap_or(u16::MAX),
-    );
-    clear(rect, buf);
-    Paragraph::new(lines)
-        .block(panel(t("keys (Esc closes)", "按键（Esc 关闭）"), theme))
-        .render(rect, buf);
-}
-
-fn draw_lessons(app: &App, theme: Theme, selected: usize, area: Rect, buf: &mut Buffer) {
-    let rect = centered(area, 76, app.course.lessons.len() as u16 + 4);
-    clear(rect, buf);
-    let lines: Vec<Line> = app
-        .course
-        .lessons
-        .iter()
-        .enumerate()
-        .map(|(i, l)| {
-            let mark = if app.progress.lessons_done.contains(&l.id) {
-                "✓"
-            } else {
-                " "
-            };
-            let text = format!(" {mark} {:02} {}", l.order, l.title);
-            // Cut at the panel's edge by columns (a Chinese title is twice as wide).
-            let text = text::truncate(&text, usize::from(rect.width.saturating_sub(2)));
-            if i == selected {
-                Line::styled(text, theme.highlight())
-            } else {
-                Line::raw(text)
-            }
-        })
-        .collect();
-    Paragraph::new(lines)
-        .block(panel(
-            t(
-                "lessons (↑↓, Enter opens, Esc closes)",
-                "课程（↑↓ 选择，Enter 打开，Esc 关闭）",
-            ),
-            theme,
-        ))
-        .render(rect, buf);
-}
-
-fn draw_sandbox(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
-    let rect = centered(area, 64, Field::ALL.len() as u16 + 7);
-    clear(rect, buf);
-    let sandbox = &app.sandbox;
-    let mut lines: Vec<Line> = Field::ALL
-        .iter()
-        .map(|&field| {
-            let text = format!(" {:<26} {}", field.name(), sandbox.value(field));
-            if field == sandbox.selected {
-                Line::styled(text, theme.highlight())
-            } else if sandbox.applies(field) {
-                Line::raw(text)
-            } else {
-                Line::styled(text, theme.dim())
-            }
-        })
-        .collect();
-    lines.push(Line::raw(""));
-    lines.push(Line::styled(
-        t(
-            " ↑↓ choose · +/− or ←/→ change · Enter retrains",
-            " ↑↓ 选择 · +/− 或 ←/→ 修改 · Enter 重新训练",
-        ),
-        theme.dim(),
-    ));
-    lines.push(Line::styled(
-        t(
-            " (the current curve stays on the plot for comparison)",
-            " （当前曲线会留在图上作对比）",
-        ),
-        theme.dim(),
-    ));
-    Paragraph::new(lines)
-        .block(panel(t("sandbox", "沙盒"), theme))
-        .render(rect, buf);
-}
-
-/// The exercise panel: status of each function, revealed hints, the last grading, the
-/// reference solution once passed, and a progress bar of exercises done.
-fn draw_exercise(app: &App, theme: Theme, scroll: u16, area: Rect, buf: &mut Buffer) {
-    let rect = centered(
-        area,
-        area.width.saturating_sub(8),
-        area.height.saturating_sub(4),
-    );
-    clear(rect, buf);
-    let names = app.exercise_names();
-    let file_of = |name: &str| crate::grade::starter(name).map_or(String::new(), |(path, _)| path);
-    let mut files: Vec<String> = names.iter().map(|n| file_of(n)).collect();
-    files.dedup();
-    let heading = match files.as_slice() {
-        [file] => tr!(
-            " Write the function(s) in {file}",
-            " 在 {file} 里写出下面的函数"
-        ),
-        _ => t(
-            " Write each function in its file",
-            " 在各自的文件里写出每个函数",
-        )
-        .to_string(),
-    };
-    let mut lines = vec![
-        Line::styled(heading, theme.title()),
-        Line::styled(
-            t(
-                " g grade (saving the file regrades too) · h next hint · ↑↓ scroll · Esc close",
-                " g 评测（保存文件也会重新评测）· h 下一条提示 · ↑↓ 滚动 · Esc 关闭",
-            ),
-            theme.dim(),
-        ),
-        Line::raw(""),
-    ];
-    for name in &names {
-        let done = app.progress.exercises_done.contains(name);
-        let mark = if done {
-            t("✓ done", "✓ 已完成")
-        } else {
-            t("· pending", "· 未完成")
-        };
-        let mut line = vec![
-            Span::styled(format!(" {}", text::pad_right(mark, 10)), theme.key()),
-            Span::raw(name.clone()),
-        ];
-        if files.len() > 1 {
-            let width = names.iter().map(|n| text::width(n)).max().unwrap_or(0);
-            let pad = " ".repeat(width.saturating_sub(text::width(name)) + 2);
-            line.push(Span::styled(format!("{pad}{}", file_of(name)), theme.dim()));
-        }
-        lines.push(Line::from(line));
-    }
-    let hints = app
-        .current_lesson()
-        .and_then(|l| l.exercise.as_ref())
-        .map_or(&[][..], |e| e.hints.as_slice());
-    if app.exercise.hints_shown > 0 {
-        lines.push(Line::raw(""));
-        lines.push(Line::styled(
-            tr!(
-                " Hints ({}/{})",
-                " 提示（{}/{}）",
-                app.exercise.hints_shown,
-                hints.len()
-            ),
-            theme.title(),
-        ));
-        for (i, hint) in hints.iter().take(app.exercise.hints_shown).enumerate() {
-            lines.push(Line::raw(format!(" {}. {hint}", i + 1)));
-        }
-    }
-    if app.exercise.grading {
-        lines.push(Line::raw(""));
-        let slow = names.iter().any(|n| {
-            crate::grade::find(n).is_ok_and(|e| e.meta().backend == crate::grade::Backend::Cargo)
-        });
-        lines.push(Line::styled(
-            if slow {
-                t(
-                    " grading… (the first time compiles, a few seconds; for the candle exercise, \
-                     a few minutes)",
-                    " 评测中……（第一次要编译，需要几秒；candle 练习需要几分钟）",
-                )
-            } else {
-                t(
-                    " grading… (the first time compiles, a few seconds)",
-                    " 评测中……（第一次要编译，需要几秒）",
-                )
-            },
-            theme.dim(),
-        ));
-    }
-    for graded in &app.exercise.graded {
-        lines.push(Line::raw(""));
-        match &graded.result {
-            Ok(report) => lines.extend(report.render().lines().map(|l| Line::raw(format!(" {l}")))),
-            Err(e) => lines.push(Line::raw(format!(" {}: {e}", graded.name))),
-        }
-    }
-    if app.exercise_done() {
-        let mut solutions: Vec<&str> = names
-            .iter()
-            .filter_map(|n| crate::grade::solution(n))
-            .collect();
-        solutions.dedup();
-        for code in solutions {
-            lines.push(Line::raw(""));
-            lines.push(Line::styled(
-                t(" The reference solution", " 参考答案"),
-                theme.title(),
-            ));
-            lines.extend(code.lines().map(|l| Line::raw(format!(" {l}"))));
-        }
-    }
-    let [text, gauge] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)])
-        .areas(rect.inner(ratatui::layout::Margin::new(1, 1)));
-    panel(t("exercise", "练习"), theme).render(rect, buf);
-    Paragraph::new(text::wrap(lines, text.width))
-        .scroll((scroll, 0))
-        .render(text, buf);
-    let total = crate::grade::exercise_names().len();
-    let done = app.progress.exercises_done.len().min(total);
-    Gauge::default()
-        .gauge_style(theme.key())
-        .ratio(if total == 0 {
-            0.0
-        } else {
-            done as f64 / total as f64
-        })
-        .label(tr!(
-            "exercises done {done}/{total}",
-            "已完成练习 {done}/{total}"
-        ))
-        .render(gauge, buf);
-}
-
-fn draw_quiz(app: &App, theme: Theme, i: usize, area: Rect, buf: &mut Buffer) {
-    use crate::lesson::quiz::{QuestionKind, letter_of};
-    let (Some(lesson), Some(question)) = (app.current_lesson(), app.quiz_question(i)) else {
-        return;
-    };
-    let width = area.width.saturating_sub(8).min(100);
-    let mut lines = vec![
-        Line::styled(
-            tr!(
-                " Check your understanding: question {}/{}",
-                " 检验一下：第 {}/{} 题",
-                i + 1,
-                lesson.quiz.len()
-            ),
-            theme.title(),
-        ),
-        Line::raw(""),
-        Line::raw(format!(" {}", question.prompt)),
-        Line::raw(""),
-    ];
-    let keys = match &question.kind {
-        QuestionKind::Choice { choices, .. } => {
-            for (k, choice) in choices.iter().enumerate() {
-                lines.push(Line::from(vec![
-                    Span::styled(format!(" {}) ", letter_of(k)), theme.key()),
-                    Span::raw(choice.clone()),
-                ]));
-            }
-            tr!(
-                " a–{} answer",
-                " a–{} 作答",
-                letter_of(choices.len().saturating_sub(1))
-            )
-        }
-        QuestionKind::Predict { tolerance, .. } => {
-            lines.push(Line::from(vec![
-                Span::styled(t(" your prediction: ", " 你的预测："), theme.key()),
-                Span::raw(format!("{}▏", app.quiz.input)),
-                Span::styled(
-                    tr!(
-                        "  (within ±{tolerance} counts)",
-                        "  （误差在 ±{tolerance} 以内算对）"
-                    ),
-                    theme.dim(),
-                ),
-            ]));
-            if app.snapshot.trace.is_none() {
-                lines.push(Line::styled(
-                    t(
-                        " the live value comes from the agent: train an episode first (e or t)",
-                        " 实时数值来自智能体：先训练一个回合（e 或 t）",
-                    ),
-                    theme.dim(),
-                ));
-            }
-            t(
-                " type a number, Enter reveals the live value",
-                " 输入一个数，按 Enter 揭晓实时数值",
-            )
-            .to_string()
-        }
-    };
-    if let Some(verdict) = &app.quiz.verdict {
-        lines.push(Line::raw(""));
-        lines.extend(verdict.text.lines().map(|l| Line::raw(format!(" {l}"))));
-    }
-    lines.push(Line::raw(""));
-    lines.push(Line::styled(
-        tr!(
-            "{keys} · n next · p previous · Esc back to the lesson",
-            "{keys} · n 下一题 · p 上一题 · Esc 回到课文"
-        ),
-        theme.dim(),
-    ));
-    // As tall as the wrapped text needs, at most the screen.
-    let lines = text::wrap(lines, width.saturating_sub(2));
-    let height = u16::try_from(lines.len() + 2).unwrap_or(u16::MAX);
-    let rect = centered(area, width, height.min(area.height.saturating_sub(4)));
-    clear(rect, buf);
-    panel(t("quiz", "小测验"), theme).render(rect, buf);
-    Paragraph::new(lines).render(rect.inner(ratatui::layout::Margin::new(1, 1)), buf);
 }

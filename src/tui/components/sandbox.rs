@@ -1,12 +1,18 @@
-//! The sandbox overlay's state: a copy of the run's settings being edited, and the
+//! The sandbox overlay (`s`): a copy of the run's settings being edited, and the
 //! highlighted field. Enter retrains with the copy; nothing changes before that.
 
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::text::Line;
+use ratatui::widgets::{Paragraph, Widget};
+
+use super::{Component, Ctx, Reply, centered, clear, panel};
 use crate::env::EnvId;
 use crate::i18n::t;
 use crate::lesson::{Environment, RunConfig};
 use crate::ppo::{Algorithm, PpoConfig, PpoContinuousConfig};
-
-use super::keys::Action;
+use crate::tui::keys::Action;
+use crate::tui::theme::Theme;
 
 /// One editable setting of the sandbox.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -97,19 +103,6 @@ impl Field {
     }
 }
 
-/// What the sandbox asks of the app after a key.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Outcome {
-    /// Nothing beyond the sandbox's own state changed.
-    Stay,
-    /// Close the sandbox, keeping the current run.
-    Close,
-    /// Close the sandbox and retrain with its settings.
-    Retrain,
-    /// Leave the app.
-    Quit,
-}
-
 /// The settings being edited and the highlighted field.
 #[derive(Debug, Clone, Default)]
 pub struct Sandbox {
@@ -194,9 +187,9 @@ impl Sandbox {
 
     /// Applies one key's action: move the highlight, change the highlighted value, or ask
     /// the app to close, retrain or quit.
-    pub fn update(&mut self, action: Action) -> Outcome {
+    pub fn update(&mut self, action: Action) -> Reply {
         match action {
-            Action::Quit => return Outcome::Quit,
+            Action::Quit => return Reply::Quit,
             Action::Up | Action::ScrollUp => {
                 self.selected = Field::at(self.selected.index().saturating_sub(1));
             }
@@ -205,11 +198,11 @@ impl Sandbox {
             }
             Action::Increase => self.nudge(self.selected, true),
             Action::Decrease => self.nudge(self.selected, false),
-            Action::Enter => return Outcome::Retrain,
-            Action::Sandbox | Action::Back => return Outcome::Close,
+            Action::Enter => return Reply::Retrain,
+            Action::Sandbox | Action::Back => return Reply::Close,
             _ => {}
         }
-        Outcome::Stay
+        Reply::Stay
     }
 
     /// The value of `field` as the sandbox shows it.
@@ -382,6 +375,52 @@ fn round3(v: f64) -> f64 {
     (v * 1000.0).round() / 1000.0
 }
 
+impl Component for Sandbox {
+    fn handle(&mut self, action: Action, _: &Ctx<'_>) -> Reply {
+        self.update(action)
+    }
+
+    fn render(&self, _: &Ctx<'_>, theme: Theme, area: Rect, buf: &mut Buffer) {
+        let rect = centered(
+            area,
+            64,
+            u16::try_from(Field::ALL.len() + 7).unwrap_or(u16::MAX),
+        );
+        clear(rect, buf);
+        let mut lines: Vec<Line> = Field::ALL
+            .iter()
+            .map(|&field| {
+                let text = format!(" {:<26} {}", field.name(), self.value(field));
+                if field == self.selected {
+                    Line::styled(text, theme.highlight())
+                } else if self.applies(field) {
+                    Line::raw(text)
+                } else {
+                    Line::styled(text, theme.dim())
+                }
+            })
+            .collect();
+        lines.push(Line::raw(""));
+        lines.push(Line::styled(
+            t(
+                " ↑↓ choose · +/− or ←/→ change · Enter retrains",
+                " ↑↓ 选择 · +/− 或 ←/→ 修改 · Enter 重新训练",
+            ),
+            theme.dim(),
+        ));
+        lines.push(Line::styled(
+            t(
+                " (the current curve stays on the plot for comparison)",
+                " （当前曲线会留在图上作对比）",
+            ),
+            theme.dim(),
+        ));
+        Paragraph::new(lines)
+            .block(panel(t("sandbox", "沙盒"), theme))
+            .render(rect, buf);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -415,7 +454,7 @@ mod tests {
     #[test]
     fn the_highlight_stays_within_the_fields() {
         let mut s = Sandbox::default();
-        assert_eq!(s.update(Action::Up), Outcome::Stay);
+        assert_eq!(s.update(Action::Up), Reply::Stay);
         assert_eq!(s.selected, Field::Eps);
         for _ in 0..20 {
             s.update(Action::Down);
@@ -488,9 +527,9 @@ mod tests {
     #[test]
     fn enter_retrains_and_escape_closes() {
         let mut s = Sandbox::default();
-        assert_eq!(s.update(Action::Enter), Outcome::Retrain);
-        assert_eq!(s.update(Action::Back), Outcome::Close);
-        assert_eq!(s.update(Action::Sandbox), Outcome::Close);
-        assert_eq!(s.update(Action::Quit), Outcome::Quit);
+        assert_eq!(s.update(Action::Enter), Reply::Retrain);
+        assert_eq!(s.update(Action::Back), Reply::Close);
+        assert_eq!(s.update(Action::Sandbox), Reply::Close);
+        assert_eq!(s.update(Action::Quit), Reply::Quit);
     }
 }

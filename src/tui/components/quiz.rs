@@ -1,0 +1,269 @@
+//! The quiz overlay, after a lesson's last step: one question at a time, a choice (a–d) or
+//! a prediction of a live value, its verdict and each choice's explanation.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Margin, Rect};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Widget};
+
+use super::{Component, Ctx, Reply, Scroll, centered, clear, panel};
+use crate::i18n::t;
+use crate::lesson::Progress;
+use crate::lesson::quiz::{Question, QuestionKind, Verdict, letter_of};
+use crate::tr;
+use crate::tui::keys::Action;
+use crate::tui::theme::Theme;
+use crate::tui::widgets::text;
+
+/// The open question, the answer being typed, and the verdict once given.
+#[derive(Debug, Clone, Default)]
+pub struct Quiz {
+    question: usize,
+    /// The prediction typed so far (digits, `.`, `-`).
+    pub input: String,
+    /// The verdict on the latest answer (or why it could not be graded yet).
+    pub verdict: Option<Verdict>,
+    /// The score already held the first answer to this question when this one was given:
+    /// whether that first answer was right (this one does not count).
+    first: Option<bool>,
+    scroll: Scroll,
+}
+
+impl Quiz {
+    /// The open question (from 0).
+    #[must_use]
+    pub fn question(&self) -> usize {
+        self.question
+    }
+
+    /// Opens question `i` of `ctx`'s lesson with nothing typed, and says how to answer it.
+    pub fn open(&mut self, i: usize, ctx: &Ctx<'_>) -> String {
+        *self = Self {
+            question: i,
+            ..Self::default()
+        };
+        let total = ctx.lesson.map_or(0, |l| l.quiz.len());
+        let how = match ctx.lesson.and_then(|l| l.quiz.get(i)).map(|q| &q.kind) {
+            Some(QuestionKind::Predict { .. }) => t("type a number, Enter", "输入一个数，按 Enter"),
+            _ => t("a–d answers", "按 a–d 作答"),
+        };
+        tr!(
+            "check your understanding: question {}/{total} ({how})",
+            "检验一下：第 {}/{total} 题（{how}）",
+            i + 1
+        )
+    }
+
+    /// Forgets what was typed and the verdict shown (the language changed: they were
+    /// written in the old one).
+    pub fn clear_answer(&mut self) {
+        *self = Self {
+            question: self.question,
+            ..Self::default()
+        };
+    }
+
+    fn answered(&self) -> bool {
+        self.verdict.as_ref().is_some_and(|v| v.answered)
+    }
+
+    /// Shows `verdict`; a real answer goes to the app to be recorded (the first counts).
+    fn give(&mut self, verdict: Verdict, ctx: &Ctx<'_>) -> Reply {
+        self.scroll.top();
+        let reply = if verdict.answered {
+            let id = ctx.lesson.map_or("", |l| l.id.as_str());
+            let key = Progress::quiz_key(id, self.question + 1);
+            self.first = ctx.progress.quiz.get(&key).copied();
+            Reply::Answered(self.question, verdict.clone())
+        } else {
+            self.first = None;
+            Reply::Say(verdict.text.lines().next().unwrap_or_default().to_string())
+        };
+        self.verdict = Some(verdict);
+        reply
+    }
+
+    fn lines(&self, ctx: &Ctx<'_>, question: &Question, theme: Theme) -> Vec<Line<'static>> {
+        let total = ctx.lesson.map_or(0, |l| l.quiz.len());
+        let mut lines = vec![
+            Line::styled(
+                tr!(
+                    " Check your understanding: question {}/{}",
+                    " 检验一下：第 {}/{} 题",
+                    self.question + 1,
+                    total
+                ),
+                theme.title(),
+            ),
+            Line::raw(""),
+            Line::raw(format!(" {}", question.prompt)),
+            Line::raw(""),
+        ];
+        match &question.kind {
+            QuestionKind::Choice { choices, .. } => {
+                for (k, choice) in choices.iter().enumerate() {
+                    lines.push(Line::from(vec![
+                        Span::styled(format!(" {}) ", letter_of(k)), theme.key()),
+                        Span::raw(choice.clone()),
+                    ]));
+                }
+            }
+            QuestionKind::Predict { tolerance, .. } => {
+                lines.push(Line::from(vec![
+                    Span::styled(t(" your prediction: ", " 你的预测："), theme.key()),
+                    Span::raw(format!("{}▏", self.input)),
+                    Span::styled(
+                        tr!(
+                            "  (within ±{tolerance} counts)",
+                            "  （误差在 ±{tolerance} 以内算对）"
+                        ),
+                        theme.dim(),
+                    ),
+                ]));
+                if ctx.snapshot.trace.is_none() {
+                    lines.push(Line::styled(
+                        t(
+                            " the live value comes from the agent: train an episode first (e or t)",
+                            " 实时数值来自智能体：先训练一个回合（e 或 t）",
+                        ),
+                        theme.dim(),
+                    ));
+                }
+            }
+        }
+        if let Some(verdict) = &self.verdict {
+            lines.push(Line::raw(""));
+            if let Some(first) = self.first {
+                lines.push(Line::styled(
+                    if first {
+                        t(
+                            " Only your first answer counts toward the score (it was right).",
+                            " 只有第一次作答计入成绩（第一次答对了）。",
+                        )
+                    } else {
+                        t(
+                            " Only your first answer counts toward the score (it was not right).",
+                            " 只有第一次作答计入成绩（第一次没答对）。",
+                        )
+                    },
+                    theme.dim(),
+                ));
+            }
+            lines.extend(verdict.text.lines().map(|l| Line::raw(format!(" {l}"))));
+        }
+        lines
+    }
+}
+
+impl Component for Quiz {
+    fn handle(&mut self, action: Action, ctx: &Ctx<'_>) -> Reply {
+        let i = self.question;
+        let total = ctx.lesson.map_or(0, |l| l.quiz.len());
+        let Some(question) = ctx.lesson.and_then(|l| l.quiz.get(i)) else {
+            return Reply::Close;
+        };
+        match action {
+            Action::Type(c) => match &question.kind {
+                QuestionKind::Choice { .. } => {
+                    if c.is_ascii_lowercase() {
+                        return self.give(question.choose(c), ctx);
+                    }
+                }
+                QuestionKind::Predict { .. } => {
+                    if !self.answered()
+                        && (c.is_ascii_digit() || c == '.' || c == '-')
+                        && self.input.len() < 16
+                    {
+                        self.input.push(c);
+                    }
+                }
+            },
+            Action::Erase => {
+                if !self.answered() {
+                    self.input.pop();
+                }
+            }
+            Action::Enter => {
+                if matches!(question.kind, QuestionKind::Predict { .. }) && !self.answered() {
+                    return match self.input.parse::<f64>() {
+                        Ok(v) => self.give(question.predict(v, ctx.snapshot), ctx),
+                        Err(_) => Reply::Say(
+                            t(
+                                "type a number first (digits, '.', '-')",
+                                "先输入一个数（数字、'.'、'-'）",
+                            )
+                            .into(),
+                        ),
+                    };
+                }
+            }
+            Action::Next => {
+                return if i + 1 < total {
+                    Reply::Say(self.open(i + 1, ctx))
+                } else {
+                    Reply::Finished
+                };
+            }
+            Action::Prev => {
+                return if i > 0 {
+                    Reply::Say(self.open(i - 1, ctx))
+                } else {
+                    Reply::Close
+                };
+            }
+            Action::Back => return Reply::Close,
+            Action::Up | Action::ScrollUp => self.scroll.up(),
+            Action::Down | Action::ScrollDown => self.scroll.down(),
+            other => return Reply::Pass(other),
+        }
+        Reply::Stay
+    }
+
+    fn render(&self, ctx: &Ctx<'_>, theme: Theme, area: Rect, buf: &mut Buffer) {
+        let Some(question) = ctx.lesson.and_then(|l| l.quiz.get(self.question)) else {
+            return;
+        };
+        let width = area.width.saturating_sub(8).min(100);
+        let columns = width.saturating_sub(2);
+        let answer = match &question.kind {
+            QuestionKind::Choice { choices, .. } => tr!(
+                " a–{} answer",
+                " a–{} 作答",
+                letter_of(choices.len().saturating_sub(1))
+            ),
+            QuestionKind::Predict { .. } => t(
+                " type a number, Enter reveals the live value",
+                " 输入一个数，按 Enter 揭晓实时数值",
+            )
+            .to_string(),
+        };
+        // The keys stay on the panel's last rows; the question, its choices and the
+        // verdict scroll above them, saying when more follows.
+        let keys = text::wrap(
+            [Line::styled(
+                tr!(
+                    "{answer} · n next · p previous · Esc back to the lesson",
+                    "{answer} · n 下一题 · p 上一题 · Esc 回到课文"
+                ),
+                theme.dim(),
+            )],
+            columns,
+        );
+        let body = text::wrap(self.lines(ctx, question, theme), columns);
+        // As tall as the wrapped text needs, at most the screen less two rows each side.
+        let height = u16::try_from(body.len() + 1 + keys.len() + 2).unwrap_or(u16::MAX);
+        let rect = centered(area, width, height.min(area.height.saturating_sub(4)));
+        clear(rect, buf);
+        panel(t("quiz", "小测验"), theme).render(rect, buf);
+        let inner = rect.inner(Margin::new(1, 1));
+        let keys_height = u16::try_from(keys.len()).unwrap_or(u16::MAX);
+        let [text_area, _, keys_area] = Layout::vertical([
+            Constraint::Min(0),
+            Constraint::Length(1),
+            Constraint::Length(keys_height),
+        ])
+        .areas(inner);
+        self.scroll.render(body, theme, text_area, buf);
+        Paragraph::new(keys).render(keys_area, buf);
+    }
+}
