@@ -1,8 +1,10 @@
 //! The terminal app: the tutorial step by step, with live tensors and live plots.
 //!
-//! - [`app`]: state and its one `update`; [`keys`]: key map; [`ui`]: drawing only;
-//!   [`theme`]: styles (`NO_COLOR` aware); [`widgets`]: plot, cart-pole, clip chart, tensors.
-//! - [`sandbox`]: the sandbox overlay's own state (the settings being edited).
+//! - [`app`]: what the faces share (course, live run, progress, status line) and the routing
+//!   of every key to the open face; [`components`]: the faces (help, lesson list, sandbox,
+//!   exercise panel, quiz, explanation, clip lab), each owning its state, keys and drawing;
+//!   [`keys`]: key map; [`ui`]: the lesson view's drawing; [`theme`]: styles (`NO_COLOR`
+//!   aware); [`widgets`]: plot, cart-pole, clip chart, tensors.
 //! - [`worker`]: the engine's live training session on its own thread, talking to the UI
 //!   over channels.
 //!
@@ -10,8 +12,9 @@
 //! worker, so the UI never blocks on training.
 
 pub mod app;
+pub mod components;
 pub mod keys;
-pub mod sandbox;
+pub mod run;
 pub mod theme;
 pub mod ui;
 pub mod widgets;
@@ -71,12 +74,12 @@ pub fn run() -> anyhow::Result<()> {
     let (progress, warning) = Progress::load(&path);
     let mut app = App::new(course, progress, Some(path));
     if let Some(w) = warning {
-        app.status = format!("{}{w}", app::warning());
+        app.say(format!("{}{w}", app::warning()));
     }
     let (tx, rx) = mpsc::channel::<Event>();
     let (cmd_tx, cmd_rx) = mpsc::channel::<Command>();
     let (worker_tx, worker_rx) = mpsc::channel::<WorkerEvent>();
-    let worker = worker::spawn(app.run_config(), app.seed, cmd_rx, worker_tx);
+    let worker = worker::spawn(app.run_config(), app.run.seed, cmd_rx, worker_tx);
     forward(worker_rx, tx.clone());
     spawn_input(tx.clone());
     spawn_ticker(tx.clone());
@@ -117,13 +120,13 @@ fn event_loop(
         while let Ok(event) = rx.try_recv() {
             handle(app, event);
         }
-        for command in app.outbox.drain(..) {
+        for command in app.run.outbox.drain(..) {
             let _ = cmd_tx.send(command);
         }
         if let Some(names) = app.exercise.request.take() {
             spawn_grader(names, tx.clone());
         }
-        if let Some((experiment, base)) = app.lab_request.take() {
+        if let Some((experiment, base)) = app.lab.request.take() {
             spawn_lab(experiment, base, tx.clone());
         }
         if app.quit {
@@ -145,7 +148,7 @@ pub fn handle(app: &mut App, event: Event) {
                 overlay_open: app.overlay != app::Overlay::None
                     && app.overlay != app::Overlay::Help,
                 sandbox_open: app.overlay == app::Overlay::Sandbox,
-                quiz_open: matches!(app.overlay, app::Overlay::Quiz(_)),
+                quiz_open: app.overlay == app::Overlay::Quiz,
             };
             if let Some(action) = keys::map(key, context) {
                 app.update(action);
@@ -186,11 +189,11 @@ fn watch_exercise_files(app: &mut App, watcher: &mut Option<SaveWatcher>, tx: &S
     }) {
         Ok(w) => *watcher = Some(w),
         Err(e) => {
-            app.status = crate::tr!(
+            app.say(crate::tr!(
                 "{}{e}; g still grades",
                 "{}{e}；按 g 仍可评测",
                 app::warning()
-            );
+            ));
         }
     }
 }

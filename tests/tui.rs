@@ -65,7 +65,7 @@ fn every_step_of_every_lesson() -> TestResult {
 /// A Pendulum lesson starts a fresh Pendulum run: the screens show a real 3-episode one
 /// (seed 0), as CartPole lessons show a 3-episode CartPole run.
 fn show_pendulum_run(app: &mut App) -> TestResult {
-    if app.env == Environment::Pendulum && app.snapshot.episodes == 0 {
+    if app.run.env == Environment::Pendulum && app.run.snapshot.episodes == 0 {
         app.show(Session::run(PpoContinuousConfig::default(), 0, 3)?);
     }
     Ok(())
@@ -77,17 +77,18 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
     // A CartPole run of 3 episodes, then a Pendulum lesson.
     app.show(Session::run(PpoConfig::default(), 0, 3)?);
     open(&mut app, "continuous-actions")?;
-    assert_eq!(app.env, Environment::Pendulum);
-    let sent: Vec<Command> = app.outbox.drain(..).collect();
+    assert_eq!(app.run.env, Environment::Pendulum);
+    let sent: Vec<Command> = app.run.outbox.drain(..).collect();
     assert!(
         sent.iter()
             .any(|c| matches!(c, Command::Switch { config, seed: 0 }
             if config.as_ref() == &RunConfig::Pendulum(PpoContinuousConfig::default()))),
         "{sent:?}"
     );
-    assert_eq!(app.snapshot.episodes, 0, "a fresh Pendulum agent");
+    assert_eq!(app.run.snapshot.episodes, 0, "a fresh Pendulum agent");
     assert_eq!(
-        app.snapshot
+        app.run
+            .snapshot
             .hyper
             .iter()
             .find(|(k, _)| k == "env_name")
@@ -95,30 +96,39 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
         Some("Pendulum-v1")
     );
     app.show(Session::run(PpoContinuousConfig::default(), 0, 2)?);
-    let frames = app.snapshot.observation_count();
+    let frames = app.run.snapshot.observation_count();
     assert_eq!(frames, 201, "200 steps and where the episode ended");
     app.tick();
-    assert_eq!(app.frame, 1);
+    assert_eq!(app.run.frame, 1);
     let text = screen(&app, 140, 45)?;
     assert!(text.contains("the latest episode, step 1/200"), "{text}");
     assert!(text.contains("mu (200, 1) float32"), "{text}");
     open(&mut app, "pendulum")?;
-    assert!(app.outbox.is_empty(), "the same environment keeps the run");
+    assert!(
+        app.run.outbox.is_empty(),
+        "the same environment keeps the run"
+    );
     open(&mut app, "beyond-the-seed")?;
-    assert_eq!(app.env, Environment::CartPole);
+    assert_eq!(app.run.env, Environment::CartPole);
     assert!(matches!(
-        app.outbox.pop(),
+        app.run.outbox.pop(),
         Some(Command::Switch { config, .. }) if matches!(config.as_ref(), RunConfig::CartPole(_))
     ));
     // Issue 25, bug 2: browsing back continues the CartPole run, and the Pendulum one waits.
-    assert_eq!(app.snapshot.episodes, 3, "the CartPole run was thrown away");
+    assert_eq!(
+        app.run.snapshot.episodes, 3,
+        "the CartPole run was thrown away"
+    );
     assert!(
         app.status.text().contains("continues after episode 3"),
         "{}",
         app.status
     );
     open(&mut app, "pendulum")?;
-    assert_eq!((app.env, app.snapshot.episodes), (Environment::Pendulum, 2));
+    assert_eq!(
+        (app.run.env, app.run.snapshot.episodes),
+        (Environment::Pendulum, 2)
+    );
     Ok(())
 }
 
@@ -134,8 +144,8 @@ fn the_sandbox_switches_the_environment_to_pendulum() -> TestResult {
     assert_eq!(app.sandbox.env, Environment::Pendulum);
     insta::assert_snapshot!("sandbox_pendulum", screen(&app, 140, 45)?);
     app.update(Action::Enter);
-    assert_eq!(app.env, Environment::Pendulum);
-    let sent: Vec<Command> = app.outbox.drain(..).collect();
+    assert_eq!(app.run.env, Environment::Pendulum);
+    let sent: Vec<Command> = app.run.outbox.drain(..).collect();
     assert!(
         matches!(sent.first(), Some(Command::Reset { config, .. })
             if config.as_ref() == &RunConfig::Pendulum(PpoContinuousConfig::default())),
@@ -209,31 +219,34 @@ fn keys_move_through_the_course() -> TestResult {
 fn training_keys_send_commands_to_the_worker() -> TestResult {
     let mut app = app()?;
     app.update(Action::TrainToggle);
-    assert_eq!(app.train, TrainState::Running);
-    assert_eq!(app.outbox.pop(), Some(Command::Run));
+    assert_eq!(app.run.train, TrainState::Running);
+    assert_eq!(app.run.outbox.pop(), Some(Command::Run));
     app.update(Action::TrainToggle);
     assert_eq!(
-        (app.train, app.outbox.pop()),
+        (app.run.train, app.run.outbox.pop()),
         (TrainState::Paused, Some(Command::Pause))
     );
     app.update(Action::OneEpisode);
-    assert_eq!(app.outbox.pop(), Some(Command::OneEpisode));
+    assert_eq!(app.run.outbox.pop(), Some(Command::OneEpisode));
     app.update(Action::ResetAgent);
     assert!(matches!(
-        app.outbox.pop(),
+        app.run.outbox.pop(),
         Some(Command::Reset { seed: 0, .. })
     ));
-    assert!(app.snapshot.returns.is_empty(), "reset clears the curve");
+    assert!(
+        app.run.snapshot.returns.is_empty(),
+        "reset clears the curve"
+    );
     Ok(())
 }
 
 #[test]
 fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
     let mut app = app()?;
-    let old_curve = app.snapshot.moving_average.clone();
-    assert!(!old_curve.is_empty() || app.snapshot.returns.len() < 9);
+    let old_curve = app.run.snapshot.moving_average.clone();
+    assert!(!old_curve.is_empty() || app.run.snapshot.returns.len() < 9);
     let old_curve = if old_curve.is_empty() {
-        app.snapshot.returns.clone()
+        app.run.snapshot.returns.clone()
     } else {
         old_curve
     };
@@ -245,16 +258,16 @@ fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
     assert!((app.sandbox.config.eps - 0.25).abs() < 1e-12);
     assert!((app.sandbox.config.gamma - 0.97).abs() < 1e-12);
     assert!(
-        (app.config.eps - 0.2).abs() < 1e-12,
+        (app.run.config.eps - 0.2).abs() < 1e-12,
         "nothing changes before Enter"
     );
     app.update(Action::Enter);
-    assert!((app.config.eps - 0.25).abs() < 1e-12);
+    assert!((app.run.config.eps - 0.25).abs() < 1e-12);
     assert_eq!(
-        app.previous.as_ref().map(|p| p.values.clone()),
+        app.run.previous.as_ref().map(|p| p.values.clone()),
         Some(old_curve)
     );
-    let sent: Vec<Command> = app.outbox.drain(..).collect();
+    let sent: Vec<Command> = app.run.outbox.drain(..).collect();
     assert!(matches!(sent.first(), Some(Command::Reset { config, .. })
             if matches!(config.as_ref(), RunConfig::CartPole(c) if (c.eps - 0.25).abs() < 1e-12)));
     assert_eq!(sent.last(), Some(&Command::Run));
@@ -269,7 +282,7 @@ fn quitting_saves_progress() -> TestResult {
     app.update(Action::Next);
     app.update(Action::Quit);
     assert!(app.quit);
-    assert_eq!(app.outbox.last(), Some(&Command::Quit));
+    assert_eq!(app.run.outbox.last(), Some(&Command::Quit));
     let (saved, warning) = Progress::load(&path);
     assert!(warning.is_none());
     assert_eq!((saved.lesson.as_str(), saved.step), ("what-is-ppo", 1));
@@ -338,7 +351,7 @@ fn the_worker_sends_its_session_snapshot_after_each_episode() -> TestResult {
     handle.join().map_err(|_| "the worker panicked")?;
     let expected = Session::run(config, 5, 2)?;
     assert_eq!(
-        app.snapshot, expected,
+        app.run.snapshot, expected,
         "the app shows what the session computed"
     );
     let last = expected.returns.last().ok_or("no return")?;
@@ -349,7 +362,7 @@ fn the_worker_sends_its_session_snapshot_after_each_episode() -> TestResult {
         app.tick();
     }
     assert_eq!(
-        app.frame, 0,
+        app.run.frame, 0,
         "the animation loops over the episode's observations"
     );
     Ok(())
@@ -566,7 +579,7 @@ fn quiz_questions_are_answered_with_keys_and_counted() -> TestResult {
                 QuestionKind::Predict { measure, .. } => {
                     app.update(Action::Enter);
                     assert!(app.quiz.verdict.is_none(), "nothing typed, nothing graded");
-                    let live = (measure.value)(&app.snapshot).ok_or("no live value")?;
+                    let live = (measure.value)(&app.run.snapshot).ok_or("no live value")?;
                     for c in format!("{live:.6}").chars() {
                         app.update(Action::Type(c));
                     }

@@ -7,8 +7,8 @@ use std::path::PathBuf;
 
 use crate::i18n::{Lang, LangGuard, t};
 use crate::lesson::{Course, Environment, Lesson, Progress, RunConfig, Snapshot, Step};
+use crate::ppo::PpoConfig;
 use crate::ppo::lab::Experiment;
-use crate::ppo::{PpoConfig, PpoContinuousConfig};
 
 use super::components::exercise::{self, ExercisePanel};
 use super::components::explanation::Explanation;
@@ -25,6 +25,7 @@ use super::worker::{Command, WorkerEvent};
 pub use super::components::exercise::Graded;
 pub use super::components::lab::LAB_SEEDS;
 pub use super::components::{WARNING, is_warning, warning};
+pub use super::run::{ParkedRun, PreviousCurve, Run, TrainState, return_text};
 
 /// Which face covers the lesson, if any (each face's state is its component in [`App`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -58,53 +59,6 @@ impl Overlay {
     }
 }
 
-/// A previous run's return curve, overlaid on the plot after a sandbox retrain.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PreviousCurve {
-    /// Whether the curve is the run's moving average (otherwise its raw returns).
-    pub smoothed: bool,
-    /// The curve: the run's moving average, or its returns when it had too few for one.
-    pub values: Vec<f64>,
-}
-
-impl PreviousCurve {
-    /// The legend in the current language, like `before (moving average)`.
-    #[must_use]
-    pub fn label(&self) -> String {
-        if self.smoothed {
-            t("before (moving average)", "之前（移动平均）").to_string()
-        } else {
-            t("before (returns)", "之前（回报）").to_string()
-        }
-    }
-}
-
-/// Whether the worker is training.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum TrainState {
-    /// Waiting for `t` or `e`.
-    #[default]
-    Paused,
-    /// Training episode after episode.
-    Running,
-    /// The configured number of episodes is done.
-    Finished,
-}
-
-/// A run set aside when a lesson on the other environment opened: what the app showed of
-/// it, to show again when the learner comes back.
-#[derive(Debug, Clone)]
-pub struct ParkedRun {
-    /// Its latest snapshot.
-    pub snapshot: Snapshot,
-    /// Its seed.
-    pub seed: u64,
-    /// Paused or finished (a running one is paused when set aside).
-    pub train: TrainState,
-    /// The curve overlaid on its plot, if any.
-    pub previous: Option<PreviousCurve>,
-}
-
 /// Everything the app shows and remembers.
 #[derive(Debug)]
 pub struct App {
@@ -132,27 +86,8 @@ pub struct App {
     pub quiz: Quiz,
     /// The clip-lab experiments started in this session.
     pub lab: Lab,
-    /// Training state.
-    pub train: TrainState,
-    /// The live values after the latest episode, as the worker's session sent them.
-    pub snapshot: Snapshot,
-    /// The cart-pole animation's frame: an index into the latest episode's observations
-    /// ([`Snapshot::observation`]).
-    pub frame: usize,
-    /// The previous run's curve, overlaid on the plot after a sandbox retrain.
-    pub previous: Option<PreviousCurve>,
-    /// The other environment's run while its lessons are not open (the worker keeps its
-    /// session): browsing back continues it.
-    pub parked: Option<ParkedRun>,
-    /// Hyper-parameters of the current CartPole run (or of the next one, in a Pendulum
-    /// lesson).
-    pub config: PpoConfig,
-    /// Hyper-parameters of the current Pendulum run (or of the next one).
-    pub pendulum: PpoContinuousConfig,
-    /// The environment of the current run: the open lesson's.
-    pub env: Environment,
-    /// Seed of the current run.
-    pub seed: u64,
+    /// The live runs: the current environment's and the one set aside.
+    pub run: Run,
     /// The one-line status message (warnings, errors, confirmations) and who set it.
     pub status: Status,
     /// Saved progress.
@@ -161,8 +96,6 @@ pub struct App {
     pub progress_path: Option<PathBuf>,
     /// Set when the app should exit.
     pub quit: bool,
-    /// Commands for the worker, collected by `update` and sent by the event loop.
-    pub outbox: Vec<Command>,
     /// Whether the language key switches only this thread's language (tests, which render
     /// both languages on parallel threads) rather than the whole process's (the app).
     pub thread_language: bool,
@@ -180,20 +113,9 @@ macro_rules! ctx {
             lesson,
             step: lesson.and_then(|l| l.steps.get($app.step)),
             progress: &$app.progress,
-            snapshot: &$app.snapshot,
+            snapshot: &$app.run.snapshot,
         }
     }};
-}
-
-/// A return as the app prints it: CartPole's whole numbers as they are, Pendulum's to one
-/// decimal.
-#[must_use]
-pub fn return_text(r: f64) -> String {
-    if r.fract() == 0.0 {
-        format!("{r}")
-    } else {
-        format!("{r:.1}")
-    }
 }
 
 impl App {
@@ -203,7 +125,6 @@ impl App {
         // Lessons, questions and exercises the course no longer has are not counted done,
         // and a lesson that is gone does not open another at its step number.
         progress.retain_known(&course, Some(&crate::grade::exercise_names()));
-        let config = PpoConfig::default();
         let lesson = course.index_of(&progress.lesson).unwrap_or(0);
         let steps = course.lessons.get(lesson).map_or(1, |l| l.steps.len());
         let step = progress.step.min(steps.saturating_sub(1));
@@ -211,11 +132,7 @@ impl App {
             .lessons
             .get(lesson)
             .map_or_else(Environment::default, |l| l.env);
-        let pendulum = PpoContinuousConfig::default();
-        let snapshot = match env {
-            Environment::CartPole => Snapshot::new(&config, 0),
-            Environment::Pendulum => Snapshot::new_pendulum(&pendulum, 0),
-        };
+        let run = Run::new(env);
         Self {
             course,
             lesson,
@@ -225,24 +142,15 @@ impl App {
             overlay: Overlay::None,
             help: Help::default(),
             lesson_list: LessonList::default(),
-            sandbox: Sandbox::new(config.clone(), 0),
+            sandbox: Sandbox::new(run.config.clone(), 0),
             exercise: ExercisePanel::default(),
             quiz: Quiz::default(),
             lab: Lab::default(),
-            train: TrainState::Paused,
-            snapshot,
-            frame: 0,
-            previous: None,
-            parked: None,
-            config,
-            pendulum,
-            env,
-            seed: 0,
+            run,
             status: Status::default(),
             progress,
             progress_path,
             quit: false,
-            outbox: Vec::new(),
             thread_language: false,
             language_guard: None,
         }
@@ -364,7 +272,10 @@ impl App {
             }
             Reply::Retrain => {
                 self.close(from);
-                self.retrain();
+                let said = self
+                    .run
+                    .retrain(self.sandbox.run_config(), self.sandbox.seed);
+                self.say(said);
             }
             Reply::Answered(i, verdict) => self.record_answer(i, verdict.right),
             Reply::Finished => {
@@ -404,18 +315,23 @@ impl App {
             }
             Action::Help => self.open(Overlay::Help),
             Action::Sandbox => {
-                self.sandbox = Sandbox::for_run(&self.run_config(), &self.config, self.seed);
+                self.sandbox =
+                    Sandbox::for_run(&self.run.config(), &self.run.config, self.run.seed);
                 self.open(Overlay::Sandbox);
             }
-            Action::TrainToggle => self.toggle_training(),
+            Action::TrainToggle => {
+                let said = self.run.toggle();
+                self.say(said);
+            }
             Action::OneEpisode => {
-                if self.train != TrainState::Finished {
-                    self.train = TrainState::Paused;
-                    self.outbox.push(Command::OneEpisode);
-                    self.say(t("training one episode", "正在训练一个回合"));
+                if let Some(said) = self.run.one_episode() {
+                    self.say(said);
                 }
             }
-            Action::ResetAgent => self.reset_agent(self.run_config(), self.seed, false),
+            Action::ResetAgent => {
+                let said = self.run.reset(self.run.config(), self.run.seed, false);
+                self.say(said);
+            }
             Action::Grade => self.request_grade(),
             Action::Hint => self.reveal_hint(),
             Action::RunLab => {
@@ -555,7 +471,7 @@ impl App {
     #[must_use]
     pub fn lab_base(&self) -> PpoConfig {
         PpoConfig {
-            num_episodes: self.config.num_episodes,
+            num_episodes: self.run.config.num_episodes,
             ..PpoConfig::default()
         }
     }
@@ -578,141 +494,30 @@ impl App {
         }
     }
 
-    /// Retrains with the sandbox's settings, keeping the current run's curve on the plot
-    /// for comparison.
-    fn retrain(&mut self) {
-        let s = &self.snapshot;
-        if !s.returns.is_empty() {
-            let smoothed = !s.moving_average.is_empty();
-            let values = if smoothed {
-                s.moving_average.clone()
-            } else {
-                s.returns.clone()
-            };
-            self.previous = Some(PreviousCurve { smoothed, values });
-        }
-        self.reset_agent(self.sandbox.run_config(), self.sandbox.seed, true);
-    }
-    fn toggle_training(&mut self) {
-        match self.train {
-            TrainState::Paused => {
-                self.train = TrainState::Running;
-                self.outbox.push(Command::Run);
-                self.say(t("training…", "训练中……"));
-            }
-            TrainState::Running => {
-                self.train = TrainState::Paused;
-                self.outbox.push(Command::Pause);
-                self.say(t("paused", "已暂停"));
-            }
-            TrainState::Finished => {
-                self.say(crate::tr!(
-                    "all {} episodes done: r resets the agent, s opens the sandbox",
-                    "全部 {} 个回合已训练完：按 r 重置智能体，按 s 打开沙盒",
-                    self.run_config().num_episodes()
-                ));
-            }
-        }
-    }
-
     /// The current run's environment and settings, as the worker's session was started.
     #[must_use]
     pub fn run_config(&self) -> RunConfig {
-        self.config_for(self.env)
+        self.run.config()
     }
 
-    /// A run on `env` with that environment's settings in force.
-    fn config_for(&self, env: Environment) -> RunConfig {
-        match env {
-            Environment::CartPole => RunConfig::CartPole(self.config.clone()),
-            Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
-        }
-    }
-
-    fn reset_agent(&mut self, config: RunConfig, seed: u64, run: bool) {
-        self.outbox.push(Command::Reset {
-            config: Box::new(config.clone()),
-            seed,
-        });
-        self.show(config.first_snapshot(seed));
-        self.env = config.env();
-        match config {
-            RunConfig::CartPole(c) => self.config = c,
-            RunConfig::Pendulum(p) => self.pendulum = p,
-        }
-        self.seed = seed;
-        self.train = TrainState::Paused;
-        if run {
-            self.outbox.push(Command::Run);
-            self.train = TrainState::Running;
-        }
-        self.say(crate::tr!(
-            "fresh agent, seed {seed}",
-            "新的智能体，随机种子 {seed}"
-        ));
-    }
-
-    /// Applies one event from the training worker.
+    /// Applies one event from the training worker (an episode's return does not replace
+    /// a warning).
     pub fn on_worker(&mut self, event: WorkerEvent) {
-        match event {
-            WorkerEvent::Episode(snapshot) => self.on_episode(*snapshot),
-            WorkerEvent::Finished => {
-                self.train = TrainState::Finished;
-                self.say(crate::tr!(
-                    "finished {} episodes",
-                    "已训练完 {} 个回合",
-                    self.snapshot.returns.len()
-                ));
-            }
-            // The app said so when it asked (`reset_agent`, `follow_lesson_env`); saying it
-            // again here would overwrite what it said since ("a Pendulum-v1 lesson: …",
-            // "training…").
-            WorkerEvent::Reset { .. } => {}
-            // The app showed the run it set aside already (`follow_lesson_env`).
-            WorkerEvent::Resumed { .. } => {}
-            WorkerEvent::Error(message) => {
-                self.train = TrainState::Paused;
-                self.say(crate::tr!(
-                    "training stopped: {message}",
-                    "训练已停止：{message}"
-                ));
-            }
-        }
-    }
-
-    fn on_episode(&mut self, snapshot: Snapshot) {
-        // An episode of the run just set aside, finished before the worker switched.
-        if snapshot.env != self.env {
-            return;
-        }
-        self.show(snapshot);
-        // A start-up warning stays until the learner does something.
-        if self.train == TrainState::Paused
-            && !self.status.is_warning()
-            && let Some(r) = self.snapshot.returns.last()
+        if let Some((said, quiet)) = self.run.on_worker(event)
+            && !(quiet && self.status.is_warning())
         {
-            self.say(crate::tr!(
-                "episode {}: return {}",
-                "第 {} 回合：回报 {}",
-                self.snapshot.episodes,
-                return_text(*r)
-            ));
+            self.say(said);
         }
     }
 
-    /// Shows `snapshot` (from the worker's session) and restarts the cart-pole animation on
-    /// its episode.
+    /// Shows `snapshot` (from the worker's session) and restarts the animation on it.
     pub fn show(&mut self, snapshot: Snapshot) {
-        self.snapshot = snapshot;
-        self.frame = 0;
+        self.run.show(snapshot);
     }
 
-    /// Advances the cart-pole animation by one frame (called on each tick).
+    /// Advances the animation by one frame (called on each tick).
     pub fn tick(&mut self) {
-        let frames = self.snapshot.observation_count();
-        if frames > 0 {
-            self.frame = (self.frame + 1) % frames;
-        }
+        self.run.tick();
     }
 
     fn next_step(&mut self) {
@@ -784,58 +589,13 @@ impl App {
         }
     }
 
-    /// A lesson on the other environment continues that environment's run if one was set
-    /// aside, else starts a fresh one there (paused), with that environment's settings in
-    /// force; the run left behind is set aside, not thrown away (issue 25, bug 2).
+    /// The open lesson's environment becomes the run's ([`Run::follow`]).
     fn follow_lesson_env(&mut self) {
-        let Some(env) = self.current_lesson().map(|l| l.env) else {
-            return;
-        };
-        if env == self.env {
-            return;
+        if let Some(env) = self.current_lesson().map(|l| l.env)
+            && let Some(said) = self.run.follow(env)
+        {
+            self.say(said);
         }
-        let config = self.config_for(env);
-        self.outbox.push(Command::Switch {
-            config: Box::new(config.clone()),
-            seed: self.seed,
-        });
-        let first = config.first_snapshot(self.seed);
-        let left = ParkedRun {
-            snapshot: std::mem::replace(&mut self.snapshot, first),
-            seed: self.seed,
-            train: match self.train {
-                TrainState::Running => TrainState::Paused,
-                other => other,
-            },
-            previous: self.previous.take(),
-        };
-        self.frame = 0;
-        self.env = env;
-        self.train = TrainState::Paused;
-        match self.parked.take().filter(|p| p.snapshot.env == env) {
-            Some(back) => {
-                let episodes = back.snapshot.episodes;
-                self.show(back.snapshot);
-                self.seed = back.seed;
-                self.train = back.train;
-                self.previous = back.previous;
-                self.say(crate::tr!(
-                    "a {} lesson: its run continues after episode {episodes}, seed {} (t trains)",
-                    "这是 {} 的课：接着之前的训练（已训练 {episodes} 个回合，随机种子 {}；t 训练）",
-                    env.as_str(),
-                    self.seed
-                ));
-            }
-            None => {
-                self.say(crate::tr!(
-                    "a {} lesson: fresh agent, seed {} (t trains, e one episode)",
-                    "这是 {} 的课：新的智能体，随机种子 {}（t 训练，e 训练一个回合）",
-                    env.as_str(),
-                    self.seed
-                ));
-            }
-        }
-        self.parked = Some(left);
     }
 
     /// Writes the progress file (atomically); a failure becomes a status message.
@@ -853,7 +613,7 @@ impl App {
 
     fn quit(&mut self) {
         self.save_progress();
-        self.outbox.push(Command::Quit);
+        self.run.outbox.push(Command::Quit);
         self.quit = true;
     }
 }

@@ -83,22 +83,22 @@ fn draw_header(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
             ),
         )
     });
-    let train = match app.train {
+    let train = match app.run.train {
         TrainState::Running => t("training", "训练中"),
         TrainState::Paused => t("paused", "已暂停"),
         TrainState::Finished => t("finished", "已完成"),
     };
-    let last = app.snapshot.returns.last().map_or(String::new(), |r| {
+    let last = app.run.snapshot.returns.last().map_or(String::new(), |r| {
         tr!(
             " · last return {}",
             " · 上回合回报 {}",
-            super::app::return_text(*r)
+            super::run::return_text(*r)
         )
     });
     let right = tr!(
         "episode {}{last} · {train} · {pos}/{total} ",
         "回合 {}{last} · {train} · {pos}/{total} ",
-        app.snapshot.episodes
+        app.run.snapshot.episodes
     );
     // The counters on the right and the step number always show; a lesson title too long
     // for the rest is cut by columns, with an ellipsis.
@@ -217,7 +217,7 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
     if tensor_area.height > 0 {
         let shown: Vec<TensorView> = names
             .iter()
-            .filter_map(|n| app.snapshot.tensor(n))
+            .filter_map(|n| app.run.snapshot.tensor(n))
             .collect();
         let block = panel(t("live values", "实时数值"), theme);
         let inner = block.inner(tensor_area);
@@ -245,8 +245,9 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
 }
 
 fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) {
-    let s = &app.snapshot;
+    let s = &app.run.snapshot;
     let previous = app
+        .run
         .previous
         .as_ref()
         .map(|p| (p.label(), p.values.as_slice()));
@@ -257,18 +258,18 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             previous: previous
                 .as_ref()
                 .map(|(label, values)| (label.as_str(), *values)),
-            max_return: match app.env {
-                Environment::CartPole => f64::from(app.config.env_id.max_episode_steps()),
+            max_return: match app.run.env {
+                Environment::CartPole => f64::from(app.run.config.env_id.max_episode_steps()),
                 Environment::Pendulum => 0.0,
             },
-            min_return: match app.env {
+            min_return: match app.run.env {
                 Environment::CartPole => 0.0,
                 Environment::Pendulum => PENDULUM_PLOT_FLOOR,
             },
             block: panel(
-                &match app.env {
+                &match app.run.env {
                     Environment::CartPole => {
-                        tr!("PPO on {}", "PPO 训练 {}", app.config.env_id)
+                        tr!("PPO on {}", "PPO 训练 {}", app.run.config.env_id)
                     }
                     Environment::Pendulum => {
                         tr!("PPO on {}", "PPO 训练 {}", Environment::Pendulum.as_str())
@@ -280,11 +281,11 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
         }
         .render(area, buf),
         "cartpole" => {
-            let obs = s.observation(app.frame).unwrap_or([0.0; 4]);
+            let obs = s.observation(app.run.frame).unwrap_or([0.0; 4]);
             let title = tr!(
                 "the latest episode, step {}/{}",
                 "最近一个回合，时间步 {}/{}",
-                app.frame,
+                app.run.frame,
                 s.observation_count().saturating_sub(1)
             );
             CartPoleView {
@@ -296,12 +297,12 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
         }
         "pendulum" => {
             let (theta, torque) = s
-                .pendulum_frame(app.frame)
+                .pendulum_frame(app.run.frame)
                 .unwrap_or((std::f64::consts::PI, 0.0));
             let title = tr!(
                 "the latest episode, step {}/{}",
                 "最近一个回合，时间步 {}/{}",
-                app.frame,
+                app.run.frame,
                 s.observation_count().saturating_sub(1)
             );
             PendulumView {
@@ -322,7 +323,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
         _ => {
             let trace = s.trace.as_ref();
             ClipChart {
-                eps: app.config.eps,
+                eps: app.run.config.eps,
                 epoch: trace.and_then(|t| t.epochs.last()),
                 advantage: trace.map_or(&[], |t| t.advantage.as_slice()),
                 block: panel(t("L^CLIP against the ratio", "L^CLIP 随比率的变化"), theme),
