@@ -162,6 +162,8 @@ pub struct App {
     pub details_open: bool,
     /// Scroll offset of the live tensors.
     pub tensor_scroll: usize,
+    /// The first column of the live tables shown (after the step column), `<`/`>`.
+    pub tensor_hscroll: usize,
     /// The open overlay.
     pub overlay: Overlay,
     /// Training state.
@@ -253,6 +255,7 @@ impl App {
             text_scroll: 0,
             details_open: false,
             tensor_scroll: 0,
+            tensor_hscroll: 0,
             overlay: Overlay::None,
             train: TrainState::Paused,
             snapshot,
@@ -375,6 +378,13 @@ impl App {
             Action::Details => self.details_open = !self.details_open,
             Action::TensorDown => self.tensor_scroll = self.tensor_scroll.saturating_add(5),
             Action::TensorUp => self.tensor_scroll = self.tensor_scroll.saturating_sub(5),
+            Action::TensorRight => {
+                let last = self.current_step().map_or(0, |s| {
+                    super::widgets::tensors::max_hscroll(&self.snapshot, &s.show)
+                });
+                self.tensor_hscroll = self.tensor_hscroll.saturating_add(1).min(last);
+            }
+            Action::TensorLeft => self.tensor_hscroll = self.tensor_hscroll.saturating_sub(1),
             Action::Lessons => self.overlay = Overlay::Lessons(self.lesson),
             Action::Help => self.overlay = Overlay::Help,
             Action::Sandbox => {
@@ -944,6 +954,7 @@ impl App {
         self.step = step;
         self.text_scroll = 0;
         self.tensor_scroll = 0;
+        self.tensor_hscroll = 0;
         if let Some(l) = self.current_lesson() {
             self.progress.lesson = l.id.clone();
         }

@@ -254,7 +254,7 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
                 width: usize::from(inner.width),
                 height: usize::from(inner.height),
                 scroll: app.tensor_scroll,
-                hscroll: 0,
+                hscroll: app.tensor_hscroll,
             };
             Paragraph::new(tensors::lines(&shown, view, theme)).render(inner, buf);
         }
