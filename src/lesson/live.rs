@@ -54,6 +54,27 @@ pub struct TensorView {
     pub values: Vec<f64>,
     /// One mark per value.
     pub marks: Vec<Mark>,
+    /// What the rows and columns of a grid stand for (the policy maps' θ̇ rows and θ
+    /// columns); `None` for tensors whose rows are steps of the batch.
+    pub axes: Option<Axes>,
+}
+
+/// The two axes of a grid tensor, so that a face can label its rows and columns.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Axes {
+    /// The quantity down the rows.
+    pub rows: Axis,
+    /// The quantity across the columns.
+    pub columns: Axis,
+}
+
+/// One axis of a grid: the quantity and its value at each row or column.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Axis {
+    /// The quantity, as the lessons write it (`θ`, `θ̇`).
+    pub name: &'static str,
+    /// The value at each row or column, written for a label (`-π`, `-3π/4`, …, `8`, `6`, …).
+    pub ticks: Vec<String>,
 }
 
 impl TensorView {
@@ -66,6 +87,7 @@ impl TensorView {
             labels: Vec::new(),
             values,
             marks,
+            axes: None,
         }
     }
 

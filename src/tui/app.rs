@@ -72,6 +72,8 @@ pub struct App {
     pub explanation: Explanation,
     /// Scroll offset of the live tensors.
     pub tensor_scroll: usize,
+    /// The first column of the live tables shown (after the step column), `<`/`>`.
+    pub tensor_hscroll: usize,
     /// The open face.
     pub overlay: Overlay,
     /// The key map.
@@ -139,6 +141,7 @@ impl App {
             step,
             explanation: Explanation::default(),
             tensor_scroll: 0,
+            tensor_hscroll: 0,
             overlay: Overlay::None,
             help: Help::default(),
             lesson_list: LessonList::default(),
@@ -309,6 +312,13 @@ impl App {
             Action::Prev => self.prev_step(),
             Action::TensorDown => self.tensor_scroll = self.tensor_scroll.saturating_add(5),
             Action::TensorUp => self.tensor_scroll = self.tensor_scroll.saturating_sub(5),
+            Action::TensorRight => {
+                let last = self.current_step().map_or(0, |s| {
+                    super::widgets::tensors::max_hscroll(&self.run.snapshot, &s.show)
+                });
+                self.tensor_hscroll = self.tensor_hscroll.saturating_add(1).min(last);
+            }
+            Action::TensorLeft => self.tensor_hscroll = self.tensor_hscroll.saturating_sub(1),
             Action::Lessons => {
                 self.lesson_list.open(self.lesson);
                 self.open(Overlay::Lessons);
@@ -574,6 +584,7 @@ impl App {
         self.step = step;
         self.explanation.top();
         self.tensor_scroll = 0;
+        self.tensor_hscroll = 0;
         if let Some(l) = self.current_lesson() {
             self.progress.lesson = l.id.clone();
         }

@@ -19,6 +19,10 @@ pub enum Action {
     TensorDown,
     /// Scroll the live tensors up.
     TensorUp,
+    /// Scroll the live tables right: the next column first (`>`).
+    TensorRight,
+    /// Scroll the live tables left: the previous column first (`<`).
+    TensorLeft,
     /// Open or close the lesson list.
     Lessons,
     /// Open or close the help overlay.
@@ -75,7 +79,13 @@ pub fn help() -> Vec<(&'static str, &'static str)> {
         ("→ / n", t("next step", "下一节")),
         ("← / p", t("previous step", "上一节")),
         ("j / k, wheel", t("scroll the explanation", "滚动讲解")),
-        ("J / K", t("scroll the live values", "滚动实时数值")),
+        (
+            "J / K, < / >",
+            t(
+                "scroll the live values (rows, columns)",
+                "滚动实时数值（行、列）",
+            ),
+        ),
         (
             "d",
             t(
@@ -214,6 +224,8 @@ pub fn map(key: KeyEvent, context: Context) -> Option<Action> {
         KeyCode::Up | KeyCode::Char('k') => Action::ScrollUp,
         KeyCode::Char('J') | KeyCode::PageDown => Action::TensorDown,
         KeyCode::Char('K') | KeyCode::PageUp => Action::TensorUp,
+        KeyCode::Char('>') => Action::TensorRight,
+        KeyCode::Char('<') => Action::TensorLeft,
         KeyCode::Char('l') => Action::Lessons,
         KeyCode::Char('s') => Action::Sandbox,
         KeyCode::Char('t') | KeyCode::Char(' ') => Action::TrainToggle,

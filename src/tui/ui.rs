@@ -233,13 +233,13 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
             );
             Paragraph::new(text::wrap([line], inner.width)).render(inner, buf);
         } else {
-            Paragraph::new(tensors::lines(
-                &shown,
-                app.tensor_scroll,
-                inner.height as usize,
-                theme,
-            ))
-            .render(inner, buf);
+            let view = tensors::Viewport {
+                width: usize::from(inner.width),
+                height: usize::from(inner.height),
+                scroll: app.tensor_scroll,
+                hscroll: app.tensor_hscroll,
+            };
+            Paragraph::new(tensors::lines(&shown, view, theme)).render(inner, buf);
         }
     }
 }

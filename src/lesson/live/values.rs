@@ -13,7 +13,7 @@
 //! assert_eq!(lookup("ratio").map(|v| v.name), Some("ratio"));
 //! ```
 
-use super::{Mark, Snapshot, TensorView};
+use super::{Axes, Axis, Mark, Snapshot, TensorView};
 use crate::lesson::Environment;
 use crate::ppo::{ContinuousEpochTrace, ContinuousUpdateTrace, EpochTrace, UpdateTrace};
 
@@ -392,12 +392,51 @@ fn policy_map(
 ) -> Option<TensorView> {
     let map = s.policy_map.as_ref()?;
     let values = pick(map).iter().map(|&v| f64::from(v)).collect();
-    Some(TensorView::new(
+    let mut t = TensorView::new(
         name,
         vec![map.theta_dots.len(), map.thetas.len()],
         "float32",
         values,
-    ))
+    );
+    t.axes = Some(Axes {
+        rows: Axis {
+            name: "θ̇",
+            ticks: map.theta_dots.iter().map(|&v| tick(v)).collect(),
+        },
+        columns: Axis {
+            name: "θ",
+            ticks: map.thetas.iter().map(|&v| angle_tick(v)).collect(),
+        },
+    });
+    Some(t)
+}
+
+/// An axis value as a short label: `8`, `-2`, `0.5`.
+fn tick(v: f32) -> String {
+    if v.fract() == 0.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.2}")
+    }
+}
+
+/// An angle as a multiple of π/4 where it is one (`-π`, `-3π/4`, `0`, `π/2`), else in radians.
+fn angle_tick(v: f32) -> String {
+    let quarters = v / std::f32::consts::FRAC_PI_4;
+    let k = quarters.round();
+    if (quarters - k).abs() > 1e-3 {
+        return tick(v);
+    }
+    let sign = if k < 0.0 { "-" } else { "" };
+    match k.abs() as u32 {
+        0 => "0".into(),
+        1 => format!("{sign}π/4"),
+        2 => format!("{sign}π/2"),
+        4 => format!("{sign}π"),
+        n if n % 4 == 0 => format!("{sign}{}π", n / 4),
+        n if n % 2 == 0 => format!("{sign}{}π/2", n / 2),
+        n => format!("{sign}{n}π/4"),
+    }
 }
 
 /// The hyper-parameters as `name = value` rows (shown even before the first episode).
@@ -570,6 +609,29 @@ mod tests {
     fn the_return_to_go_discounts_and_restarts_at_done() {
         let g = return_to_go(&[1.0, 1.0, 1.0, 1.0], &[false, true, false, false], 0.5);
         assert_eq!(g, [1.5, 1.0, 1.5, 1.0]);
+    }
+
+    /// Issue 25, section 2: the policy maps carry their axes, θ̇ down the rows and θ across.
+    #[test]
+    fn the_policy_maps_name_both_axes() -> Result<(), &'static str> {
+        let snapshot = Snapshot {
+            policy_map: Some(super::super::PolicyMap::of(|_| (0.0, 1.0))),
+            ..Snapshot::default()
+        };
+        let map = snapshot.tensor("mu_map").ok_or("no mu_map")?;
+        let axes = map.axes.ok_or("no axes")?;
+        assert_eq!((axes.rows.name, axes.columns.name), ("θ̇", "θ"));
+        assert_eq!(axes.rows.ticks.first().map(String::as_str), Some("8"));
+        assert_eq!(axes.rows.ticks.last().map(String::as_str), Some("-8"));
+        assert_eq!(
+            axes.columns.ticks,
+            [
+                "-π", "-3π/4", "-π/2", "-π/4", "0", "π/4", "π/2", "3π/4", "π"
+            ]
+        );
+        assert_eq!(angle_tick(0.5), "0.50");
+        assert!(snapshot.tensor("std_map").is_some_and(|t| t.axes.is_some()));
+        Ok(())
     }
 
     #[test]
