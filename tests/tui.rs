@@ -32,36 +32,6 @@ fn screen(app: &App, width: u16, height: u16) -> Result<String, Box<dyn std::err
     checked_screen(app, width, height)
 }
 
-#[test]
-fn every_step_of_every_lesson() -> TestResult {
-    let mut app = app()?;
-    let total = app.course.total_steps();
-    for i in 0..total {
-        let lesson = app.current_lesson().ok_or("no lesson")?;
-        let name = format!("{:02}-{}-step{}", lesson.order, lesson.id, app.step + 1);
-        let text = screen(&app, 140, 45)?;
-        assert!(text.contains(&lesson.title), "{name}: title missing");
-        insta::assert_snapshot!(name, text);
-        if i + 1 < total {
-            app.update(Action::Next);
-        }
-        show_pendulum_run(&mut app)?;
-        // After a lesson's last step come its questions: the first one's screen, then on.
-        if app.overlay == Overlay::Quiz && app.quiz.question() == 0 {
-            let lesson = app.current_lesson().ok_or("no lesson")?;
-            let name = format!("{:02}-{}-quiz", lesson.order, lesson.id);
-            let questions = lesson.quiz.len();
-            insta::assert_snapshot!(name, screen(&app, 140, 45)?);
-            for _ in 0..questions {
-                app.update(Action::Next);
-            }
-            show_pendulum_run(&mut app)?;
-        }
-    }
-    assert_eq!(app.position(), (total, total));
-    Ok(())
-}
-
 /// A Pendulum lesson starts a fresh Pendulum run: the screens show a real 3-episode one
 /// (seed 0), as CartPole lessons show a 3-episode CartPole run.
 fn show_pendulum_run(app: &mut App) -> TestResult {
@@ -715,26 +685,35 @@ fn checked_screen(
 
 /// Every step of every lesson and each lesson's first quiz question, in Chinese at
 /// `width`×`height`: snapshots, and no row cut or misaligned.
-fn every_step_in_chinese(width: u16, height: u16) -> TestResult {
-    let _zh = Lang::Zh.scoped();
-    // The course is loaded in this thread, so in Chinese.
+/// Walks every step and quiz of the course in `lang` at `width`×`height`, checking each
+/// screen ([`checked_screen`]) and its snapshot (`zh-80x24-…`, `en-160x50-…`).
+fn every_step_in(lang: Lang, width: u16, height: u16) -> TestResult {
+    let _lang = lang.scoped();
+    // The course is loaded in this thread, so in `lang`.
     let mut app = app()?;
     let total = app.course.total_steps();
-    let size = format!("{width}x{height}");
+    let size = format!("{}-{width}x{height}", lang.code());
     for i in 0..total {
         let lesson = app.current_lesson().ok_or("no lesson")?;
         let name = format!(
-            "zh-{size}-{:02}-{}-step{}",
+            "{size}-{:02}-{}-step{}",
             lesson.order,
             lesson.id,
             app.step + 1
         );
         let text = checked_screen(&app, width, height).map_err(|e| format!("{name}: {e}"))?;
-        let chrome = format!("第 {}/{} 节", app.step + 1, lesson.steps.len());
-        assert!(text.contains(&chrome), "{name}: {chrome} missing:\n{text}");
+        let chrome = lang.pick(
+            format!("step {}/{}", app.step + 1, lesson.steps.len()),
+            format!("第 {}/{} 节", app.step + 1, lesson.steps.len()),
+        );
+        assert!(
+            text.contains(chrome.as_str()),
+            "{name}: {chrome} missing:\n{text}"
+        );
         if width >= 160 {
             assert!(text.contains(&lesson.title), "{name}: title missing");
-            assert!(text.contains("L English"), "{name}: language key missing");
+            let key = lang.pick("L 中文", "L English");
+            assert!(text.contains(key), "{name}: language key missing");
         }
         insta::assert_snapshot!(name, text);
         if i + 1 < total {
@@ -743,10 +722,13 @@ fn every_step_in_chinese(width: u16, height: u16) -> TestResult {
         show_pendulum_run(&mut app)?;
         if app.overlay == Overlay::Quiz && app.quiz.question() == 0 {
             let lesson = app.current_lesson().ok_or("no lesson")?;
-            let name = format!("zh-{size}-{:02}-{}-quiz", lesson.order, lesson.id);
+            let name = format!("{size}-{:02}-{}-quiz", lesson.order, lesson.id);
             let questions = lesson.quiz.len();
             let text = checked_screen(&app, width, height).map_err(|e| format!("{name}: {e}"))?;
-            assert!(text.contains("小测验"), "{name}:\n{text}");
+            assert!(
+                text.contains(lang.pick("quiz", "小测验")),
+                "{name}:\n{text}"
+            );
             insta::assert_snapshot!(name, text);
             for _ in 0..questions {
                 app.update(Action::Next);
@@ -760,12 +742,22 @@ fn every_step_in_chinese(width: u16, height: u16) -> TestResult {
 
 #[test]
 fn every_step_of_every_lesson_in_chinese_at_160x50() -> TestResult {
-    every_step_in_chinese(160, 50)
+    every_step_in(Lang::Zh, 160, 50)
+}
+
+#[test]
+fn every_step_of_every_lesson_at_160x50() -> TestResult {
+    every_step_in(Lang::En, 160, 50)
+}
+
+#[test]
+fn every_step_of_every_lesson_at_80x24() -> TestResult {
+    every_step_in(Lang::En, 80, 24)
 }
 
 #[test]
 fn every_step_of_every_lesson_in_chinese_at_80x24() -> TestResult {
-    every_step_in_chinese(80, 24)
+    every_step_in(Lang::Zh, 80, 24)
 }
 
 #[test]

@@ -49,9 +49,11 @@ fn fmt(v: f64) -> String {
 }
 
 /// One value of `t` as a cell: integers (`int64` actions) as integers, as PyTorch prints
-/// them, not `1.0000`.
+/// them, not `1.0000`; booleans (`clipped`) as `True`/`False`, as PyTorch prints them.
 fn fmt_in(t: &TensorView, v: f64) -> String {
-    if t.dtype.starts_with("int") && v.is_finite() && v.fract() == 0.0 {
+    if t.dtype == "bool" && (v == 0.0 || v == 1.0) {
+        if v == 1.0 { "True" } else { "False" }.to_string()
+    } else if t.dtype.starts_with("int") && v.is_finite() && v.fract() == 0.0 {
         format!("{v:.0}")
     } else {
         fmt(v)
@@ -275,6 +277,12 @@ fn more_columns(before: usize, after: usize) -> Option<String> {
 /// A tensor's title line: its name, shape and dtype, its range and what is marked in it.
 fn title(t: &TensorView, theme: Theme) -> Line<'static> {
     let stats = t.stats().map_or(String::new(), |(lo, hi, mean)| {
+        if t.dtype == "bool" {
+            let n = t.values.len();
+            // The mean of 0/1 values times their count: how many are True.
+            let k = (mean * n as f64).round();
+            return tr!("  True in {k} of {n}", "  {n} 个中 {k} 个为 True");
+        }
         tr!(
             "  min {}  max {}  mean {}",
             "  最小 {}  最大 {}  均值 {}",
@@ -453,6 +461,19 @@ mod tests {
         );
         let shown = text(&[view("actions", 1, "float32", values)], PANE).join("\n");
         assert!(shown.contains("1.0000"), "{shown}");
+    }
+
+    /// Booleans (`clipped`) show as PyTorch prints them, `True`/`False`, not `1.0000`.
+    #[test]
+    fn booleans_show_as_true_and_false() {
+        let _en = Lang::En.scoped();
+        let shown = text(&[view("clipped", 1, "bool", vec![0.0, 1.0])], PANE).join("\n");
+        assert!(shown.contains("False") && shown.contains("True"), "{shown}");
+        assert!(
+            !shown.contains("1.0000") && !shown.contains("0.0000"),
+            "{shown}"
+        );
+        assert!(shown.contains("True in 1 of 2"), "{shown}");
     }
 
     /// Issue 25, section 2: a table wider than the pane shows the columns that fit whole
