@@ -920,3 +920,25 @@ fn the_key_bar_keeps_help_and_quit_at_80x24() -> TestResult {
     }
     Ok(())
 }
+
+/// Issue 25, section 2: a code line wider than the code pane ends in a `…` at the pane's
+/// edge, and code below the pane's last row is counted there.
+#[test]
+fn cut_code_lines_show_that_they_go_on() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "td-target")?;
+    let text = screen(&app, 80, 24)?;
+    let code: Vec<&str> = text.lines().skip(2).take(5).collect();
+    assert!(code.iter().any(|l| l.ends_with("…│\"")), "{text}");
+    assert!(
+        text.lines()
+            .skip(2)
+            .take(6)
+            .any(|l| l.contains("more lines")),
+        "{text}"
+    );
+    // Wide enough for every line: no mark.
+    let wide = screen(&app, 240, 60)?;
+    assert!(!wide.contains("…│"), "{wide}");
+    Ok(())
+}
