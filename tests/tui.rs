@@ -1224,6 +1224,71 @@ fn live_columns_the_text_names_fit_or_scroll_at_80x24() -> TestResult {
     Ok(())
 }
 
+/// Issue 25, section 2: a code line wider than the code pane ends in a `…` at the pane's
+/// edge, and code below the pane's last row is counted there.
+#[test]
+fn cut_code_lines_show_that_they_go_on() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "td-target")?;
+    let text = screen(&app, 80, 24)?;
+    let code: Vec<&str> = text.lines().skip(2).take(5).collect();
+    assert!(code.iter().any(|l| l.ends_with("…│\"")), "{text}");
+    assert!(
+        text.lines()
+            .skip(2)
+            .take(6)
+            .any(|l| l.contains("more lines")),
+        "{text}"
+    );
+    // Wide enough for every line: no mark.
+    let wide = screen(&app, 240, 60)?;
+    assert!(!wide.contains("…│"), "{wide}");
+    Ok(())
+}
+
+/// Issue 25, section 2: over a trained curve (it runs along the top right, where ratatui
+/// drew its legend) the plot's legend has a row of its own, with no data on it, at both
+/// sizes and in both languages.
+#[test]
+fn the_plot_legend_stays_whole_over_a_trained_curve() -> TestResult {
+    for (lang, names) in [
+        (Lang::En, ["returns", "moving average (9)"]),
+        (Lang::Zh, ["回报", "移动平均 (9)"]),
+    ] {
+        let _lang = lang.scoped();
+        let mut app = app()?;
+        open(&mut app, "training")?;
+        app.update(Action::Next);
+        // 300 episodes: a climb, then the cap of 500 with a few falls back.
+        app.run.snapshot.returns = (0..300_u32)
+            .map(|i| match i {
+                0..80 => f64::from(10 + 6 * i),
+                _ if i % 23 == 0 => 180.0,
+                _ => 500.0,
+            })
+            .collect();
+        app.run.snapshot.moving_average =
+            ppo_tutor::ppo::moving_average(&app.run.snapshot.returns, 9)?;
+        app.run.snapshot.episodes = 300;
+        for (width, height) in [(80, 24), (160, 50)] {
+            let text = screen(&app, width, height)?;
+            let row = text
+                .lines()
+                .find(|l| names.iter().all(|n| l.contains(n)))
+                .ok_or_else(|| format!("no legend row:\n{text}"))?;
+            assert!(
+                !row.chars().any(|c| ('\u{2800}'..='\u{28FF}').contains(&c)),
+                "data on the legend's row:\n{text}"
+            );
+            insta::assert_snapshot!(
+                format!("{}-{width}x{height}-trained-plot", lang.code()),
+                text
+            );
+        }
+    }
+    Ok(())
+}
+
 /// Issue 25, section 2: `<` and `>` scroll the live tables by a column, stop at the first
 /// and the last, and a new step starts at the first.
 #[test]

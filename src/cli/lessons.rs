@@ -40,6 +40,9 @@ pub fn list() -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The columns `show` wraps a step's text to (as the lessons' sources are wrapped).
+const PLAIN_WIDTH: u16 = 100;
+
 /// Renders one step as plain text with its live values.
 #[must_use]
 pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snapshot) -> String {
@@ -59,8 +62,13 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
             "# {title} — 第 {n}/{of} 节：{step_title}"
         )
     );
-    let body = s.text(crate::lesson::face::Face::Terminal);
-    let _ = writeln!(out, "{}\n", crate::lesson::details::fold(&body, true));
+    // The terminal app's renderer, without styles: no emphasis markers, tables as columns.
+    let body = crate::lesson::details::fold(&s.text(crate::lesson::face::Face::Terminal), true);
+    let _ = writeln!(
+        out,
+        "{}\n",
+        crate::tui::widgets::text::plain(&body, PLAIN_WIDTH)
+    );
     if !s.python.is_empty() {
         let source = match l.env {
             Environment::CartPole => t("The seed", "原教程代码"),
@@ -165,4 +173,26 @@ pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
         write!(out, "{}", render_step(&course, index, step, &snapshot))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::render_step;
+    use crate::lesson::{Course, Snapshot};
+
+    /// Issue 25, section 2: `show` prints a step as the app shows it, without markdown's
+    /// stars and pipes.
+    #[test]
+    fn a_step_prints_without_markdown_markers() -> Result<(), Box<dyn std::error::Error>> {
+        let course = Course::embedded()?;
+        let lesson = course.index_of("cartpole").ok_or("no cartpole lesson")?;
+        let steps = course.lessons[lesson].steps.len();
+        let text: String = (0..steps)
+            .map(|k| render_step(&course, lesson, k, &Snapshot::default()))
+            .collect();
+        assert!(!text.contains("**") && !text.contains("|---"), "{text}");
+        assert!(text.contains("\nCartPole-v1  500 steps   475\n"), "{text}");
+        assert!(text.contains("Termination (terminated = True)"), "{text}");
+        Ok(())
+    }
 }

@@ -35,6 +35,11 @@ impl Theme {
     pub fn title(self) -> Style {
         self.fg(Color::Cyan).add_modifier(Modifier::BOLD)
     }
+    /// Emphasised words in lesson prose (`*word*`): italics, with or without colour.
+    #[must_use]
+    pub fn emphasis(self) -> Style {
+        Style::new().add_modifier(Modifier::ITALIC)
+    }
     /// Inline code and the Rust listing.
     #[must_use]
     pub fn code(self) -> Style {

@@ -131,20 +131,33 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let env = app
         .current_lesson()
         .map_or_else(Default::default, |l| l.env);
-    let code = code_lines(step, env, theme);
+    let mut code = code_lines(step, env, theme, usize::from(right.width.saturating_sub(2)));
     let code_height = (code.len() as u16 + 2).min(right.height / 3).max(5);
     let [code_area, live] =
         Layout::vertical([Constraint::Length(code_height), Constraint::Min(0)]).areas(right);
+    // Lines below the pane's last row: the last row says how many (issue 25, section 2).
+    let rows = usize::from(code_area.height.saturating_sub(2));
+    if code.len() > rows && rows > 0 {
+        let hidden = code.len() + 1 - rows;
+        code.truncate(rows - 1);
+        code.push(Line::styled(
+            tr!("… {hidden} more lines", "… 还有 {hidden} 行"),
+            theme.dim(),
+        ));
+    }
     Paragraph::new(code)
         .block(panel(t("the code that runs", "实际运行的代码"), theme))
         .render(code_area, buf);
     draw_live(app, theme, step, live, buf);
 }
 
+/// The step's code for a pane `columns` wide: a line too long for it is cut with a dim
+/// `…` in its last column, so that it shows it goes on (issue 25, section 2).
 fn code_lines(
     step: &crate::lesson::Step,
     env: crate::lesson::Environment,
     theme: Theme,
+    columns: usize,
 ) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
     if !step.python.is_empty() {
@@ -183,6 +196,9 @@ fn code_lines(
         ));
     }
     lines
+        .into_iter()
+        .map(|l| text::cut(l, columns, Span::styled("…", theme.dim())))
+        .collect()
 }
 
 fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, buf: &mut Buffer) {

@@ -6,7 +6,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget};
 
-use super::plot::points;
+use super::plot::{draw_chart, points};
 use crate::ppo::lab::{ArmResult, Experiment, LabResult};
 use crate::tr;
 use crate::tui::theme::Theme;
@@ -158,29 +158,18 @@ fn versus(
             .style(t.dim())
             .data(&high),
         Dataset::default()
-            .name(base.label.clone())
             .marker(super::marker())
             .graph_type(GraphType::Line)
             .style(t.previous())
             .data(&base_mean),
         Dataset::default()
-            .name(arm.label.clone())
             .marker(super::marker())
             .graph_type(GraphType::Line)
             .style(t.average())
             .data(&mean),
     ];
     let x_top = episodes.max(10) as f64;
-    Chart::new(datasets)
-        .block(
-            Block::bordered()
-                .border_style(t.border())
-                .title(Span::styled(
-                    tr!(" {} vs {} ", " {} 对比 {} ", arm.label, base.label),
-                    t.title(),
-                )),
-        )
-        .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
+    let chart = Chart::new(datasets)
         .x_axis(
             Axis::default()
                 .bounds([0.0, x_top])
@@ -192,6 +181,16 @@ fn versus(
                 .bounds([0.0, top])
                 .labels([Span::raw("0"), Span::raw(format!("{top:.0}"))])
                 .style(t.dim()),
-        )
-        .render(area, buf);
+        );
+    let block = Block::bordered()
+        .border_style(t.border())
+        .title(Span::styled(
+            tr!(" {} vs {} ", " {} 对比 {} ", arm.label, base.label),
+            t.title(),
+        ));
+    let legend = [
+        (base.label.clone(), t.previous()),
+        (arm.label.clone(), t.average()),
+    ];
+    draw_chart(chart, block, &legend, (None, None), t, area, buf);
 }

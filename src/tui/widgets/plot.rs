@@ -1,11 +1,14 @@
-//! The return curve and its moving average as a ratatui `Chart`.
+//! The return curve and its moving average as a ratatui `Chart`, and the legend every chart
+//! here draws on rows of its own (`draw_chart`).
 
 use ratatui::buffer::Buffer;
-use ratatui::layout::{Constraint, Rect};
+use ratatui::layout::Rect;
+use ratatui::style::Style;
 use ratatui::symbols::Marker;
-use ratatui::text::Span;
-use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Widget};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget};
 
+use super::text;
 use crate::i18n::t;
 use crate::tui::theme::Theme;
 
@@ -28,6 +31,99 @@ pub struct ReturnPlot<'a> {
     pub theme: Theme,
 }
 
+/// Columns between two legend entries.
+const LEGEND_GAP: usize = 3;
+
+/// The legend's rows for a chart `width` columns wide: each named series in its style,
+/// packed into as few rows as the width allows, right-aligned; the axis title at the left
+/// of the first row when there is room for it. An entry wider than a row is cut with a `…`.
+fn legend_rows(
+    legend: &[(String, Style)],
+    y_title: Option<Span<'static>>,
+    width: usize,
+    theme: Theme,
+) -> Vec<Line<'static>> {
+    let mut rows: Vec<Vec<Span<'static>>> = Vec::new();
+    let mut used = 0;
+    for (name, style) in legend {
+        let w = text::width(name);
+        match rows.last_mut() {
+            Some(row) if used + LEGEND_GAP + w <= width => {
+                row.push(Span::raw(" ".repeat(LEGEND_GAP)));
+                used += LEGEND_GAP + w;
+                row.push(Span::styled(name.clone(), *style));
+            }
+            _ => {
+                rows.push(vec![Span::styled(name.clone(), *style)]);
+                used = w;
+            }
+        }
+    }
+    let mut lines: Vec<Line<'static>> = rows
+        .into_iter()
+        .map(|row| {
+            let line = text::cut(Line::from(row), width, Span::styled("…", theme.dim()));
+            let pad = width.saturating_sub(line.width());
+            let mut spans = vec![Span::raw(" ".repeat(pad))];
+            spans.extend(line.spans);
+            Line::from(spans)
+        })
+        .collect();
+    if let Some(title) = y_title {
+        match lines.first_mut() {
+            // The first row starts with its padding: the title takes its place.
+            Some(first) if first.spans[0].width() > title.width() + 1 => {
+                let pad = first.spans[0].width() - title.width();
+                first.spans[0] = Span::raw(" ".repeat(pad));
+                first.spans.insert(0, title);
+            }
+            Some(_) => {}
+            None => lines.push(Line::from(title)),
+        }
+    }
+    lines
+}
+
+/// Draws `chart` in `area` inside `block`, with `legend` (the named series and their
+/// styles) and the y axis's title on rows of their own above the graph and the x axis's
+/// title in the block's bottom border, so that no data is ever drawn under them (issue 25,
+/// section 2: ratatui's own legend and axis titles sit inside the graph, where a trained
+/// curve runs through them). The legend is left out when the graph would keep fewer than
+/// four rows.
+pub(super) fn draw_chart(
+    chart: Chart<'_>,
+    block: Block<'_>,
+    legend: &[(String, Style)],
+    titles: (Option<&str>, Option<&str>),
+    theme: Theme,
+    area: Rect,
+    buf: &mut Buffer,
+) {
+    let (x_title, y_title) = titles;
+    let block = match x_title {
+        Some(title) => {
+            block.title_bottom(Line::styled(format!(" {title} "), theme.dim()).right_aligned())
+        }
+        None => block,
+    };
+    let inner = block.inner(area);
+    block.render(area, buf);
+    let y_title = y_title.map(|t| Span::styled(t.to_string(), theme.dim()));
+    let rows = legend_rows(legend, y_title, usize::from(inner.width), theme);
+    let height = u16::try_from(rows.len()).unwrap_or(u16::MAX);
+    let chart_area = if inner.height >= height + 4 {
+        Paragraph::new(rows).render(Rect { height, ..inner }, buf);
+        Rect {
+            y: inner.y + height,
+            height: inner.height - height,
+            ..inner
+        }
+    } else {
+        inner
+    };
+    chart.legend_position(None).render(chart_area, buf);
+}
+
 /// `(episode, value)` pairs for a chart.
 pub(super) fn points(values: &[f64]) -> Vec<(f64, f64)> {
     values
@@ -47,29 +143,34 @@ impl Widget for ReturnPlot<'_> {
             .len()
             .max(self.previous.map_or(0, |(_, v)| v.len()))
             .max(10) as f64;
+        let theme = self.theme;
+        let mut legend: Vec<(String, Style)> = Vec::new();
         let mut datasets = Vec::new();
         if let Some((label, p)) = &prev {
+            legend.push((label.to_string(), theme.previous()));
             datasets.push(
                 Dataset::default()
-                    .name(label.to_string())
                     .marker(Marker::Dot)
                     .graph_type(GraphType::Line)
                     .style(self.theme.previous())
                     .data(p),
             );
         }
+        legend.push((t("returns", "回报").to_string(), theme.curve()));
         datasets.push(
             Dataset::default()
-                .name(t("returns", "回报"))
                 .marker(super::marker())
                 .graph_type(GraphType::Scatter)
                 .style(self.theme.curve())
                 .data(&raw),
         );
         if !avg.is_empty() {
+            legend.push((
+                t("moving average (9)", "移动平均 (9)").to_string(),
+                theme.average(),
+            ));
             datasets.push(
                 Dataset::default()
-                    .name(t("moving average (9)", "移动平均 (9)"))
                     .marker(super::marker())
                     .graph_type(GraphType::Line)
                     .style(self.theme.average())
@@ -82,20 +183,15 @@ impl Widget for ReturnPlot<'_> {
         } else {
             self.max_return.max(10.0)
         };
-        Chart::new(datasets)
-            .block(self.block)
-            // Keep the legend (it names the overlaid previous run) unless it would cover half the plot.
-            .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)))
+        let chart = Chart::new(datasets)
             .x_axis(
                 Axis::default()
-                    .title(t("Episodes", "回合"))
                     .bounds([0.0, episodes])
                     .labels([Span::raw("0"), Span::raw(format!("{episodes:.0}"))])
                     .style(self.theme.dim()),
             )
             .y_axis(
                 Axis::default()
-                    .title(t("Returns", "回报"))
                     .bounds([y_bottom, y_top])
                     .labels([
                         Span::raw(format!("{y_bottom:.0}")),
@@ -103,7 +199,84 @@ impl Widget for ReturnPlot<'_> {
                         Span::raw(format!("{y_top:.0}")),
                     ])
                     .style(self.theme.dim()),
-            )
-            .render(area, buf);
+            );
+        draw_chart(
+            chart,
+            self.block,
+            &legend,
+            (Some(t("Episodes", "回合")), Some(t("Returns", "回报"))),
+            self.theme,
+            area,
+            buf,
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ReturnPlot;
+    use crate::tui::theme::Theme;
+    use ratatui::buffer::Buffer;
+    use ratatui::layout::Rect;
+    use ratatui::widgets::{Block, Widget};
+
+    fn is_data(c: char) -> bool {
+        ('\u{2800}'..='\u{28FF}').contains(&c) || c == '•'
+    }
+
+    /// Issue 25, section 2: a trained curve runs along the top right, where ratatui drew its
+    /// legend; the legend now has rows of its own, and its names stay whole.
+    #[test]
+    fn the_legend_stays_whole_over_a_trained_curve() {
+        // A climb, then returns between 420 and 500 with their average near 470.
+        let returns: Vec<f64> = (0..200_u32)
+            .map(|i| {
+                if i < 60 {
+                    f64::from(10 + 8 * i)
+                } else {
+                    f64::from(420 + (i % 6) * 16)
+                }
+            })
+            .collect();
+        let average: Vec<f64> = returns.iter().map(|r| r.min(470.0)).collect();
+        let previous: Vec<f64> = returns.iter().map(|r| r * 0.9).collect();
+        for (width, height) in [(44, 14), (72, 24)] {
+            let area = Rect::new(0, 0, width, height);
+            let mut buf = Buffer::empty(area);
+            ReturnPlot {
+                returns: &returns,
+                average: &average,
+                previous: Some(("ε = 0.1", &previous)),
+                max_return: 500.0,
+                min_return: 0.0,
+                block: Block::bordered(),
+                theme: Theme { color: false },
+            }
+            .render(area, &mut buf);
+            let rows: Vec<String> = (0..height)
+                .map(|y| (0..width).map(|x| buf[(x, y)].symbol()).collect())
+                .collect();
+            let screen = rows.join("\n");
+            let names = ["ε = 0.1", "returns", "moving average (9)"];
+            for name in names {
+                let row = rows
+                    .iter()
+                    .position(|r| r.contains(name))
+                    .unwrap_or_else(|| panic!("{name} missing:\n{screen}"));
+                assert!(
+                    !rows[row].chars().any(is_data),
+                    "data on the legend's row:\n{screen}"
+                );
+                // The curve runs just below it, where ratatui's legend box was.
+                let below = &rows[row + 1];
+                assert!(
+                    below.chars().any(is_data),
+                    "no data below {name}:\n{screen}"
+                );
+            }
+            assert!(screen.contains("Episodes"), "{screen}");
+            // The axis title shares the legend's row where there is room.
+            assert_eq!(screen.contains("Returns"), width > 60, "{screen}");
+        }
     }
 }

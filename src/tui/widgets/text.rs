@@ -1,180 +1,15 @@
-//! Lesson markdown to styled lines: paragraphs, bullets, `code` spans and **bold**; and
-//! the width-correct text helpers every pane uses (CJK characters take two columns, and
-//! Chinese lines break between characters, not only at spaces).
+//! Lesson markdown to styled lines ([`markdown`]: paragraphs, bullets, code, tables,
+//! emphasis); and the width-correct text helpers every pane uses (CJK characters take two
+//! columns, and Chinese lines break between characters, not only at spaces).
+
+mod inline;
+mod markdown;
+mod table;
 
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
-use crate::tui::theme::Theme;
-
-/// Joins hard-wrapped source lines into paragraphs and list items, keeping code blocks,
-/// tables and headings line by line.
-#[must_use]
-pub fn reflow(body: &str) -> Vec<String> {
-    let mut out: Vec<String> = Vec::new();
-    let mut open = false; // whether the last pushed line may take a continuation
-    let mut in_code = false;
-    for raw in body.lines() {
-        let t = raw.trim_start();
-        if t.starts_with("```") {
-            in_code = !in_code;
-            out.push(raw.to_string());
-            open = false;
-            continue;
-        }
-        let starts_block = in_code
-            || t.is_empty()
-            || t.starts_with("- ")
-            || t.starts_with("* ")
-            || t.starts_with('|')
-            || t.starts_with('#')
-            || t.split_once(". ")
-                .is_some_and(|(n, _)| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()));
-        if !starts_block
-            && open
-            && let Some(last) = out.last_mut()
-        {
-            last.push(' ');
-            last.push_str(t);
-            continue;
-        }
-        out.push(raw.to_string());
-        open = !in_code && !t.is_empty() && !t.starts_with('|') && !t.starts_with('#');
-    }
-    out
-}
-
-/// Converts a step's markdown body into lines for a wrapping paragraph `width` columns
-/// wide. A table that fits the width is drawn with its columns aligned by display width (a
-/// Chinese cell is twice as wide as its characters); a wider one is left as written.
-#[must_use]
-pub fn markdown(body: &str, theme: Theme, width: usize) -> Vec<Line<'static>> {
-    let mut lines = Vec::new();
-    let mut in_code = false;
-    let mut table: Vec<String> = Vec::new();
-    for raw in reflow(body) {
-        let raw = raw.as_str();
-        if !in_code && raw.trim_start().starts_with('|') {
-            table.push(raw.trim().to_string());
-            continue;
-        }
-        if !table.is_empty() {
-            lines.extend(markdown_table(&std::mem::take(&mut table), theme, width));
-        }
-        if raw.trim_start().starts_with("```") {
-            in_code = !in_code;
-            continue;
-        }
-        if in_code {
-            lines.push(Line::styled(format!("  {raw}"), theme.code()));
-            continue;
-        }
-        if let Some(h) = raw.strip_prefix("### ") {
-            lines.push(Line::styled(h.to_string(), theme.title()));
-            continue;
-        }
-        let (prefix, rest) = match raw.strip_prefix("- ").or_else(|| raw.strip_prefix("* ")) {
-            Some(rest) => ("• ", rest),
-            None => ("", raw),
-        };
-        let mut spans = vec![Span::raw(prefix)];
-        spans.extend(inline(rest, theme));
-        lines.push(Line::from(spans));
-    }
-    if !table.is_empty() {
-        lines.extend(markdown_table(&table, theme, width));
-    }
-    lines
-}
-
-/// Whether a table row is the `|---|:--:|` line under the header.
-fn is_rule(cells: &[String]) -> bool {
-    !cells.is_empty()
-        && cells
-            .iter()
-            .all(|c| !c.is_empty() && c.chars().all(|ch| matches!(ch, '-' | ':' | ' ')))
-}
-
-/// A markdown table's rows (`| a | b |` lines), aligned by display width when it fits in
-/// `width` columns; otherwise as written.
-fn markdown_table(rows: &[String], theme: Theme, width: usize) -> Vec<Line<'static>> {
-    let cells: Vec<Vec<String>> = rows
-        .iter()
-        .map(|row| {
-            let inner = row.trim().trim_start_matches('|');
-            let inner = inner.strip_suffix('|').unwrap_or(inner);
-            inner.split('|').map(|c| c.trim().to_string()).collect()
-        })
-        .collect();
-    let columns = cells.iter().map(Vec::len).max().unwrap_or(0);
-    // Each cell's spans (inline code and bold drawn as in the text) and their width.
-    let spans: Vec<Vec<Vec<Span<'static>>>> = cells
-        .iter()
-        .map(|row| row.iter().map(|c| inline(c, theme)).collect())
-        .collect();
-    let cell_width = |s: &[Span<'_>]| s.iter().map(Span::width).sum::<usize>();
-    let mut widths = vec![0; columns];
-    for (row, row_spans) in cells.iter().zip(&spans) {
-        if is_rule(row) {
-            continue;
-        }
-        for (k, s) in row_spans.iter().enumerate() {
-            widths[k] = widths[k].max(cell_width(s));
-        }
-    }
-    let total = widths.iter().map(|w| w + 3).sum::<usize>() + 1;
-    if columns == 0 || total > width {
-        return rows.iter().map(|r| Line::from(inline(r, theme))).collect();
-    }
-    let mut lines = Vec::new();
-    for (i, (row, row_spans)) in cells.iter().zip(spans).enumerate() {
-        if is_rule(row) {
-            let rule: Vec<String> = widths.iter().map(|w| "-".repeat(w + 2)).collect();
-            lines.push(Line::styled(format!("|{}|", rule.join("|")), theme.dim()));
-            continue;
-        }
-        let header = i == 0 && cells.get(1).is_some_and(|r| is_rule(r));
-        let mut out = vec![Span::styled("| ", theme.dim())];
-        for (k, w) in widths.iter().enumerate() {
-            let cell = row_spans.get(k).cloned().unwrap_or_default();
-            let pad = w.saturating_sub(cell_width(&cell));
-            if header {
-                out.extend(cell.into_iter().map(|s| s.patch_style(theme.title())));
-            } else {
-                out.extend(cell);
-            }
-            out.push(Span::raw(" ".repeat(pad)));
-            out.push(Span::styled(
-                if k + 1 == columns { " |" } else { " | " },
-                theme.dim(),
-            ));
-        }
-        lines.push(Line::from(out));
-    }
-    lines
-}
-
-/// Splits a line at backticks and double asterisks.
-fn inline(text: &str, theme: Theme) -> Vec<Span<'static>> {
-    let mut spans = Vec::new();
-    for (i, part) in text.split('`').enumerate() {
-        if i % 2 == 1 {
-            spans.push(Span::styled(part.to_string(), theme.code()));
-            continue;
-        }
-        for (j, piece) in part.split("**").enumerate() {
-            if piece.is_empty() {
-                continue;
-            }
-            if j % 2 == 1 {
-                spans.push(Span::styled(piece.to_string(), theme.title()));
-            } else {
-                spans.push(Span::raw(piece.to_string()));
-            }
-        }
-    }
-    spans
-}
+pub use markdown::{markdown, reflow};
 
 pub use crate::i18n::{pad_left, pad_right, width};
 
@@ -192,6 +27,62 @@ pub fn truncate(s: &str, columns: usize) -> String {
         out.push(c);
     }
     out
+}
+
+/// `line` cut to at most `columns` display columns; when anything is cut, its last column
+/// shows `mark` (a dim `…`) so that a reader sees the line goes on. A line that fits comes
+/// back as it is.
+#[must_use]
+pub fn cut(line: Line<'_>, columns: usize, mark: Span<'static>) -> Line<'static> {
+    let (style, alignment) = (line.style, line.alignment);
+    if line.width() <= columns {
+        let spans: Vec<Span<'static>> = line
+            .spans
+            .into_iter()
+            .map(|s| Span::styled(s.content.into_owned(), s.style))
+            .collect();
+        let mut out = Line::from(spans).style(style);
+        out.alignment = alignment;
+        return out;
+    }
+    let room = columns.saturating_sub(mark.width());
+    let mut used = 0;
+    let mut spans: Vec<Span<'static>> = Vec::new();
+    for span in &line.spans {
+        let kept = truncate(&span.content, room - used);
+        used += width(&kept);
+        let whole = kept.len() == span.content.len();
+        spans.push(Span::styled(kept, span.style));
+        if !whole {
+            break;
+        }
+    }
+    // A wide glyph that would end past the cut leaves a gap before the mark.
+    if used < room {
+        spans.push(Span::raw(" ".repeat(room - used)));
+    }
+    if columns >= mark.width() {
+        spans.push(mark);
+    }
+    let mut out = Line::from(spans).style(style);
+    out.alignment = alignment;
+    out
+}
+
+/// A step's markdown body as plain text wrapped to `columns`: what the terminal app shows
+/// (no emphasis markers, tables as columns), without styles, for `ppo-tutor show`.
+#[must_use]
+pub fn plain(body: &str, columns: u16) -> String {
+    let theme = crate::tui::theme::Theme { color: false };
+    let lines = wrap(markdown(body, theme, usize::from(columns)), columns);
+    let rows: Vec<String> = lines
+        .iter()
+        .map(|l| {
+            let row: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
+            row.trim_end().to_string()
+        })
+        .collect();
+    rows.join("\n")
 }
 
 /// The zero-width space: a break opportunity ratatui's word wrapper honours and never draws.
@@ -348,30 +239,26 @@ pub fn wrap<'a>(lines: impl IntoIterator<Item = Line<'a>>, columns: u16) -> Vec<
 
 #[cfg(test)]
 mod tests {
-    use super::{breakable, pad_left, pad_right, reflow, truncate, width, wrap};
-    use ratatui::text::Line;
+    use super::{breakable, cut, pad_left, pad_right, truncate, width, wrap};
+    use ratatui::text::{Line, Span};
 
+    /// Issue 25, section 2: a line cut at a pane's edge ends in a mark, and never in half a
+    /// wide glyph.
     #[test]
-    fn tables_align_by_display_width_when_they_fit() {
-        let theme = crate::tui::theme::Theme { color: false };
-        let body = "| 序号 | 含义 |\n|---|---|\n| 0 | 小车位置 |\n| 1 | `x` |";
-        let text: Vec<String> = super::markdown(body, theme, 40)
-            .iter()
-            .map(|l| l.spans.iter().map(|s| s.content.as_ref()).collect())
-            .collect();
+    fn a_cut_line_shows_that_it_goes_on() {
+        let text =
+            |l: &Line<'_>| -> String { l.spans.iter().map(|s| s.content.as_ref()).collect() };
+        let mark = || Span::raw("…");
+        let line = Line::from(vec![Span::raw("let x = "), Span::raw("compute(1, 2);")]);
+        assert_eq!(text(&cut(line.clone(), 12, mark())), "let x = com…");
         assert_eq!(
-            text,
-            [
-                "| 序号 | 含义     |",
-                "|------|----------|",
-                "| 0    | 小车位置 |",
-                "| 1    | x        |"
-            ]
+            text(&cut(line.clone(), 22, mark())),
+            "let x = compute(1, 2);"
         );
-        // Too wide for the pane: as written (the wrapping paragraph breaks it).
-        let narrow = super::markdown(body, theme, 10);
-        assert_eq!(narrow.len(), 4);
-        assert_eq!(narrow[2].width(), width("| 0 | 小车位置 |"));
+        assert_eq!(text(&cut(line, 1, mark())), "…");
+        let chinese = cut(Line::raw("# 计算优势"), 6, mark());
+        assert_eq!(text(&chinese), "# 计 …");
+        assert_eq!(chinese.width(), 6);
     }
 
     #[test]
@@ -430,16 +317,5 @@ mod tests {
             .collect();
         assert_eq!(english, ["  one two", "three", "supercalif", "ragilistic"]);
         assert_eq!(wrap([Line::raw("")], 10).len(), 1);
-    }
-
-    #[test]
-    fn paragraphs_join_and_blocks_stay() {
-        let body = "one\ntwo\n\n- a\n  b\n- c\n\n| x |\n| y |\n```\ncode\nmore\n```";
-        assert_eq!(
-            reflow(body),
-            vec![
-                "one two", "", "- a b", "- c", "", "| x |", "| y |", "```", "code", "more", "```"
-            ]
-        );
     }
 }
