@@ -525,3 +525,54 @@ fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResul
     assert!(predictions >= 6, "{predictions} predict questions");
     Ok(())
 }
+
+/// Issue 25, section 2: a quiz asks only what its lesson or an earlier one has taught (lesson
+/// 1's asked about the clip at r = 1.35 and GAE with λ = 0). A question asks about a word
+/// when its prompt or its right choice uses it; a wrong choice or an explanation may point
+/// ahead. Lesson 1 names every idea in passing: the lesson in this table is the one that
+/// works the idea through, where questions about it belong.
+#[test]
+fn no_quiz_asks_about_what_a_later_lesson_teaches() -> TestResult {
+    use ppo_tutor::i18n::Lang;
+    use ppo_tutor::lesson::quiz::QuestionKind;
+    // The words of an idea, in English and in the Chinese twin, and the lesson that teaches
+    // it. (Not a bare ε: lesson 6's Adam has one too.)
+    const TAUGHT: &[(&[&str], &str)] = &[
+        (&["clip", "surr", "1 + ε", "截断"], "clipping"),
+        (&["GAE", "λ", "lmbda"], "gae"),
+    ];
+    let (mut checked, mut early) = (0, Vec::new());
+    for lang in [Lang::En, Lang::Zh] {
+        let course = Course::embedded_in(lang)?;
+        for (at, lesson) in course.lessons.iter().enumerate() {
+            for (i, q) in lesson.quiz.iter().enumerate() {
+                let mut asked = q.prompt.clone();
+                if let QuestionKind::Choice {
+                    choices, answer, ..
+                } = &q.kind
+                {
+                    asked.push('\n');
+                    asked.push_str(&choices[*answer]);
+                }
+                for (words, id) in TAUGHT {
+                    let taught = course.index_of(id).ok_or(format!("no lesson {id}"))?;
+                    if at >= taught {
+                        continue;
+                    }
+                    checked += 1;
+                    if let Some(word) = words.iter().find(|w| asked.contains(**w)) {
+                        early.push(format!(
+                            "{lang:?}: {} question {} asks about '{word}', which lesson {id} \
+                             teaches; move the question there",
+                            lesson.id,
+                            i + 1
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked > 0);
+    assert!(early.is_empty(), "{early:#?}");
+    Ok(())
+}

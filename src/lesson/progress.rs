@@ -14,8 +14,34 @@ use super::Course;
 /// The default state file name (in the working directory).
 pub const STATE_FILE: &str = ".ppo-tutor-state.json";
 
+/// The numbering of quiz questions that [`Progress::quiz`] keys follow now. A progress file
+/// written before a numbering existed (with no `quiz_numbering`) is 0, and loading it moves
+/// its answers by [`RENUMBERED`].
+pub const QUIZ_NUMBERING: u32 = 1;
+
+/// A quiz question by lesson id and number (from 1), as in [`Progress::quiz_key`].
+pub type QuestionAt = (&'static str, usize);
+
+/// How questions moved from numbering 0 to 1 (issue 25, section 2): `(lesson, number)` before,
+/// then after. Lesson 1's questions 2 (the clip at r = 1.35) and 3 (GAE with λ = 0) went to
+/// the lessons that teach them, as clipping's question 1 and gae's question 2, and the
+/// questions from there on in those quizzes are one number later; lesson 1's question 4 is
+/// now 3, after a new question 2 that no saved answer belongs to.
+pub const RENUMBERED: &[(QuestionAt, QuestionAt)] = &[
+    (("what-is-ppo", 2), ("clipping", 1)),
+    (("what-is-ppo", 3), ("gae", 2)),
+    (("what-is-ppo", 4), ("what-is-ppo", 3)),
+    (("gae", 2), ("gae", 3)),
+    (("gae", 3), ("gae", 4)),
+    (("gae", 4), ("gae", 5)),
+    (("clipping", 1), ("clipping", 2)),
+    (("clipping", 2), ("clipping", 3)),
+    (("clipping", 3), ("clipping", 4)),
+    (("clipping", 4), ("clipping", 5)),
+];
+
 /// The learner's progress.
-#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct Progress {
     /// The lesson open last.
@@ -30,6 +56,23 @@ pub struct Progress {
     /// Quiz questions answered, by `lesson#number` (e.g. `gae#2`): whether the first answer
     /// was right.
     pub quiz: BTreeMap<String, bool>,
+    /// The numbering [`Self::quiz`] follows: [`QUIZ_NUMBERING`], or 0 in a file written
+    /// before it existed.
+    #[serde(default)]
+    pub quiz_numbering: u32,
+}
+
+impl Default for Progress {
+    fn default() -> Self {
+        Self {
+            lesson: String::new(),
+            step: 0,
+            lessons_done: BTreeSet::new(),
+            exercises_done: BTreeSet::new(),
+            quiz: BTreeMap::new(),
+            quiz_numbering: QUIZ_NUMBERING,
+        }
+    }
 }
 
 impl Progress {
@@ -44,6 +87,22 @@ impl Progress {
         self.quiz
             .entry(Self::quiz_key(lesson, number))
             .or_insert(right);
+    }
+
+    /// Moves answers saved under an older numbering of the questions to the current one
+    /// ([`RENUMBERED`]), so that an answer stays with its question.
+    pub fn renumber_quiz(&mut self) {
+        if self.quiz_numbering >= QUIZ_NUMBERING {
+            return;
+        }
+        let old = std::mem::take(&mut self.quiz);
+        for (key, right) in old {
+            let moved = RENUMBERED.iter().find_map(|((id, n), (to, m))| {
+                (key == Self::quiz_key(id, *n)).then(|| Self::quiz_key(to, *m))
+            });
+            self.quiz.entry(moved.unwrap_or(key)).or_insert(right);
+        }
+        self.quiz_numbering = QUIZ_NUMBERING;
     }
 
     /// `(answered, right)` over every question recorded.
@@ -71,7 +130,9 @@ impl Progress {
 
     /// Loads progress from `path`. A missing file is a fresh start; an unreadable or
     /// corrupt one is a fresh start plus a one-line warning naming the file, and a corrupt
-    /// one is first copied to `<path>.bak` (the next save would overwrite it).
+    /// one is first copied to `<path>.bak` (the next save would overwrite it). Answers saved
+    /// under an older numbering of the questions move to the current one
+    /// ([`Self::renumber_quiz`]).
     #[must_use]
     pub fn load(path: &Path) -> (Self, Option<String>) {
         let file = path.display();
@@ -84,8 +145,11 @@ impl Progress {
                     "无法读取 {file}（{e}）；从头开始"
                 )),
             ),
-            Ok(text) => match serde_json::from_str(&text) {
-                Ok(p) => (p, None),
+            Ok(text) => match serde_json::from_str::<Self>(&text) {
+                Ok(mut p) => {
+                    p.renumber_quiz();
+                    (p, None)
+                }
                 Err(e) => {
                     let backup = backup_path(path);
                     let kept = std::fs::write(&backup, &text).is_ok();
@@ -198,6 +262,60 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&backup)?, "{not json");
         assert!(warning.contains("state.json.bak"), "{warning}");
         assert!(!warning.contains('\n'));
+        Ok(())
+    }
+
+    #[test]
+    fn answers_saved_before_a_renumbering_follow_their_questions()
+    -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("state.json");
+        // Written before issue 25 moved lesson 1's questions 2 and 3 (no quiz_numbering).
+        std::fs::write(
+            &path,
+            r#"{"quiz":{"what-is-ppo#1":true,"what-is-ppo#2":false,"what-is-ppo#3":true,
+                "what-is-ppo#4":true,"gae#1":true,"gae#2":true,"gae#4":false,"clipping#1":true}}"#,
+        )?;
+        let (p, warning) = Progress::load(&path);
+        assert!(warning.is_none(), "{warning:?}");
+        assert_eq!(p.quiz_numbering, QUIZ_NUMBERING);
+        let moved = [
+            ("what-is-ppo#1", true),
+            ("clipping#1", false),
+            ("gae#2", true),
+            ("what-is-ppo#3", true),
+            ("gae#1", true),
+            ("gae#3", true),
+            ("gae#5", false),
+            ("clipping#2", true),
+        ];
+        let moved: BTreeMap<String, bool> = moved.map(|(k, r)| (k.to_string(), r)).into();
+        assert_eq!(p.quiz, moved);
+        // Each answer is now under the number of the question it answered.
+        let course = Course::embedded_in(crate::i18n::Lang::En)?;
+        let prompt = |id: &str, n: usize| {
+            course
+                .get(id)
+                .and_then(|l| l.quiz.get(n - 1))
+                .map(|q| q.prompt.clone())
+                .unwrap_or_default()
+        };
+        for (id, n, says) in [
+            ("what-is-ppo", 3, "π(left|s) + π(right|s)"),
+            ("clipping", 1, "r_t is 1.35"),
+            ("clipping", 2, "grown to 1.5"),
+            ("gae", 2, "λ = 0"),
+            ("gae", 3, "λ = 1"),
+            ("gae", 5, "Â − δ"),
+        ] {
+            assert!(prompt(id, n).contains(says), "{id}#{n}: {}", prompt(id, n));
+        }
+        // Saved, it is in the new numbering and is not moved again; a fresh start is too.
+        p.save(&path)?;
+        assert_eq!(Progress::load(&path).0, p);
+        let fresh = Progress::default();
+        fresh.save(&path)?;
+        assert_eq!(Progress::load(&path).0.quiz_numbering, QUIZ_NUMBERING);
         Ok(())
     }
 

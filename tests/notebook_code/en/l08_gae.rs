@@ -94,7 +94,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(26);
     nb.show((&Shown(&(quiz::answer("gae", 3, '?')))).outputs());
     nb.cell(28);
-    nb.show((&Shown(&(quiz::predict("gae", 4, "?", &snap)))).outputs());
+    nb.show((&Shown(&(quiz::answer("gae", 4, '?')))).outputs());
+    nb.cell(30);
+    nb.show((&Shown(&(quiz::predict("gae", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {

@@ -76,8 +76,6 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(24);
     nb.show((&Shown(&(quiz::answer("what-is-ppo", 2, '?')))).outputs());
     nb.cell(26);
-    nb.show((&Shown(&(quiz::answer("what-is-ppo", 3, '?')))).outputs());
-    nb.cell(28);
-    nb.show((&Shown(&(quiz::predict("what-is-ppo", 4, "?", &snap)))).outputs());
+    nb.show((&Shown(&(quiz::predict("what-is-ppo", 3, "?", &snap)))).outputs());
     Ok(())
 }

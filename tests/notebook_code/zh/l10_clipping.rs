@@ -130,7 +130,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(28);
     nb.show((&Shown(&(quiz::answer("clipping", 3, '?')))).outputs());
     nb.cell(30);
-    nb.show((&Shown(&(quiz::predict("clipping", 4, "?", &snap)))).outputs());
+    nb.show((&Shown(&(quiz::answer("clipping", 4, '?')))).outputs());
+    nb.cell(32);
+    nb.show((&Shown(&(quiz::predict("clipping", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {

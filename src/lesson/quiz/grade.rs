@@ -1,0 +1,267 @@
+//! Grading an answer: a choice ([`Question::choose`]) or a prediction against the live value
+//! ([`Question::predict`]), and the notebook's in-place graders [`answer`] and [`predict`].
+
+use super::super::Snapshot;
+use super::{Question, QuestionKind, QuizError, letter_index, letter_of, questions};
+use crate::i18n::t;
+use crate::tr;
+
+/// The verdict on one answer, with what to read next.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Verdict {
+    /// Whether the learner gave an answer at all (a placeholder is not one).
+    pub answered: bool,
+    /// Whether it is right.
+    pub right: bool,
+    /// The live value, for a prediction (revealed only once answered).
+    pub live: Option<f64>,
+    /// What to show: the verdict line, then the explanation.
+    pub text: String,
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+impl Verdict {
+    fn unanswered(text: String) -> Self {
+        Self {
+            answered: false,
+            right: false,
+            live: None,
+            text,
+        }
+    }
+
+    /// Shows the verdict as a notebook cell's output (the evcxr kernel calls this).
+    pub fn evcxr_display(&self) {
+        for (mime, content) in crate::notebook::Rich::rich(self) {
+            println!("EVCXR_BEGIN_CONTENT {mime}\n{content}\nEVCXR_END_CONTENT");
+        }
+    }
+}
+
+impl crate::notebook::Rich for Verdict {
+    fn rich(&self) -> Vec<(&'static str, String)> {
+        vec![("text/plain", self.text.clone())]
+    }
+}
+
+impl Question {
+    /// Grades the choice `letter` (`'a'`..); a letter that is not a choice is no answer.
+    #[must_use]
+    pub fn choose(&self, letter: char) -> Verdict {
+        let QuestionKind::Choice {
+            choices,
+            answer,
+            explain,
+        } = &self.kind
+        else {
+            return Verdict::unanswered(
+                t(
+                    "This question asks for a number: answer it with quiz::predict.",
+                    "这道题要一个数：请用 quiz::predict 作答。",
+                )
+                .into(),
+            );
+        };
+        let last = letter_of(choices.len() - 1);
+        let Some(index) = letter_index(&letter.to_string()).filter(|&i| i < choices.len()) else {
+            return Verdict::unanswered(tr!(
+                "Not answered yet: put your choice (a to {last}) in place of '{letter}' and run it again.",
+                "还没有作答：把 '{letter}' 换成你的选择（a 到 {last}），再运行一次。"
+            ));
+        };
+        let right = index == *answer;
+        let mut text = if right {
+            tr!(
+                "✓ Right: {}) {}",
+                "✓ 答对了：{}) {}",
+                letter_of(index),
+                choices[index]
+            )
+        } else {
+            tr!(
+                "✗ Not {}). The answer is {}) {}",
+                "✗ 不是 {}）。正确答案是 {}) {}",
+                letter_of(index),
+                letter_of(*answer),
+                choices[*answer]
+            )
+        };
+        text.push_str(&format!("\n\n{}) {}", letter_of(index), explain[index]));
+        if !right {
+            text.push_str(&format!("\n{}) {}", letter_of(*answer), explain[*answer]));
+        }
+        Verdict {
+            answered: true,
+            right,
+            live: None,
+            text,
+        }
+    }
+
+    /// Grades the prediction `value` against the live value in `snapshot`.
+    #[must_use]
+    pub fn predict(&self, value: f64, snapshot: &Snapshot) -> Verdict {
+        let QuestionKind::Predict {
+            measure,
+            tolerance,
+            explain,
+        } = &self.kind
+        else {
+            return Verdict::unanswered(
+                t(
+                    "This is a multiple-choice question: answer it with quiz::answer.",
+                    "这是一道选择题：请用 quiz::answer 作答。",
+                )
+                .into(),
+            );
+        };
+        if !value.is_finite() {
+            return Verdict::unanswered(
+                t(
+                    "Not answered yet: predict a finite number.",
+                    "还没有作答：请预测一个有限的数。",
+                )
+                .into(),
+            );
+        }
+        let Some(live) = (measure.value)(snapshot) else {
+            return Verdict::unanswered(tr!(
+                "The live value ({}) does not exist yet: train at least one episode first.",
+                "实时数值（{}）还不存在：请先至少训练一个回合。",
+                measure.describe()
+            ));
+        };
+        let right = (value - live).abs() <= *tolerance;
+        let mark = if right {
+            t("✓ Right", "✓ 答对了")
+        } else {
+            t("✗ Not quite", "✗ 不太对")
+        };
+        let text = tr!(
+            "{mark}: you said {value}, the live value is {} ({}; within ±{tolerance} counts).\n\n{explain}",
+            "{mark}：你的预测是 {value}，实时数值是 {}（{}；相差不超过 ±{tolerance} 即算对）。\n\n{explain}",
+            show(live),
+            measure.describe()
+        );
+        Verdict {
+            answered: true,
+            right,
+            live: Some(live),
+            text,
+        }
+    }
+}
+
+/// A live value for reading: integers as integers, others to 6 significant digits.
+fn show(x: f64) -> String {
+    if x.fract() == 0.0 && x.abs() < 1e9 {
+        format!("{x:.0}")
+    } else {
+        format!("{x:.6}")
+    }
+}
+
+fn question(lesson: &str, number: usize) -> Result<Question, QuizError> {
+    let all = questions(lesson)?;
+    let count = all.len();
+    all.into_iter()
+        .nth(number.wrapping_sub(1))
+        .ok_or_else(|| QuizError::NoSuchQuestion {
+            lesson: lesson.to_string(),
+            number,
+            count,
+        })
+}
+
+/// Grades choice `letter` for question `number` (from 1) of lesson `lesson`, as a notebook
+/// cell does: `quiz::answer("gae", 2, 'b')`. A placeholder such as `'?'` is no answer yet.
+#[must_use]
+pub fn answer(lesson: &str, number: usize, letter: char) -> Verdict {
+    numbered(
+        number,
+        match question(lesson, number) {
+            Ok(q) => q.choose(letter),
+            Err(e) => Verdict::unanswered(e.to_string()),
+        },
+    )
+}
+
+/// `verdict` with the question's number in front, so that answers read apart in a notebook.
+fn numbered(number: usize, mut verdict: Verdict) -> Verdict {
+    verdict.text = tr!("Question {number}: {}", "第 {number} 题：{}", verdict.text);
+    verdict
+}
+
+/// Grades the prediction `value` (a number as text, e.g. `"0.93"`; `"?"` is no answer yet)
+/// for question `number` of lesson `lesson` against the live value in `snapshot`:
+/// `quiz::predict("ratio", 3, "1.0", &snap)`.
+#[must_use]
+pub fn predict(lesson: &str, number: usize, value: &str, snapshot: &Snapshot) -> Verdict {
+    let q = match question(lesson, number) {
+        Ok(q) => q,
+        Err(e) => return numbered(number, Verdict::unanswered(e.to_string())),
+    };
+    numbered(
+        number,
+        match value.trim().parse::<f64>() {
+            Ok(v) => q.predict(v, snapshot),
+            Err(_) => Verdict::unanswered(tr!(
+                "Not answered yet: put your prediction (a number, like \"0.5\") in place of \"{value}\" and run it again.",
+                "还没有作答：把 \"{value}\" 换成你的预测（一个数，例如 \"0.5\"），再运行一次。"
+            )),
+        },
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::parse;
+    use super::super::parse::tests::TWO;
+    use super::*;
+
+    #[test]
+    fn parses_both_kinds_and_grades_them() -> Result<(), QuizError> {
+        let qs = parse("99-x", TWO)?;
+        assert_eq!(qs.len(), 2);
+        let right = qs[0].choose('B');
+        assert!(right.answered && right.right, "{right}");
+        let wrong = qs[0].choose('c');
+        assert!(wrong.answered && !wrong.right);
+        assert!(
+            wrong.text.contains("no 3") && wrong.text.contains("yes"),
+            "{wrong}"
+        );
+        assert!(!qs[0].choose('?').answered);
+        assert!(!qs[0].choose('d').answered, "d is not a choice of three");
+        let mut snap = Snapshot::default();
+        assert!(!qs[1].predict(3.0, &snap).answered, "nothing trained yet");
+        snap.trace = Some(crate::ppo::UpdateTrace {
+            rewards: vec![1.0; 12],
+            ..crate::ppo::UpdateTrace::default()
+        });
+        let close = qs[1].predict(12.4, &snap);
+        assert!(close.right && close.live == Some(12.0), "{close}");
+        assert!(!qs[1].predict(13.0, &snap).right);
+        Ok(())
+    }
+
+    #[test]
+    fn unknown_lessons_and_numbers_are_explained() {
+        assert!(answer("nope", 1, 'a').text.contains("ppo-tutor lessons"));
+        assert!(
+            answer("ratio", 99, 'a')
+                .text
+                .contains("there is no question 99")
+        );
+        assert!(
+            answer("ratio", 0, 'a')
+                .text
+                .contains("there is no question 0")
+        );
+    }
+}
