@@ -231,6 +231,16 @@ impl Scroll {
         self.offset = self.offset().saturating_add(1).min(self.max.get());
     }
 
+    /// Scrolls for ↑/↓ (and `k`/`j`, the wheel); whether `action` was one of them.
+    pub fn key(&mut self, action: Action) -> bool {
+        match action {
+            Action::Up | Action::ScrollUp => self.up(),
+            Action::Down | Action::ScrollDown => self.down(),
+            _ => return false,
+        }
+        true
+    }
+
     /// Back to the top.
     pub fn top(&mut self) {
         self.offset = 0;

@@ -274,17 +274,12 @@ impl ExercisePanel {
 
 impl Component for ExercisePanel {
     fn handle(&mut self, action: Action, _: &Ctx<'_>) -> Reply {
+        if self.scroll.key(action) {
+            return Reply::Stay;
+        }
         match action {
             Action::Quit => Reply::Quit,
             Action::Grade | Action::Hint => Reply::Pass(action),
-            Action::Up | Action::ScrollUp => {
-                self.scroll.up();
-                Reply::Stay
-            }
-            Action::Down | Action::ScrollDown => {
-                self.scroll.down();
-                Reply::Stay
-            }
             Action::Back | Action::Enter => Reply::Close,
             _ => Reply::Stay,
         }

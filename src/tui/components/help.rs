@@ -19,19 +19,14 @@ pub struct Help {
 
 impl Component for Help {
     fn handle(&mut self, action: Action, _: &Ctx<'_>) -> Reply {
+        if self.scroll.key(action) {
+            return Reply::Stay;
+        }
         match action {
             Action::Quit => Reply::Quit,
             Action::Help | Action::Back | Action::Enter => {
                 self.scroll.top();
                 Reply::Close
-            }
-            Action::Up | Action::ScrollUp => {
-                self.scroll.up();
-                Reply::Stay
-            }
-            Action::Down | Action::ScrollDown => {
-                self.scroll.down();
-                Reply::Stay
             }
             _ => Reply::Stay,
         }

@@ -212,8 +212,7 @@ impl Component for Quiz {
                 };
             }
             Action::Back => return Reply::Close,
-            Action::Up | Action::ScrollUp => self.scroll.up(),
-            Action::Down | Action::ScrollDown => self.scroll.down(),
+            other if self.scroll.key(other) => {}
             other => return Reply::Pass(other),
         }
         Reply::Stay
