@@ -1224,6 +1224,22 @@ fn live_columns_the_text_names_fit_or_scroll_at_80x24() -> TestResult {
     Ok(())
 }
 
+/// Issue 25, section 2: a live tensor's title line wider than the pane ends in a `…`, as
+/// a cut code line does.
+#[test]
+fn cut_tensor_title_lines_show_that_they_go_on() -> TestResult {
+    let mut app = app()?;
+    open(&mut app, "clipping")?;
+    app.update(Action::Next);
+    let text = screen(&app, 80, 24)?;
+    let title = text
+        .lines()
+        .find(|l| l.contains("ratio (29, 1) float32"))
+        .ok_or("no ratio title line")?;
+    assert!(title.ends_with("…│\""), "{title}");
+    Ok(())
+}
+
 /// Issue 25, section 2: a code line wider than the code pane ends in a `…` at the pane's
 /// edge, and code below the pane's last row is counted there.
 #[test]

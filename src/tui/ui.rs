@@ -255,7 +255,13 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
                 scroll: app.tensor_scroll,
                 hscroll: app.tensor_hscroll,
             };
-            Paragraph::new(tensors::lines(&shown, view, theme)).render(inner, buf);
+            // A title or series line wider than the pane ends in a dim `…`, as code does.
+            let columns = usize::from(inner.width);
+            let lines: Vec<Line> = tensors::lines(&shown, view, theme)
+                .into_iter()
+                .map(|l| text::cut(l, columns, Span::styled("…", theme.dim())))
+                .collect();
+            Paragraph::new(lines).render(inner, buf);
         }
     }
 }
