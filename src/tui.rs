@@ -27,9 +27,9 @@ use std::time::Duration;
 use anyhow::Context;
 use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, MouseEventKind};
 
-use crate::grade::watch::SaveWatcher;
 use crate::lesson::{Course, Progress};
 use crate::ppo::lab::{self, Experiment};
+use crate::watch::SaveWatcher;
 use app::App;
 use keys::Action;
 use widgets::lab::LabState;

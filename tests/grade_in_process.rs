@@ -139,7 +139,7 @@ fn every_reference_solution_passes_in_place() {
         for line in text.lines().filter(|l| l.trim_start().starts_with('✓')) {
             assert!(
                 line.chars().any(|c| ('\u{4e00}'..='\u{9fff}').contains(&c)),
-                "a check without a Chinese name (add it to CHECK_NAMES in src/grade/report.rs): {line}\n{text}"
+                "a check without a Chinese name (add it to CHECK_NAMES in crates/ppo-grade/src/report.rs): {line}\n{text}"
             );
         }
     }

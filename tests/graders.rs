@@ -157,7 +157,7 @@ fn every_catalogued_wrong_answer_fails_naming_its_mistake() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
-/// The registry, the catalogues in `src/grade/exercises/` and the prose in
+/// The registry, the catalogues in `crates/ppo-grade/src/exercises/` and the prose in
 /// `lessons/*/exercise.toml` agree: each exercise's mistake ids are the same on both sides,
 /// every `[[exercise]]` is a registered exercise of that lesson, and the registry is in
 /// course order.
@@ -172,7 +172,7 @@ fn prose_and_catalogues_name_the_same_mistakes() -> TestResult {
         let text: Vec<&str> = prose.text.mistakes.keys().map(String::as_str).collect();
         assert_eq!(
             code, text,
-            "{name}: the mistake ids of src/grade/exercises/{name}.rs and of \
+            "{name}: the mistake ids of crates/ppo-grade/src/exercises/{name}.rs and of \
              lessons/{}/exercise.toml differ",
             prose.lesson
         );

@@ -228,7 +228,7 @@ fn each_face_speaks_of_what_it_has() -> TestResult {
     assert!(
         problems.is_empty(),
         "wrap app-only text in <app>...</app> and give the notebook its own words in \
-         <notebook>...</notebook> (src/lesson/face.rs):\n{}",
+         <notebook>...</notebook> (crates/ppo-engine/src/lesson/face.rs):\n{}",
         problems.join("\n")
     );
     Ok(())

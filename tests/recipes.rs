@@ -10,8 +10,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use ppo_tutor::generator::build;
 use ppo_tutor::lesson::Course;
-use ppo_tutor::notebook::build;
 use serde_json::Value;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;

@@ -3,9 +3,9 @@
 //! Regenerate: cargo run --features notebook-runner -- dev notebooks 01
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{EpochTrace, PpoConfig, UpdateTrace};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 // The seed's settings and seed 0; 100 episodes of training (about a second).
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
@@ -15,7 +15,7 @@ println!("episode {} lasted {} steps", snap.episodes, trace.rewards.len());
 // %% step: A policy that learns from its own play
 // For comparison, a policy written by hand on the native CartPole-v1:
 // push the cart towards the side the pole leans to.
-use ppo_tutor::env::{CartPole, EnvId};
+use ppo_engine::env::{CartPole, EnvId};
 let mut env = CartPole::new(EnvId::CartPoleV1);
 let mut obs: [f32; 4] = env.reset(Some(0));
 let mut steps: usize = 0;
@@ -49,7 +49,7 @@ println!("epoch {}: max |ratio - 1| = {:.6}", trace.epochs.len(), max_distance_f
 // %% step: The clipped surrogate
 // %% step: Where the advantage comes from: GAE
 // The library's GAE on this episode's TD errors gives the update's advantage, exactly.
-let advantage: Vec<f32> = ppo_tutor::ppo::compute_advantage(config.gamma, config.lmbda, &trace.td_delta);
+let advantage: Vec<f32> = ppo_engine::ppo::compute_advantage(config.gamma, config.lmbda, &trace.td_delta);
 assert_eq!(advantage, trace.advantage);
 println!("{} advantages, the first {:.4}, the last {:.4}", advantage.len(), advantage[0], advantage[advantage.len() - 1]);
 

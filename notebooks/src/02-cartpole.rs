@@ -1,10 +1,10 @@
 //! Recipe for notebooks/02-cartpole.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::env::{CartPole, EnvId};
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::{cartpole_svg, snapshot};
-use ppo_tutor::ppo::PpoConfig;
+use ppo_engine::env::{CartPole, EnvId};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::{cartpole_svg, snapshot};
+use ppo_engine::ppo::PpoConfig;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 
@@ -46,7 +46,7 @@ loop {
 }
 
 // %% step: Termination and truncation
-use ppo_tutor::env::cartpole::{THETA_THRESHOLD_RADIANS, X_THRESHOLD};
+use ppo_engine::env::cartpole::{THETA_THRESHOLD_RADIANS, X_THRESHOLD};
 println!("terminated: |x| > {X_THRESHOLD} or |θ| > {THETA_THRESHOLD_RADIANS:.4} rad (12°)");
 println!("truncated: the time limit, {} steps on CartPole-v1", EnvId::CartPoleV1.max_episode_steps());
 

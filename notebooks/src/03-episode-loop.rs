@@ -1,9 +1,9 @@
 //! Recipe for notebooks/03-episode-loop.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{PpoConfig, UpdateTrace};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");

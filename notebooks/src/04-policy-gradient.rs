@@ -1,9 +1,9 @@
 //! Recipe for notebooks/04-policy-gradient.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::{Snapshot, TensorView};
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{PpoConfig, SurrogateGradients, UpdateTrace};
+use ppo_engine::lesson::{Snapshot, TensorView};
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{PpoConfig, SurrogateGradients, UpdateTrace};
 // The seed's settings and seed 0, 30 episodes; the experiment at the end trains 500 per run.
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
@@ -66,7 +66,7 @@ TensorView::column("grad_surrogate", &grads.surrogate)
 
 // %% step: REINFORCE with a baseline, one switch away
 // One REINFORCE run beside PPO's, seed 0, the seed's other settings:
-use ppo_tutor::ppo::Algorithm;
+use ppo_engine::ppo::Algorithm;
 let reinforce = PpoConfig { algorithm: Algorithm::Reinforce, ..config.clone() };
 let r_snap: Snapshot = snapshot(reinforce, 0, 100)?;
 let p_snap: Snapshot = snapshot(config.clone(), 0, 100)?;

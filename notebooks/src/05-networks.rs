@@ -1,9 +1,9 @@
 //! Recipe for notebooks/05-networks.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{Agent, NamedWeights, PpoConfig};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{Agent, NamedWeights, PpoConfig};
 // One episode: the networks are still (almost) as initialised.
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 1)?;
@@ -17,7 +17,7 @@ for (name, w) in &weights {
 
 // %% step: PolicyNet ends in a softmax
 // The actor by hand, in plain Rust: softmax(fc2(relu(fc1(s)))).
-fn layer(w: &ppo_tutor::ppo::WeightTensor, b: &ppo_tutor::ppo::WeightTensor, x: &[f32]) -> Vec<f32> {
+fn layer(w: &ppo_engine::ppo::WeightTensor, b: &ppo_engine::ppo::WeightTensor, x: &[f32]) -> Vec<f32> {
     let (out, inp) = (w.shape[0], w.shape[1]);
     (0..out)
         .map(|o| (0..inp).map(|i| w.data[o * inp + i] * x[i]).sum::<f32>() + b.data[o])

@@ -1,9 +1,9 @@
 //! Recipe for notebooks/08-gae.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::{Snapshot, TensorView};
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{PpoConfig, UpdateTrace};
+use ppo_engine::lesson::{Snapshot, TensorView};
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
@@ -18,8 +18,8 @@ for l in [0, 1, 10, 30] {
 // %% step: λ between two extremes
 // λ = 0: the advantage is the one-step TD error; λ = 1: the discounted sum of all of them
 // (the library's GAE at both ends of the dial; your own `compute_advantage` comes below).
-let lambda_0: Vec<f32> = ppo_tutor::ppo::compute_advantage(config.gamma, 0.0, &trace.td_delta);
-let lambda_1: Vec<f32> = ppo_tutor::ppo::compute_advantage(config.gamma, 1.0, &trace.td_delta);
+let lambda_0: Vec<f32> = ppo_engine::ppo::compute_advantage(config.gamma, 0.0, &trace.td_delta);
+let lambda_1: Vec<f32> = ppo_engine::ppo::compute_advantage(config.gamma, 1.0, &trace.td_delta);
 assert_eq!(lambda_0, trace.td_delta);
 println!(
     "A_0 with λ = 0: {:.4}, λ = {}: {:.4}, λ = 1: {:.4}",

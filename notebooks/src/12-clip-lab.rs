@@ -2,9 +2,9 @@
 //! Each experiment trains 10 to 15 runs of 500 episodes on every core (a minute or more).
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{EpochTrace, PpoConfig, UpdateTrace};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;

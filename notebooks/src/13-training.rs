@@ -1,9 +1,9 @@
 //! Recipe for notebooks/13-training.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::PpoConfig;
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::PpoConfig;
 // The seed's whole run: 500 episodes (a few seconds).
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 500)?;

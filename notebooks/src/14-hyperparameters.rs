@@ -1,9 +1,9 @@
 //! Recipe for notebooks/14-hyperparameters.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::PpoConfig;
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::PpoConfig;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
 
@@ -42,7 +42,7 @@ println!(
 );
 
 // %% step: The task: CartPole-v1
-use ppo_tutor::env::EnvId;
+use ppo_engine::env::EnvId;
 for id in EnvId::ALL {
     println!("{}: an episode is cut at {} steps", id.as_str(), id.max_episode_steps());
 }

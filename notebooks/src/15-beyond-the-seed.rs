@@ -1,9 +1,9 @@
 //! Recipe for notebooks/15-beyond-the-seed.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::PpoConfig;
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::PpoConfig;
 fn mean_last(returns: &[f64], k: usize) -> f64 {
     returns[returns.len() - k..].iter().sum::<f64>() / k as f64
 }
@@ -22,7 +22,7 @@ let normalised: Snapshot = snapshot(PpoConfig { normalize_advantage: true, ..con
 println!("normalize_advantage: mean of the last 50 returns = {:.1}", mean_last(&normalised.returns, 50));
 
 // %% step: CartPole-v0 or CartPole-v1
-use ppo_tutor::env::EnvId;
+use ppo_engine::env::EnvId;
 let v0: Snapshot = snapshot(PpoConfig { env_id: EnvId::CartPoleV0, ..config.clone() }, 0, 300)?;
 let best = v0.returns.iter().copied().fold(0.0, f64::max);
 println!("CartPole-v0: no return above {best} (the 200-step limit)");

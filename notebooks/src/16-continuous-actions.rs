@@ -1,9 +1,9 @@
 //! Recipe for notebooks/16-continuous-actions.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{ContinuousUpdateTrace, PpoContinuousConfig};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{ContinuousUpdateTrace, PpoContinuousConfig};
 fn range(r: &[f32]) -> (f32, f32) {
     r.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)))
 }
@@ -15,7 +15,7 @@ println!("episode {}: {} steps, return {:.1}", snap.episodes, trace.actions.len(
 
 // %% step: From two actions to a torque
 // The two squashing functions: 2·tanh keeps μ inside (−2, 2), softplus keeps σ above 0.
-use ppo_tutor::ppo::continuous::softplus_f32;
+use ppo_engine::ppo::continuous::softplus_f32;
 for x in [-20.0_f32, -5.0, 0.0, 5.0, 25.0] {
     println!("x = {x:>5}:  2·tanh(x) = {:+.6}   softplus(x) = {:.6}", 2.0 * x.tanh(), softplus_f32(x));
 }

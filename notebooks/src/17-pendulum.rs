@@ -1,9 +1,9 @@
 //! Recipe for notebooks/17-pendulum.ipynb (see 01-what-is-ppo.rs for the format).
 
 // %%
-use ppo_tutor::lesson::{Session, Snapshot};
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::PpoContinuousConfig;
+use ppo_engine::lesson::{Session, Snapshot};
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::PpoContinuousConfig;
 fn mean(r: &[f64]) -> f64 {
     r.iter().sum::<f64>() / r.len() as f64
 }
@@ -14,7 +14,7 @@ println!("episode 1: return {:.1}", snap.returns[0]);
 
 // %% step: The pendulum's physics
 // The native Pendulum-v1, stepped by hand with no torque from reset(seed=0): gravity alone.
-use ppo_tutor::env::Pendulum;
+use ppo_engine::env::Pendulum;
 let mut env = Pendulum::new();
 let first: [f32; 3] = env.reset(Some(0));
 println!("reset(seed=0): (cos θ, sin θ, θ̇) = {first:?}");
@@ -25,7 +25,7 @@ for step in 1..=5 {
 println!("with no torque the rod falls away from upright: θ̇ grows and the cost with it");
 
 // %% step: The cost, and why the rod must swing up
-use ppo_tutor::env::pendulum::cost;
+use ppo_engine::env::pendulum::cost;
 use std::f64::consts::PI;
 println!("hanging, still:   cost {:.4}", cost(PI, 0.0, 0.0));
 println!("worst:            cost {:.4}", cost(PI, 8.0, 2.0));
@@ -52,7 +52,7 @@ for (episode, s) in &maps {
     println!("after episode {episode:>3}: μ(upright, at rest) = {:+.4}, max |μ| on the grid = {biggest:.4}", map.mu[40]);
 }
 // The map after episode 300 as a picture (the table below holds the same numbers):
-ppo_tutor::notebook::policy_map_svg(snap.policy_map.as_ref().expect("a Pendulum snapshot has a map"))
+ppo_engine::notebook::policy_map_svg(snap.policy_map.as_ref().expect("a Pendulum snapshot has a map"))
 
 // %% step: The spread σ as training goes on
 for (episode, s) in &maps {

@@ -4,7 +4,7 @@
 //! `dev notebooks` regenerates `notebooks/*.ipynb` from the lessons and the recipes in
 //! `notebooks/src/`, executing every cell on the evcxr engine. evcxr is behind the cargo
 //! feature `notebook-runner`; without it the command says how to run it
-//! ([`REGENERATE`](crate::notebook::build::REGENERATE)) and exits with code 2.
+//! ([`REGENERATE`](crate::generator::build::REGENERATE)) and exits with code 2.
 
 use std::process::ExitCode;
 
@@ -73,10 +73,10 @@ fn notebook_code() -> anyhow::Result<ExitCode> {
         anyhow::bail!(
             "{} has no notebooks/src: run `{}` in a checkout of ppo-tutor",
             root.display(),
-            crate::notebook::native::REGENERATE_CODE
+            crate::generator::native::REGENERATE_CODE
         );
     }
-    let written = crate::notebook::native::write_all(root)?;
+    let written = crate::generator::native::write_all(root)?;
     println!(
         "wrote {} files in tests/notebook_code/; check them with `cargo test --test notebook_code`",
         written.len()
@@ -91,7 +91,7 @@ fn no_runner_message() -> String {
         "error: `ppo-tutor dev notebooks` executes the notebooks on the evcxr engine, which \
          this build leaves out (cargo feature `notebook-runner`); in the repository, run:\n  \
          {}",
-        crate::notebook::build::REGENERATE
+        crate::generator::build::REGENERATE
     )
 }
 
@@ -116,10 +116,10 @@ mod runner {
     use anyhow::{Context as _, bail};
 
     use super::NotebooksArgs;
+    use crate::generator::build::{self, REGENERATE};
+    use crate::generator::ipynb::{notebook_json, to_text};
+    use crate::generator::kernel::{self, Kernel};
     use crate::lesson::Course;
-    use crate::notebook::build::{self, REGENERATE};
-    use crate::notebook::ipynb::{notebook_json, to_text};
-    use crate::notebook::kernel::{self, Kernel};
 
     use super::ROOT;
 
@@ -183,7 +183,7 @@ mod runner {
                 started.elapsed().as_secs_f64()
             );
         }
-        let written = crate::notebook::native::write_all(root)?;
+        let written = crate::generator::native::write_all(root)?;
         println!(
             "{} files of plain Rust in tests/notebook_code/; check them with \
              `cargo test --test notebook_code` and \

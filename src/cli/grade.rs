@@ -402,7 +402,7 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::FAILURE);
         }
         let sender = tx.clone();
-        let _watcher = grade::watch::SaveWatcher::new(std::slice::from_ref(&path), move |_| {
+        let _watcher = crate::watch::SaveWatcher::new(std::slice::from_ref(&path), move |_| {
             let _ = sender.send(());
         })?;
         loop {

@@ -85,7 +85,10 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
         .then(|| anchor::find(&s.code))
         .flatten()
     {
-        let _ = writeln!(out, "## ppo-tutor (src/{path})\n{code}\n");
+        let _ = writeln!(
+            out,
+            "## ppo-engine (crates/ppo-engine/src/{path})\n{code}\n"
+        );
     }
     for name in &s.show {
         match snapshot.tensor(name) {

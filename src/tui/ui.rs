@@ -181,7 +181,7 @@ fn code_lines(
         .flatten()
     {
         lines.push(Line::styled(
-            format!("// ppo-tutor: src/{path}"),
+            format!("// crates/ppo-engine/src/{path}"),
             theme.dim(),
         ));
         lines.extend(

@@ -3,9 +3,9 @@
 //! 重新生成：cargo run --features notebook-runner -- --lang zh dev notebooks 01
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{EpochTrace, PpoConfig, UpdateTrace};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 // 原教程代码的设置，随机种子 0；训练 100 个回合（大约一秒）。
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
@@ -15,7 +15,7 @@ println!("第 {} 个回合持续了 {} 步", snap.episodes, trace.rewards.len())
 // %% step: A policy that learns from its own play
 // 作为对照，在原生的 CartPole-v1 上手写一个策略：
 // 杆往哪边倾斜，就把小车往哪边推。
-use ppo_tutor::env::{CartPole, EnvId};
+use ppo_engine::env::{CartPole, EnvId};
 let mut env = CartPole::new(EnvId::CartPoleV1);
 let mut obs: [f32; 4] = env.reset(Some(0));
 let mut steps: usize = 0;
@@ -49,7 +49,7 @@ println!("第 {} 轮：max |ratio - 1| = {:.6}", trace.epochs.len(), max_distanc
 // %% step: The clipped surrogate
 // %% step: Where the advantage comes from: GAE
 // 用库里的 GAE 处理这个回合的 TD 误差，得到的正好是这次更新所用的优势值。
-let advantage: Vec<f32> = ppo_tutor::ppo::compute_advantage(config.gamma, config.lmbda, &trace.td_delta);
+let advantage: Vec<f32> = ppo_engine::ppo::compute_advantage(config.gamma, config.lmbda, &trace.td_delta);
 assert_eq!(advantage, trace.advantage);
 println!("共 {} 个优势值，第一个为 {:.4}，最后一个为 {:.4}", advantage.len(), advantage[0], advantage[advantage.len() - 1]);
 

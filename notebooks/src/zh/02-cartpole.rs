@@ -1,10 +1,10 @@
 //! notebooks/zh/02-cartpole.ipynb 的生成脚本，是 ../02-cartpole.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::env::{CartPole, EnvId};
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::{cartpole_svg, snapshot};
-use ppo_tutor::ppo::PpoConfig;
+use ppo_engine::env::{CartPole, EnvId};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::{cartpole_svg, snapshot};
+use ppo_engine::ppo::PpoConfig;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 
@@ -46,7 +46,7 @@ loop {
 }
 
 // %% step: Termination and truncation
-use ppo_tutor::env::cartpole::{THETA_THRESHOLD_RADIANS, X_THRESHOLD};
+use ppo_engine::env::cartpole::{THETA_THRESHOLD_RADIANS, X_THRESHOLD};
 println!("终止（terminated）：|x| > {X_THRESHOLD} 或 |θ| > {THETA_THRESHOLD_RADIANS:.4} rad（12°）");
 println!("时限中断（truncated）：达到时间上限，CartPole-v1 上为 {} 步", EnvId::CartPoleV1.max_episode_steps());
 

@@ -1,9 +1,9 @@
 //! notebooks/zh/04-policy-gradient.ipynb 的生成脚本，是 ../04-policy-gradient.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::{Snapshot, TensorView};
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{PpoConfig, SurrogateGradients, UpdateTrace};
+use ppo_engine::lesson::{Snapshot, TensorView};
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{PpoConfig, SurrogateGradients, UpdateTrace};
 // 原教程代码的设置，随机种子 0，训练 30 个回合；最后的实验每次运行训练 500 个回合。
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
@@ -66,7 +66,7 @@ TensorView::column("grad_surrogate", &grads.surrogate)
 
 // %% step: REINFORCE with a baseline, one switch away
 // 在 PPO 旁边跑一次 REINFORCE，随机种子 0，其余用原教程代码的设置：
-use ppo_tutor::ppo::Algorithm;
+use ppo_engine::ppo::Algorithm;
 let reinforce = PpoConfig { algorithm: Algorithm::Reinforce, ..config.clone() };
 let r_snap: Snapshot = snapshot(reinforce, 0, 100)?;
 let p_snap: Snapshot = snapshot(config.clone(), 0, 100)?;

@@ -1,9 +1,9 @@
 //! notebooks/zh/05-networks.ipynb 的生成脚本，是 ../05-networks.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{Agent, NamedWeights, PpoConfig};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{Agent, NamedWeights, PpoConfig};
 // 只训练一个回合：网络（几乎）还是初始化时的样子。
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 1)?;
@@ -17,7 +17,7 @@ for (name, w) in &weights {
 
 // %% step: PolicyNet ends in a softmax
 // 用纯 Rust 手算策略网络：softmax(fc2(relu(fc1(s))))。
-fn layer(w: &ppo_tutor::ppo::WeightTensor, b: &ppo_tutor::ppo::WeightTensor, x: &[f32]) -> Vec<f32> {
+fn layer(w: &ppo_engine::ppo::WeightTensor, b: &ppo_engine::ppo::WeightTensor, x: &[f32]) -> Vec<f32> {
     let (out, inp) = (w.shape[0], w.shape[1]);
     (0..out)
         .map(|o| (0..inp).map(|i| w.data[o * inp + i] * x[i]).sum::<f32>() + b.data[o])

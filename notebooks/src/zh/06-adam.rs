@@ -1,9 +1,9 @@
 //! notebooks/zh/06-adam.ipynb 的生成脚本，是 ../06-adam.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{NamedWeights, PpoConfig, Trainer};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{NamedWeights, PpoConfig, Trainer};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 

@@ -1,9 +1,9 @@
 //! notebooks/zh/07-td-target.ipynb 的生成脚本，是 ../07-td-target.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{PpoConfig, UpdateTrace};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");

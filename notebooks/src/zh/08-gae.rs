@@ -1,9 +1,9 @@
 //! notebooks/zh/08-gae.ipynb 的生成脚本，是 ../08-gae.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::{Snapshot, TensorView};
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{PpoConfig, UpdateTrace};
+use ppo_engine::lesson::{Snapshot, TensorView};
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
@@ -18,8 +18,8 @@ for l in [0, 1, 10, 30] {
 // %% step: λ between two extremes
 // λ = 0：优势值就是一步的 TD 误差；λ = 1：所有 TD 误差的折扣和
 // （这是库里的 GAE 在旋钮两端的结果；你自己的 `compute_advantage` 在后面）。
-let lambda_0: Vec<f32> = ppo_tutor::ppo::compute_advantage(config.gamma, 0.0, &trace.td_delta);
-let lambda_1: Vec<f32> = ppo_tutor::ppo::compute_advantage(config.gamma, 1.0, &trace.td_delta);
+let lambda_0: Vec<f32> = ppo_engine::ppo::compute_advantage(config.gamma, 0.0, &trace.td_delta);
+let lambda_1: Vec<f32> = ppo_engine::ppo::compute_advantage(config.gamma, 1.0, &trace.td_delta);
 assert_eq!(lambda_0, trace.td_delta);
 println!(
     "A_0：λ = 0 时为 {:.4}，λ = {} 时为 {:.4}，λ = 1 时为 {:.4}",

@@ -1,9 +1,9 @@
 //! notebooks/zh/11-losses.ipynb 的生成脚本，是 ../11-losses.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::{Snapshot, TensorView};
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{EpochTrace, PpoConfig, UpdateTrace};
+use ppo_engine::lesson::{Snapshot, TensorView};
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
 let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");

@@ -2,9 +2,9 @@
 //! 每个实验用所有核心训练 10 到 15 次、每次 500 个回合（需要一分钟或更久）。
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{EpochTrace, PpoConfig, UpdateTrace};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;

@@ -1,9 +1,9 @@
 //! notebooks/zh/13-training.ipynb 的生成脚本，是 ../13-training.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::PpoConfig;
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::PpoConfig;
 // 原教程代码的完整训练：500 个回合（几秒钟）。
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 500)?;

@@ -1,9 +1,9 @@
 //! notebooks/zh/14-hyperparameters.ipynb 的生成脚本，是 ../14-hyperparameters.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::PpoConfig;
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::PpoConfig;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
 
@@ -42,7 +42,7 @@ println!(
 );
 
 // %% step: The task: CartPole-v1
-use ppo_tutor::env::EnvId;
+use ppo_engine::env::EnvId;
 for id in EnvId::ALL {
     println!("{}：回合到 {} 步时因时限中断", id.as_str(), id.max_episode_steps());
 }

@@ -1,9 +1,9 @@
 //! notebooks/zh/15-beyond-the-seed.ipynb 的生成脚本，是 ../15-beyond-the-seed.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::PpoConfig;
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::PpoConfig;
 fn mean_last(returns: &[f64], k: usize) -> f64 {
     returns[returns.len() - k..].iter().sum::<f64>() / k as f64
 }
@@ -22,7 +22,7 @@ let normalised: Snapshot = snapshot(PpoConfig { normalize_advantage: true, ..con
 println!("normalize_advantage：最后 50 个回报的均值 = {:.1}", mean_last(&normalised.returns, 50));
 
 // %% step: CartPole-v0 or CartPole-v1
-use ppo_tutor::env::EnvId;
+use ppo_engine::env::EnvId;
 let v0: Snapshot = snapshot(PpoConfig { env_id: EnvId::CartPoleV0, ..config.clone() }, 0, 300)?;
 let best = v0.returns.iter().copied().fold(0.0, f64::max);
 println!("CartPole-v0：没有超过 {best} 的回报（时间上限是 200 步）");

@@ -1,9 +1,9 @@
 //! notebooks/zh/16-continuous-actions.ipynb 的生成脚本，是 ../16-continuous-actions.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::Snapshot;
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::{ContinuousUpdateTrace, PpoContinuousConfig};
+use ppo_engine::lesson::Snapshot;
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::{ContinuousUpdateTrace, PpoContinuousConfig};
 fn range(r: &[f32]) -> (f32, f32) {
     r.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)))
 }
@@ -15,7 +15,7 @@ println!("第 {} 个回合：{} 步，回报 {:.1}", snap.episodes, trace.action
 
 // %% step: From two actions to a torque
 // 两个压缩函数：2·tanh 让 μ 保持在 (−2, 2) 之内，softplus 让 σ 保持大于 0。
-use ppo_tutor::ppo::continuous::softplus_f32;
+use ppo_engine::ppo::continuous::softplus_f32;
 for x in [-20.0_f32, -5.0, 0.0, 5.0, 25.0] {
     println!("x = {x:>5}:  2·tanh(x) = {:+.6}   softplus(x) = {:.6}", 2.0 * x.tanh(), softplus_f32(x));
 }

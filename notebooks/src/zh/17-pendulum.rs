@@ -1,9 +1,9 @@
 //! notebooks/zh/17-pendulum.ipynb 的生成脚本，是 ../17-pendulum.rs 的中文版（代码相同，注释和打印的文字为中文）。
 
 // %%
-use ppo_tutor::lesson::{Session, Snapshot};
-use ppo_tutor::notebook::snapshot;
-use ppo_tutor::ppo::PpoContinuousConfig;
+use ppo_engine::lesson::{Session, Snapshot};
+use ppo_engine::notebook::snapshot;
+use ppo_engine::ppo::PpoContinuousConfig;
 fn mean(r: &[f64]) -> f64 {
     r.iter().sum::<f64>() / r.len() as f64
 }
@@ -14,7 +14,7 @@ println!("第 1 个回合：回报 {:.1}", snap.returns[0]);
 
 // %% step: The pendulum's physics
 // 原生的 Pendulum-v1，从 reset(seed=0) 开始手动步进，不施加力矩：只有重力在起作用。
-use ppo_tutor::env::Pendulum;
+use ppo_engine::env::Pendulum;
 let mut env = Pendulum::new();
 let first: [f32; 3] = env.reset(Some(0));
 println!("reset(seed=0): (cos θ, sin θ, θ̇) = {first:?}");
@@ -25,7 +25,7 @@ for step in 1..=5 {
 println!("没有力矩时，杆从竖直位置附近倒下：θ̇ 越来越大，代价也随之增大");
 
 // %% step: The cost, and why the rod must swing up
-use ppo_tutor::env::pendulum::cost;
+use ppo_engine::env::pendulum::cost;
 use std::f64::consts::PI;
 println!("静止下垂：代价 {:.4}", cost(PI, 0.0, 0.0));
 println!("最坏情况：代价 {:.4}", cost(PI, 8.0, 2.0));
@@ -52,7 +52,7 @@ for (episode, s) in &maps {
     println!("第 {episode:>3} 个回合之后：竖直静止时 μ = {:+.4}，网格上最大的 |μ| = {biggest:.4}", map.mu[40]);
 }
 // 第 300 个回合之后的策略图，画成图片（下面的表格里是同样的数）：
-ppo_tutor::notebook::policy_map_svg(snap.policy_map.as_ref().expect("倒立摆的快照带有策略图"))
+ppo_engine::notebook::policy_map_svg(snap.policy_map.as_ref().expect("倒立摆的快照带有策略图"))
 
 // %% step: The spread σ as training goes on
 for (episode, s) in &maps {

@@ -1,0 +1,334 @@
+//! The course's two languages: English and Simplified Chinese (简体中文).
+//!
+//! One language is current for the whole process. It is chosen once at start
+//! ([`Lang::detect`]: `--lang`, then `PPO_TUTOR_LANG`, then the locale) and may be switched
+//! live (the app's `L` key). Everything a learner reads asks for it:
+//!
+//! - lesson prose comes from `lesson.md` or its twin `lesson.zh.md` (and likewise
+//!   `quiz.zh.toml`, `exercise.zh.toml`, `exercise.zh.rs`): structure is shared, only the
+//!   prose is per language ([`crate::lesson::Course::embedded_in`]);
+//! - interface text is written at its call site in both languages, `t("quit", "退出")`, or
+//!   with arguments, `tr!("{n} episodes", "{n} 个回合")`, so no string can exist in one
+//!   language only.
+//!
+//! ```
+//! use ppo_engine::i18n::{Lang, t};
+//!
+//! assert_eq!(Lang::from_code("zh_CN.UTF-8"), Some(Lang::Zh));
+//! assert_eq!(Lang::from_code("C"), None);
+//! let _guard = Lang::Zh.scoped();
+//! assert_eq!(t("quit", "退出"), "退出");
+//! ```
+
+use std::sync::atomic::{AtomicU8, Ordering};
+
+/// A language the course is written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+pub enum Lang {
+    /// English, the default.
+    #[default]
+    En,
+    /// Simplified Chinese.
+    Zh,
+}
+
+static CURRENT: AtomicU8 = AtomicU8::new(0);
+
+thread_local! {
+    /// This thread's own language while a [`LangGuard`] lives (tests render both languages
+    /// side by side on parallel threads).
+    static SCOPED: std::cell::Cell<Option<Lang>> = const { std::cell::Cell::new(None) };
+}
+
+impl Lang {
+    /// Both languages, English first.
+    pub const ALL: [Lang; 2] = [Lang::En, Lang::Zh];
+
+    /// The language a code names: `en`, `zh`, and locale names such as `zh_CN.UTF-8`,
+    /// `zh-Hans`, `en_US`; `None` for anything else (`C`, `POSIX`, `fr_FR`).
+    #[must_use]
+    pub fn from_code(code: &str) -> Option<Lang> {
+        let c = code.trim().to_ascii_lowercase();
+        if c.starts_with("zh") {
+            Some(Lang::Zh)
+        } else if c.starts_with("en") {
+            Some(Lang::En)
+        } else {
+            None
+        }
+    }
+
+    /// `en` or `zh`, as `--lang` and `PPO_TUTOR_LANG` take it.
+    #[must_use]
+    pub fn code(self) -> &'static str {
+        match self {
+            Lang::En => "en",
+            Lang::Zh => "zh",
+        }
+    }
+
+    /// The language's own name: `English`, `中文`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Lang::En => "English",
+            Lang::Zh => "中文",
+        }
+    }
+
+    /// The other language (the app's `L` key).
+    #[must_use]
+    pub fn other(self) -> Lang {
+        match self {
+            Lang::En => Lang::Zh,
+            Lang::Zh => Lang::En,
+        }
+    }
+
+    /// The language to use when no `--lang` is given: `PPO_TUTOR_LANG` (`en` or `zh`) if
+    /// set, otherwise the locale (the first of `LC_ALL`, `LC_MESSAGES`, `LANG` that is set
+    /// and not empty), Chinese when it starts with `zh`; English otherwise.
+    ///
+    /// # Errors
+    /// `PPO_TUTOR_LANG` set to something other than `en` or `zh`, with the fix.
+    pub fn detect() -> Result<Lang, LangError> {
+        Self::detect_from(|key| std::env::var(key).ok())
+    }
+
+    /// [`Lang::detect`] with the environment given as a function (for tests).
+    ///
+    /// # Errors
+    /// As [`Lang::detect`].
+    pub fn detect_from(var: impl Fn(&str) -> Option<String>) -> Result<Lang, LangError> {
+        if let Some(v) = var("PPO_TUTOR_LANG").filter(|v| !v.trim().is_empty()) {
+            return match v.trim() {
+                "en" | "EN" | "En" => Ok(Lang::En),
+                "zh" | "ZH" | "Zh" => Ok(Lang::Zh),
+                _ => Lang::from_code(&v).ok_or(LangError::Env(v)),
+            };
+        }
+        let locale = ["LC_ALL", "LC_MESSAGES", "LANG"]
+            .iter()
+            .find_map(|k| var(k).filter(|v| !v.trim().is_empty()));
+        Ok(match locale {
+            Some(l) if l.trim().to_ascii_lowercase().starts_with("zh") => Lang::Zh,
+            _ => Lang::En,
+        })
+    }
+
+    /// The current language: this thread's [`Lang::scoped`] one if any, otherwise the
+    /// process's ([`Lang::set_current`]), otherwise `PPO_TUTOR_LANG` when it names one,
+    /// otherwise English.
+    ///
+    /// The variable is how a notebook kernel gets its language: evcxr links this crate
+    /// into every cell anew, so a language set in one cell would be gone in the next, but
+    /// the Chinese notebooks' first cell sets the kernel's variable (`:env`).
+    #[must_use]
+    pub fn current() -> Lang {
+        if let Some(lang) = SCOPED.with(std::cell::Cell::get) {
+            return lang;
+        }
+        match CURRENT.load(Ordering::Relaxed) {
+            1 => Lang::En,
+            2 => Lang::Zh,
+            _ => std::env::var("PPO_TUTOR_LANG")
+                .ok()
+                .and_then(|v| Lang::from_code(&v))
+                .unwrap_or_default(),
+        }
+    }
+
+    /// Makes `self` the language of the whole process (every thread without a scoped one).
+    pub fn set_current(self) {
+        CURRENT.store(self as u8 + 1, Ordering::Relaxed);
+    }
+
+    /// Makes `self` this thread's language until the guard drops, then restores the
+    /// previous one (for tests and one-off renders).
+    #[must_use]
+    pub fn scoped(self) -> LangGuard {
+        let previous = SCOPED.with(|s| s.replace(Some(self)));
+        LangGuard { previous }
+    }
+
+    /// `en` or `zh` of this language.
+    #[must_use]
+    pub fn pick<T>(self, en: T, zh: T) -> T {
+        match self {
+            Lang::En => en,
+            Lang::Zh => zh,
+        }
+    }
+}
+
+impl std::fmt::Display for Lang {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.code())
+    }
+}
+
+impl std::str::FromStr for Lang {
+    type Err = LangError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "en" => Ok(Lang::En),
+            "zh" => Ok(Lang::Zh),
+            other => Err(LangError::Flag(other.to_string())),
+        }
+    }
+}
+
+/// Restores the previous language when dropped ([`Lang::scoped`]).
+#[derive(Debug)]
+pub struct LangGuard {
+    previous: Option<Lang>,
+}
+
+impl Drop for LangGuard {
+    fn drop(&mut self) {
+        SCOPED.with(|s| s.set(self.previous));
+    }
+}
+
+/// A language that cannot be used.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum LangError {
+    /// `--lang` names no language.
+    #[error("--lang '{0}': expected en or zh / 应为 en 或 zh")]
+    Flag(String),
+    /// `PPO_TUTOR_LANG` names no language.
+    #[error(
+        "PPO_TUTOR_LANG='{0}': expected en or zh (unset it to follow the locale) / 应为 en 或 zh（不设置则跟随系统语言）"
+    )]
+    Env(String),
+}
+
+/// How many terminal columns `text` takes: a CJK character takes two.
+#[must_use]
+pub fn width(text: &str) -> usize {
+    unicode_width::UnicodeWidthStr::width(text)
+}
+
+/// `text` followed by spaces up to `columns` terminal columns (`{:<n}` by display width;
+/// unchanged if wider).
+#[must_use]
+pub fn pad_right(text: &str, columns: usize) -> String {
+    format!("{text}{}", " ".repeat(columns.saturating_sub(width(text))))
+}
+
+/// `text` after spaces up to `columns` terminal columns (`{:>n}` by display width;
+/// unchanged if wider).
+#[must_use]
+pub fn pad_left(text: &str, columns: usize) -> String {
+    format!("{}{text}", " ".repeat(columns.saturating_sub(width(text))))
+}
+
+/// `en` or `zh`, whichever is the current language.
+#[must_use]
+pub fn t(en: &'static str, zh: &'static str) -> &'static str {
+    Lang::current().pick(en, zh)
+}
+
+/// `format!` in the current language: `tr!("{n} episodes", "{n} 个回合")`, both strings
+/// with the same arguments (inline names or trailing arguments, as in `format!`).
+#[macro_export]
+macro_rules! tr {
+    ($en:literal, $zh:literal $(,)?) => {
+        match $crate::i18n::Lang::current() {
+            $crate::i18n::Lang::En => format!($en),
+            $crate::i18n::Lang::Zh => format!($zh),
+        }
+    };
+    ($en:literal, $zh:literal, $($args:tt)+) => {
+        match $crate::i18n::Lang::current() {
+            $crate::i18n::Lang::En => format!($en, $($args)+),
+            $crate::i18n::Lang::Zh => format!($zh, $($args)+),
+        }
+    };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn env(pairs: &[(&str, &str)]) -> impl Fn(&str) -> Option<String> {
+        let owned: Vec<(String, String)> = pairs
+            .iter()
+            .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
+            .collect();
+        move |k| {
+            owned
+                .iter()
+                .find(|(key, _)| key == k)
+                .map(|(_, v)| v.clone())
+        }
+    }
+
+    #[test]
+    fn the_variable_beats_the_locale_and_the_locale_beats_the_default() {
+        assert_eq!(Lang::detect_from(env(&[])), Ok(Lang::En));
+        assert_eq!(
+            Lang::detect_from(env(&[("LANG", "zh_CN.UTF-8")])),
+            Ok(Lang::Zh)
+        );
+        assert_eq!(
+            Lang::detect_from(env(&[("LANG", "fr_FR.UTF-8")])),
+            Ok(Lang::En)
+        );
+        // LC_ALL overrides LANG, as in every POSIX program.
+        assert_eq!(
+            Lang::detect_from(env(&[("LC_ALL", "en_US.UTF-8"), ("LANG", "zh_CN.UTF-8")])),
+            Ok(Lang::En)
+        );
+        assert_eq!(
+            Lang::detect_from(env(&[("LC_MESSAGES", "zh_TW"), ("LANG", "C")])),
+            Ok(Lang::Zh)
+        );
+        assert_eq!(
+            Lang::detect_from(env(&[("PPO_TUTOR_LANG", "en"), ("LC_ALL", "zh_CN.UTF-8")])),
+            Ok(Lang::En)
+        );
+        assert_eq!(
+            Lang::detect_from(env(&[("PPO_TUTOR_LANG", "zh"), ("LANG", "en_US")])),
+            Ok(Lang::Zh)
+        );
+        assert_eq!(
+            Lang::detect_from(env(&[("PPO_TUTOR_LANG", "de")])),
+            Err(LangError::Env("de".into()))
+        );
+        // Empty counts as unset.
+        assert_eq!(
+            Lang::detect_from(env(&[("PPO_TUTOR_LANG", ""), ("LANG", "zh_CN")])),
+            Ok(Lang::Zh)
+        );
+    }
+
+    #[test]
+    fn tr_formats_in_the_thread_s_language() {
+        let n = 3;
+        let _zh = Lang::Zh.scoped();
+        assert_eq!(crate::tr!("{n} episodes", "{n} 个回合"), "3 个回合");
+        assert_eq!(crate::tr!("{} of {w}", "{} / {w}", 1, w = 2), "1 / 2");
+        {
+            let _en = Lang::En.scoped();
+            assert_eq!(crate::tr!("{} of {w}", "{} / {w}", 1, w = 2), "1 of 2");
+        }
+        assert_eq!(t("quit", "退出"), "退出");
+    }
+
+    #[test]
+    fn padding_counts_a_chinese_character_as_two_columns() {
+        assert_eq!(width("回合 500"), 8);
+        assert_eq!(pad_right("回合", 6), "回合  ");
+        assert_eq!(pad_left("回合", 6), "  回合");
+        assert_eq!(pad_right("episode", 3), "episode");
+    }
+
+    #[test]
+    fn the_flag_takes_exactly_en_or_zh() {
+        assert_eq!("zh".parse::<Lang>(), Ok(Lang::Zh));
+        assert_eq!("en".parse::<Lang>(), Ok(Lang::En));
+        assert!("chinese".parse::<Lang>().is_err());
+    }
+}

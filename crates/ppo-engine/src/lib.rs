@@ -1,0 +1,36 @@
+//! # ppo-engine
+//!
+//! The engine under ppo-tutor's three faces (the terminal app, the notebooks and the graded
+//! exercises): everything that runs, and nothing that draws a terminal, parses a command
+//! line or grades a learner's file.
+//!
+//! - [`env`](mod@env): a native CartPole-v1 and Pendulum-v1 identical to Gymnasium's (same
+//!   states, bit for bit, same seeds).
+//! - [`ppo`]: the agents behind one [`ppo::Agent`](ppo::AgentKind) abstraction: the seed's
+//!   PPO (*Hands-on RL*, `task_PPO.py`) and REINFORCE on CartPole, the book's
+//!   `PPOContinuous` on Pendulum, all on candle with the same numbers as PyTorch.
+//! - [`plot`]: return curves in the terminal and as PNG/SVG figures (plotters).
+//! - [`lesson`]: the course as data (`lessons/`, embedded), code anchors, quizzes, the live
+//!   session that turns a training run into the numbers every face shows, and progress.
+//! - [`notebook`]: what the Jupyter notebooks' cells call (evcxr): snapshots, HTML tables,
+//!   inline SVG, the lab. A notebook depends on this crate alone
+//!   (`:dep ppo-engine = { path = "../crates/ppo-engine" }`), plus `ppo-grade` where its
+//!   lesson has exercises.
+//! - [`i18n`]: the language of what is printed for people (English or Simplified Chinese).
+//!
+//! The engine never imports a face: the terminal app, the notebooks and the graders all
+//! drive the same engine.
+
+pub mod env;
+pub mod i18n;
+pub mod lesson;
+pub mod notebook;
+pub mod plot;
+pub mod ppo;
+
+/// The candle-core the engine is built on, so a notebook cell can write the candle exercise
+/// without a `:dep` of its own: `use ppo_engine::candle_core::{Result, Tensor};`.
+pub use candle_core;
+/// The candle-nn the engine is built on (`ppo_engine::candle_nn::ops::log_softmax`, ...),
+/// for the same reason.
+pub use candle_nn;

@@ -1,0 +1,184 @@
+//! Every word a plot shows, in both languages (the current one: [`Lang::current`]).
+//!
+//! The figures ([`file`](super::file)) and the character plots ([`terminal`](super::terminal))
+//! take their labels from here, and so do the titles the commands give them, so that one
+//! list, [`all`], holds every Chinese label a figure can show: `tests/plot_zh.rs` checks
+//! that the bundled Chinese font (`assets/fonts/`) has a glyph for each of its characters.
+//!
+//! ```
+//! use ppo_engine::i18n::Lang;
+//! use ppo_engine::plot::labels;
+//!
+//! let _zh = Lang::Zh.scoped();
+//! assert_eq!(labels::episodes(), "回合");
+//! assert_eq!(labels::moving_average(), "移动平均（9 回合）");
+//! ```
+
+use super::SMOOTHING_WINDOW;
+use crate::i18n::{Lang, t};
+use crate::tr;
+
+/// The x axis: `Episodes`, `回合`.
+#[must_use]
+pub fn episodes() -> &'static str {
+    t("Episodes", "回合")
+}
+
+/// The y axis: `Returns`, `回报`.
+#[must_use]
+pub fn returns_axis() -> &'static str {
+    t("Returns", "回报")
+}
+
+/// The legend of the raw returns: `returns`, `回报`.
+#[must_use]
+pub fn returns() -> &'static str {
+    t("returns", "回报")
+}
+
+/// The legend of the smoothed curve: `moving average (9)`, `移动平均（9 回合）`.
+#[must_use]
+pub fn moving_average() -> String {
+    tr!(
+        "moving average ({w})",
+        "移动平均（{w} 回合）",
+        w = SMOOTHING_WINDOW
+    )
+}
+
+/// The legend of the band of several seeds.
+#[must_use]
+pub fn band(seeds: usize) -> String {
+    tr!(
+        "lowest to highest of {seeds} seeds",
+        "{seeds} 个随机种子的最低到最高"
+    )
+}
+
+/// The legend of the seeds' mean curve.
+#[must_use]
+pub fn mean_over_seeds() -> &'static str {
+    t("mean over seeds", "各随机种子的均值")
+}
+
+/// The legend of one arm of a lab experiment (`label` is the arm's own label).
+#[must_use]
+pub fn arm(label: &str, seeds: usize) -> String {
+    tr!(
+        "{label} (mean of {seeds} seeds, band min–max)",
+        "{label}（{seeds} 个随机种子的均值，阴影为最低到最高）"
+    )
+}
+
+/// The clip chart's caption: `ε` (shown with 6 decimals at most: it usually comes from an
+/// f32) and how many rows of the batch are drawn.
+#[must_use]
+pub fn clip_caption(eps: f64, rows: usize) -> String {
+    let eps = (eps * 1e6).round() / 1e6;
+    tr!(
+        "L^CLIP for a unit advantage, ε = {eps}; {rows} rows of the batch",
+        "单位优势值下的 L^CLIP，ε = {eps}；本批次的 {rows} 行"
+    )
+}
+
+/// The clip chart's x axis.
+#[must_use]
+pub fn ratio_axis() -> &'static str {
+    t(
+        "ratio r = π_θ(a|s) / π_θ_old(a|s)",
+        "比率 r = π_θ(a|s) / π_θ_old(a|s)",
+    )
+}
+
+/// The clip chart's y axis (a formula: the same in both languages).
+#[must_use]
+pub fn clip_axis() -> &'static str {
+    "min(surr1, surr2) / |A|"
+}
+
+/// The title of one run's figure (`ppo-tutor train --plot`): `PPO on CartPole-v1`.
+#[must_use]
+pub fn return_title(env: &str) -> String {
+    tr!("PPO on {env}", "{env} 上的 PPO")
+}
+
+/// The title of several seeds' figure (`ppo-tutor train --seeds … --plot`).
+#[must_use]
+pub fn band_title(env: &str, seeds: usize) -> String {
+    tr!(
+        "PPO on {env}, {seeds} seeds",
+        "{env} 上的 PPO，{seeds} 个随机种子"
+    )
+}
+
+/// The title of a lab experiment's figure (`ppo-tutor lab NAME --plot`, the notebooks).
+#[must_use]
+pub fn lab_title(experiment: &str, seeds: usize) -> String {
+    tr!(
+        "lab {experiment}: {seeds} seeds",
+        "实验 {experiment}：{seeds} 个随机种子"
+    )
+}
+
+/// The character plot's legend of one run.
+#[must_use]
+pub fn ascii_returns() -> &'static str {
+    t(
+        "Returns  (. per episode, * moving average)",
+        "回报（. 为每回合的值，* 为移动平均）",
+    )
+}
+
+/// The character plot's legend of several seeds.
+#[must_use]
+pub fn ascii_band(seeds: usize) -> String {
+    tr!(
+        "Moving average of the returns over {seeds} seeds  (* mean, : lowest to highest seed)",
+        "{seeds} 个随机种子的回报移动平均（* 为均值，: 为最低到最高）"
+    )
+}
+
+/// The character plot's legend of one arm against the base arm.
+#[must_use]
+pub fn ascii_versus(arm: &str, base: &str, seeds: usize) -> String {
+    tr!(
+        "{arm} (* mean, : lowest to highest of {seeds} seeds) against {base} (o mean)",
+        "{arm}（* 为均值，: 为 {seeds} 个随机种子的最低到最高）对比 {base}（o 为均值）"
+    )
+}
+
+/// Every label above in `lang`, with sample arguments (environment names, seed counts,
+/// arm labels and numbers stand for those a run gives): the text a figure can show.
+#[must_use]
+pub fn all(lang: Lang) -> Vec<String> {
+    let _lang = lang.scoped();
+    let mut labels: Vec<String> = [
+        episodes(),
+        returns_axis(),
+        returns(),
+        mean_over_seeds(),
+        ratio_axis(),
+        clip_axis(),
+        ascii_returns(),
+    ]
+    .into_iter()
+    .map(String::from)
+    .collect();
+    labels.extend([
+        moving_average(),
+        band(5),
+        arm("ε = 0.2", 5),
+        clip_caption(f64::from(0.2_f32), 64),
+        clip_caption(-0.05, 1234),
+        return_title("CartPole-v1"),
+        band_title("Pendulum-v1", 10),
+        lab_title("target-kl", 3),
+        ascii_band(5),
+        ascii_versus("ε = 0.05", "ε = 0.2", 5),
+        "A > 0".into(),
+        "A < 0".into(),
+        // Tick labels.
+        "-0.123456789 1e-4 1e5".into(),
+    ]);
+    labels
+}

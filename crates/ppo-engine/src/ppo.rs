@@ -1,0 +1,140 @@
+//! The seed's PPO (*Hands-on RL* chapter 12, `task_PPO.py` + `rl_utils.py`) on candle.
+//!
+//! Read it top to bottom in the seed's order:
+//!
+//! - [`config`]: [`PpoConfig`], whose `Default` is the seed's hyper-parameters.
+//! - [`model`]: [`PolicyNet`] `π(a|s)` and [`ValueNet`] `V(s)`, initialised like PyTorch.
+//! - [`ops`]: `relu` and the bias add as candle ops with a lean backward pass.
+//! - [`adam`]: [`Adam`], `torch.optim.Adam` step for step.
+//! - [`advantage`]: GAE, `compute_advantage` in f32 as numpy runs it.
+//! - [`agent`]: [`Agent`] with `take_action` and `update`, which returns an [`UpdateTrace`].
+//! - [`trace`]: the recorded intermediates every face displays.
+//! - [`gradient`]: the policy gradient and PPO's surrogate have one gradient at θ_old, computed.
+//! - [`train`](mod@train): `train_on_policy_agent` as a step-by-step [`Trainer`].
+//! - [`moving_average`](mod@moving_average): `rl_utils.moving_average`, for the return curve.
+//! - [`seeds`]: one configuration over several seeds in parallel, and the band of their curves.
+//! - [`lab`]: the clip lab's experiments, one knob changed at a time over several seeds.
+//! - [`checkpoint`]: saving and loading an agent as safetensors with PyTorch's names.
+//! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
+//! - [`continuous`]: the book's `PPOContinuous` for Pendulum, a Gaussian policy on the same
+//!   critic, GAE, clipped surrogate and Adam ([`PpoContinuous`]), trained by
+//!   [`ContinuousTrainer`].
+//!
+//! The update runs on candle tensors with autograd; acting (one observation at a time,
+//! 200k times per run) runs the same two matrix products in plain Rust on a copy of the
+//! actor's weights, which is an order of magnitude faster than a tensor round trip.
+
+pub mod adam;
+pub mod advantage;
+pub mod checkpoint;
+pub mod continuous;
+pub mod discrete;
+pub(crate) mod kernels;
+pub mod lab;
+pub mod model;
+pub mod moving_average;
+pub mod ops;
+pub mod replay_file;
+pub mod seeds;
+pub mod train;
+
+// The discrete agent's modules keep their old paths (`ppo::agent`, `ppo::config`, ...).
+pub use discrete::{ACTION_DIM, STATE_DIM, agent, config, gradient, replay, trace};
+
+pub use adam::Adam;
+pub use advantage::{compute_advantage, normalize_advantage};
+pub use agent::{Agent, Losses, Transitions};
+pub use checkpoint::CheckpointKind;
+pub use config::{Algorithm, PpoConfig};
+pub use continuous::{
+    ContinuousEpisodeReport, ContinuousEpochTrace, ContinuousTrainer, ContinuousTransitions,
+    ContinuousUpdateTrace, PolicyNetContinuous, PpoContinuous, PpoContinuousConfig,
+    train_continuous,
+};
+pub use gradient::{SurrogateGradients, surrogate_gradients};
+pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
+pub use moving_average::moving_average;
+pub use trace::{EarlyStop, EpochTrace, UpdateTrace};
+pub use train::{EpisodeReport, TrainSummary, Trainer, train};
+
+use crate::env::EnvError;
+
+/// What can go wrong in the PPO engine. Messages say what, where, and what to do.
+#[derive(Debug, thiserror::Error)]
+pub enum PpoError {
+    /// A hyper-parameter outside its range.
+    #[error("invalid {field} = {value}: expected {expected}")]
+    InvalidConfig {
+        /// The field's name as in [`PpoConfig`] (and the `--flag` of `ppo-tutor train`).
+        field: &'static str,
+        /// The value given.
+        value: String,
+        /// The accepted range.
+        expected: &'static str,
+    },
+    /// Training produced a NaN or infinite number.
+    #[error(
+        "training diverged at episode {episode}: {what}; lower the learning rates or enable --max-grad-norm"
+    )]
+    Diverged {
+        /// The episode (0-based) whose acting or update hit the non-finite value.
+        episode: usize,
+        /// Which quantity went non-finite, and where.
+        what: String,
+    },
+    /// A non-finite value inside one update or action (the trainer adds the episode).
+    #[error("{0} is not finite (NaN or infinite)")]
+    NonFinite(String),
+    /// An update was asked for an empty batch.
+    #[error("the batch is empty: an update needs at least one transition")]
+    EmptyBatch,
+    /// A batch whose columns have different lengths or hold invalid values.
+    #[error("invalid batch: {0}")]
+    InvalidBatch(String),
+    /// A key missing from a replay or checkpoint file.
+    #[error("{file}: missing key '{key}' (expected {expected})")]
+    MissingKey {
+        /// The file read.
+        file: String,
+        /// The key's path, like `cases[0].batch.states`.
+        key: String,
+        /// What the key should hold, with its shape.
+        expected: String,
+    },
+    /// A value of the wrong shape or type in a replay or checkpoint file.
+    #[error("{file}: '{key}' has {got}, expected {expected}")]
+    WrongShape {
+        /// The file read.
+        file: String,
+        /// The key's path, like `cases[0].weights_before.actor.fc1.weight`.
+        key: String,
+        /// What was expected, with its shape.
+        expected: String,
+        /// What the file holds.
+        got: String,
+    },
+    /// A file that could not be read or parsed at all.
+    #[error("{file}: {reason}")]
+    File {
+        /// The file.
+        file: String,
+        /// What went wrong.
+        reason: String,
+    },
+    /// `moving_average` needs an odd window no longer than the series plus one.
+    #[error(
+        "moving_average: window {window} does not fit {len} values (needs an odd window <= len + 1)"
+    )]
+    InvalidWindow {
+        /// The window asked for.
+        window: usize,
+        /// The series length.
+        len: usize,
+    },
+    /// The environment refused a step.
+    #[error(transparent)]
+    Env(#[from] EnvError),
+    /// A candle tensor operation failed (a bug: shapes are checked before).
+    #[error("tensor operation failed: {0}")]
+    Candle(#[from] candle_core::Error),
+}

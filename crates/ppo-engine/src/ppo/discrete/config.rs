@@ -1,0 +1,270 @@
+//! The hyper-parameters: [`PpoConfig::default`] is the seed's `__main__` block.
+//!
+//! The seed has no tricks beyond the clipped surrogate and GAE. CleanRL-style extras
+//! (bootstrapping on truncation, advantage normalisation, an entropy bonus, gradient
+//! clipping, early stopping at a target KL) are opt-in switches, all off by default, so the default run is the seed's.
+//! So are the two switches the lessons compare PPO against: no clip at all, and plain
+//! REINFORCE with a baseline.
+
+use serde::{Deserialize, Serialize};
+
+use crate::env::EnvId;
+use crate::ppo::PpoError;
+
+/// Everything that sets one PPO run apart from another.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PpoConfig {
+    /// Adam learning rate of the actor (policy network); seed: `1e-3`.
+    pub actor_lr: f64,
+    /// Adam learning rate of the critic (value network); seed: `1e-2`.
+    pub critic_lr: f64,
+    /// Width of the hidden layer of both networks; seed: 128.
+    pub hidden_dim: usize,
+    /// Discount factor γ in the TD target; seed: 0.98.
+    pub gamma: f64,
+    /// GAE's λ (the seed spells it `lmbda`); seed: 0.95.
+    pub lmbda: f64,
+    /// Passes over each episode's batch per update; seed: 10.
+    pub epochs: usize,
+    /// Clip range ε of the surrogate: the ratio is clamped to `[1-ε, 1+ε]`; seed: 0.2.
+    pub eps: f64,
+    /// Episodes to train for (one update per episode); seed: 500.
+    pub num_episodes: usize,
+    /// The environment; seed: `CartPole-v1`.
+    #[serde(with = "env_id_serde")]
+    pub env_id: EnvId,
+    /// Use `terminated` (not `terminated or truncated`) in the TD target, so a time-limit
+    /// cut bootstraps from `V(s')`; the seed folds both into `done` (off).
+    pub bootstrap_on_truncation: bool,
+    /// Normalise the advantage to mean 0, std 1 before the epochs (off in the seed).
+    pub normalize_advantage: bool,
+    /// Weight of the policy-entropy bonus subtracted from the actor loss; 0 is off (the seed).
+    pub entropy_coef: f64,
+    /// Clip each network's gradient to this global L2 norm before Adam; `None` is off (the seed).
+    pub max_grad_norm: Option<f64>,
+    /// Stop an update's epochs early once the policy has moved too far, as Spinning Up does:
+    /// before each epoch's step, if `approx_kl > 1.5 · target_kl` the update ends there (both
+    /// networks; Spinning Up keeps training its value function). `None` is off (the seed).
+    #[serde(default)]
+    pub target_kl: Option<f64>,
+    /// Drop the clip: the actor loss is `−mean(ratio · Â)`, the unclipped surrogate, for
+    /// every epoch (off in the seed). `eps` is then unused.
+    #[serde(default)]
+    pub no_clip: bool,
+    /// The update rule: the seed's PPO, or REINFORCE with a baseline for comparison.
+    #[serde(default)]
+    pub algorithm: Algorithm,
+}
+
+/// Which update rule [`crate::ppo::Agent::update`] applies to each episode.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Algorithm {
+    /// The seed's PPO: `epochs` clipped-surrogate steps on each episode.
+    #[default]
+    Ppo,
+    /// REINFORCE with the critic as baseline: one step per episode on
+    /// `−mean(log π(a|s) · (G_t − V(s_t)))`, the critic fitted to the Monte-Carlo return
+    /// `G_t`. No ratio, no clip; `epochs`, `eps`, `lmbda` and `target_kl` are unused.
+    Reinforce,
+}
+
+impl Algorithm {
+    /// The name used on the command line and in JSON (`ppo`, `reinforce`).
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Ppo => "ppo",
+            Self::Reinforce => "reinforce",
+        }
+    }
+}
+
+// ANCHOR: hyper
+impl Default for PpoConfig {
+    /// The seed's hyper-parameters, as `task_PPO.py` sets them.
+    fn default() -> Self {
+        Self {
+            actor_lr: 1e-3,
+            critic_lr: 1e-2,
+            hidden_dim: 128,
+            gamma: 0.98,
+            lmbda: 0.95,
+            epochs: 10,
+            eps: 0.2,
+            num_episodes: 500,
+            env_id: EnvId::CartPoleV1,
+            bootstrap_on_truncation: false,
+            normalize_advantage: false,
+            entropy_coef: 0.0,
+            max_grad_norm: None,
+            target_kl: None,
+            no_clip: false,
+            algorithm: Algorithm::Ppo,
+        }
+    }
+}
+// ANCHOR_END: hyper
+
+impl PpoConfig {
+    /// Checks every field's range.
+    ///
+    /// # Errors
+    /// [`PpoError::InvalidConfig`] naming the first field out of range and its valid range.
+    pub fn validate(&self) -> Result<(), PpoError> {
+        let bad = |field, value: String, expected| {
+            Err(PpoError::InvalidConfig {
+                field,
+                value,
+                expected,
+            })
+        };
+        if !(self.actor_lr.is_finite() && self.actor_lr > 0.0) {
+            return bad(
+                "actor_lr",
+                self.actor_lr.to_string(),
+                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
+            );
+        }
+        if !(self.critic_lr.is_finite() && self.critic_lr > 0.0) {
+            return bad(
+                "critic_lr",
+                self.critic_lr.to_string(),
+                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
+            );
+        }
+        if self.hidden_dim == 0 {
+            return bad(
+                "hidden_dim",
+                "0".into(),
+                crate::i18n::t("at least 1", "至少为 1"),
+            );
+        }
+        if !(self.gamma > 0.0 && self.gamma <= 1.0) {
+            return bad(
+                "gamma",
+                self.gamma.to_string(),
+                crate::i18n::t("a number in (0, 1]", "(0, 1] 内的数"),
+            );
+        }
+        if !(0.0..=1.0).contains(&self.lmbda) {
+            return bad(
+                "lmbda",
+                self.lmbda.to_string(),
+                crate::i18n::t("a number in [0, 1]", "[0, 1] 内的数"),
+            );
+        }
+        if self.epochs == 0 {
+            return bad(
+                "epochs",
+                "0".into(),
+                crate::i18n::t("at least 1", "至少为 1"),
+            );
+        }
+        if !(self.eps > 0.0 && self.eps < 1.0) {
+            return bad(
+                "eps",
+                self.eps.to_string(),
+                crate::i18n::t("a number in (0, 1)", "(0, 1) 内的数"),
+            );
+        }
+        if self.num_episodes == 0 {
+            return bad(
+                "num_episodes",
+                "0".into(),
+                crate::i18n::t("at least 1 episode", "至少 1 个回合"),
+            );
+        }
+        if !(self.entropy_coef.is_finite() && self.entropy_coef >= 0.0) {
+            return bad(
+                "entropy_coef",
+                self.entropy_coef.to_string(),
+                crate::i18n::t(
+                    "a finite number >= 0 (0 turns the bonus off)",
+                    "大于等于 0 的有限数（0 表示关闭熵奖励）",
+                ),
+            );
+        }
+        if let Some(norm) = self.max_grad_norm
+            && !(norm.is_finite() && norm > 0.0)
+        {
+            return bad(
+                "max_grad_norm",
+                norm.to_string(),
+                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
+            );
+        }
+        if let Some(kl) = self.target_kl
+            && !(kl.is_finite() && kl > 0.0)
+        {
+            return bad(
+                "target_kl",
+                kl.to_string(),
+                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// `EnvId` as Gymnasium's id string in JSON.
+mod env_id_serde {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    use crate::env::EnvId;
+
+    pub fn serialize<S: Serializer>(id: &EnvId, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(id.as_str())
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<EnvId, D::Error> {
+        let s = String::deserialize(d)?;
+        s.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_is_valid_and_is_the_seed() {
+        let c = PpoConfig::default();
+        assert!(c.validate().is_ok());
+        assert_eq!(
+            (c.actor_lr, c.critic_lr, c.gamma, c.lmbda),
+            (1e-3, 1e-2, 0.98, 0.95)
+        );
+        assert_eq!((c.hidden_dim, c.epochs, c.num_episodes), (128, 10, 500));
+    }
+
+    #[test]
+    fn out_of_range_fields_are_named() {
+        type Case = (fn(&mut PpoConfig), &'static str);
+        let cases: [Case; 8] = [
+            (|c| c.eps = 0.0, "eps"),
+            (|c| c.eps = 1.0, "eps"),
+            (|c| c.gamma = 0.0, "gamma"),
+            (|c| c.gamma = 1.01, "gamma"),
+            (|c| c.actor_lr = 0.0, "actor_lr"),
+            (|c| c.critic_lr = -1.0, "critic_lr"),
+            (|c| c.num_episodes = 0, "num_episodes"),
+            (|c| c.gamma = f64::NAN, "gamma"),
+        ];
+        for (set, name) in cases {
+            let mut c = PpoConfig::default();
+            set(&mut c);
+            let err = c
+                .validate()
+                .err()
+                .map(|e| e.to_string())
+                .unwrap_or_default();
+            assert!(err.contains(name), "{name}: {err}");
+        }
+        let c = PpoConfig {
+            gamma: 1.0,
+            ..PpoConfig::default()
+        };
+        assert!(c.validate().is_ok(), "gamma = 1 is allowed");
+    }
+}

@@ -1,0 +1,449 @@
+//! Re-running a recorded PyTorch update: how anyone checks our numbers against PyTorch.
+//!
+//! The input has the schema of `ppo_update_pytorch.json` (made by `ppo_fixtures.py`):
+//!
+//! ```text
+//! {"cases": [{"hyper": {"actor_lr", "critic_lr", "gamma", "lmbda", "epochs", "eps", "hidden_dim"},
+//!             "weights_before": {"actor.fc1.weight": (H, 4), ..., "critic.fc2.bias": (1)},
+//!             "batch": {"states": (N, 4), "actions": (N), "rewards": (N),
+//!                       "next_states": (N, 4), "dones": (N)}}, ...]}
+//! ```
+//!
+//! Each case runs [`Agent::update`] from `weights_before` on `batch` with fresh Adam state,
+//! and [`ReplayOutput`] holds what the fixture's `expected` and `weights_after` hold, with
+//! the same key names and shapes (column tensors as `(N, 1)` lists of one-element lists).
+//!
+//! The continuous agent's fixture (`ppo_continuous_update_pytorch.json`, the book's
+//! `PPOContinuous` on Pendulum) has the same layout with a Gaussian actor
+//! (`actor.fc_mu`, `actor.fc_std`); [`replay_file::parse_any_replay`](super::replay_file::parse_any_replay)
+//! tells the two apart by those keys and [`continuous::replay`](super::continuous::replay) runs it.
+
+use serde::Serialize;
+use serde_json::{Map, Value};
+
+use super::{Agent, PpoConfig, Transitions};
+use crate::ppo::PpoError;
+use crate::ppo::checkpoint::parameter_shapes;
+use crate::ppo::model::{NamedWeights, WeightTensor};
+
+/// One case to replay.
+#[derive(Debug, Clone)]
+pub struct ReplayCase {
+    /// The hyper-parameters from `hyper` (the rest of the config is the seed's default).
+    pub config: PpoConfig,
+    /// `weights_before`.
+    pub weights_before: NamedWeights,
+    /// `batch`.
+    pub batch: Transitions,
+}
+
+/// One replayed case, in the fixture's key names and shapes.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReplayOutput {
+    /// `(N, 1)`.
+    pub td_target: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub td_delta: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub advantage: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub old_log_probs: Vec<[f32; 1]>,
+    /// One per epoch.
+    pub epochs: Vec<ReplayEpoch>,
+    /// Every parameter after the update, nested lists in PyTorch's layout.
+    pub weights_after: Map<String, Value>,
+}
+
+/// One epoch of a replayed case.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReplayEpoch {
+    /// `(N, 1)`.
+    pub ratio: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub surr1: Vec<[f32; 1]>,
+    /// `(N, 1)`.
+    pub surr2: Vec<[f32; 1]>,
+    /// Scalar.
+    pub actor_loss: f32,
+    /// Scalar.
+    pub critic_loss: f32,
+}
+
+/// Parses a replay file's text; `file` names it in errors.
+///
+/// # Errors
+/// [`PpoError::File`] for text that is not JSON; [`PpoError::MissingKey`] /
+/// [`PpoError::WrongShape`] naming the key path (like `cases[0].batch.states`) and the
+/// expected shape.
+pub fn parse_replay(text: &str, file: &str) -> Result<Vec<ReplayCase>, PpoError> {
+    let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
+        file: file.into(),
+        reason: format!("not valid JSON ({e})"),
+    })?;
+    let r = Reader { file };
+    let cases = r.array(
+        r.key(&root, "", "cases", "a list of cases")?,
+        "cases",
+        "a list of cases",
+    )?;
+    cases
+        .iter()
+        .enumerate()
+        .map(|(i, case)| r.case(case, &format!("cases[{i}]")))
+        .collect()
+}
+
+/// Runs one case: the update from `weights_before` with fresh Adam state.
+///
+/// # Errors
+/// [`PpoError::NonFinite`] when the update produces NaN; shape errors cannot happen after
+/// [`parse_replay`].
+pub fn replay_case(case: &ReplayCase) -> Result<ReplayOutput, PpoError> {
+    let mut agent = Agent::from_weights(&case.config, &case.weights_before, 0, "weights_before")?;
+    let trace = agent.update(&case.batch)?;
+    let col = |v: &[f32]| v.iter().map(|&x| [x]).collect::<Vec<_>>();
+    let mut weights_after = Map::new();
+    for (name, w) in agent.weights()? {
+        weights_after.insert(name, nested(&w));
+    }
+    Ok(ReplayOutput {
+        td_target: col(&trace.td_target),
+        td_delta: col(&trace.td_delta),
+        advantage: col(&trace.advantage),
+        old_log_probs: col(&trace.old_log_probs),
+        epochs: trace
+            .epochs
+            .iter()
+            .map(|e| ReplayEpoch {
+                ratio: col(&e.ratio),
+                surr1: col(&e.surr1),
+                surr2: col(&e.surr2),
+                actor_loss: e.actor_loss,
+                critic_loss: e.critic_loss,
+            })
+            .collect(),
+        weights_after,
+    })
+}
+
+/// A weight as nested JSON lists: `(out, in)` rows for a matrix, a flat list for a bias.
+pub(crate) fn nested(w: &WeightTensor) -> Value {
+    let num = |x: &f32| Value::from(f64::from(*x));
+    match w.shape.as_slice() {
+        [_, cols] if *cols > 0 => Value::Array(
+            w.data
+                .chunks(*cols)
+                .map(|row| Value::Array(row.iter().map(num).collect()))
+                .collect(),
+        ),
+        _ => Value::Array(w.data.iter().map(num).collect()),
+    }
+}
+
+/// Reads JSON values, naming the key path and expected shape in every error.
+pub(crate) struct Reader<'a> {
+    /// The file's name, for error messages.
+    pub(crate) file: &'a str,
+}
+
+impl Reader<'_> {
+    fn missing(&self, key: String, expected: &str) -> PpoError {
+        PpoError::MissingKey {
+            file: self.file.into(),
+            key,
+            expected: expected.into(),
+        }
+    }
+
+    pub(crate) fn wrong(&self, key: &str, expected: &str, got: &Value) -> PpoError {
+        let got = match got {
+            Value::Array(a) => format!("a list of {} entries", a.len()),
+            Value::Object(_) => "an object".into(),
+            Value::String(_) => "a string".into(),
+            Value::Null => "null".into(),
+            other => format!("{other}"),
+        };
+        PpoError::WrongShape {
+            file: self.file.into(),
+            key: key.into(),
+            expected: expected.into(),
+            got,
+        }
+    }
+
+    pub(crate) fn key<'v>(
+        &self,
+        v: &'v Value,
+        path: &str,
+        key: &str,
+        expected: &str,
+    ) -> Result<&'v Value, PpoError> {
+        let full = if path.is_empty() {
+            key.to_string()
+        } else {
+            format!("{path}.{key}")
+        };
+        v.get(key).ok_or_else(|| self.missing(full, expected))
+    }
+
+    pub(crate) fn array<'v>(
+        &self,
+        v: &'v Value,
+        path: &str,
+        expected: &str,
+    ) -> Result<&'v Vec<Value>, PpoError> {
+        v.as_array().ok_or_else(|| self.wrong(path, expected, v))
+    }
+
+    pub(crate) fn number(&self, v: &Value, path: &str, expected: &str) -> Result<f64, PpoError> {
+        v.as_f64().ok_or_else(|| self.wrong(path, expected, v))
+    }
+
+    /// A list of `len` numbers (`len` None: any length).
+    pub(crate) fn floats(
+        &self,
+        v: &Value,
+        path: &str,
+        len: Option<usize>,
+        expected: &str,
+    ) -> Result<Vec<f32>, PpoError> {
+        let a = self.array(v, path, expected)?;
+        if len.is_some_and(|n| n != a.len()) {
+            return Err(self.wrong(path, expected, v));
+        }
+        a.iter()
+            .enumerate()
+            .map(|(i, x)| Ok(self.number(x, &format!("{path}[{i}]"), "a number")? as f32))
+            .collect()
+    }
+
+    fn case(&self, case: &Value, path: &str) -> Result<ReplayCase, PpoError> {
+        let config = self.hyper(
+            self.key(case, path, "hyper", HYPER)?,
+            &format!("{path}.hyper"),
+        )?;
+        let wpath = format!("{path}.weights_before");
+        let weights = self.key(
+            case,
+            path,
+            "weights_before",
+            "the eight actor./critic. tensors",
+        )?;
+        let weights_before = self.weights(weights, &wpath, config.hidden_dim)?;
+        let batch = self.batch(
+            self.key(case, path, "batch", BATCH)?,
+            &format!("{path}.batch"),
+        )?;
+        Ok(ReplayCase {
+            config,
+            weights_before,
+            batch,
+        })
+    }
+
+    fn hyper(&self, h: &Value, path: &str) -> Result<PpoConfig, PpoError> {
+        let num = |key: &str, expected: &str| -> Result<f64, PpoError> {
+            self.number(
+                self.key(h, path, key, expected)?,
+                &format!("{path}.{key}"),
+                expected,
+            )
+        };
+        let count = |key: &str| -> Result<usize, PpoError> {
+            let expected = "a positive integer";
+            let v = self.key(h, path, key, expected)?;
+            v.as_u64()
+                .and_then(|n| usize::try_from(n).ok())
+                .ok_or_else(|| self.wrong(&format!("{path}.{key}"), expected, v))
+        };
+        let config = PpoConfig {
+            actor_lr: num("actor_lr", "a number > 0")?,
+            critic_lr: num("critic_lr", "a number > 0")?,
+            gamma: num("gamma", "a number in (0, 1]")?,
+            lmbda: num("lmbda", "a number in [0, 1]")?,
+            eps: num("eps", "a number in (0, 1)")?,
+            epochs: count("epochs")?,
+            hidden_dim: count("hidden_dim")?,
+            ..PpoConfig::default()
+        };
+        config.validate()?;
+        Ok(config)
+    }
+
+    fn weights(&self, w: &Value, path: &str, hidden_dim: usize) -> Result<NamedWeights, PpoError> {
+        self.named_tensors(w, path, parameter_shapes(hidden_dim))
+    }
+
+    /// The tensors `shapes` names, each as nested lists of its shape (`(out, in)` rows).
+    pub(crate) fn named_tensors(
+        &self,
+        w: &Value,
+        path: &str,
+        shapes: impl IntoIterator<Item = (&'static str, Vec<usize>)>,
+    ) -> Result<NamedWeights, PpoError> {
+        let mut out = NamedWeights::new();
+        for (name, shape) in shapes {
+            let key = format!("{path}.{name}");
+            let expected = format!("a list of shape {shape:?}");
+            let v = self.key(w, path, name, &expected)?;
+            let data = match shape.as_slice() {
+                [rows, cols] => {
+                    let rows_v = self.array(v, &key, &expected)?;
+                    if rows_v.len() != *rows {
+                        return Err(self.wrong(&key, &expected, v));
+                    }
+                    let mut data = Vec::with_capacity(rows * cols);
+                    for (r, row) in rows_v.iter().enumerate() {
+                        data.extend(self.floats(
+                            row,
+                            &format!("{key}[{r}]"),
+                            Some(*cols),
+                            &expected,
+                        )?);
+                    }
+                    data
+                }
+                _ => self.floats(v, &key, Some(shape.iter().product()), &expected)?,
+            };
+            out.insert(name.to_string(), WeightTensor { shape, data });
+        }
+        Ok(out)
+    }
+
+    fn batch(&self, b: &Value, path: &str) -> Result<Transitions, PpoError> {
+        let column = |key: &str, expected: &str| -> Result<&Vec<Value>, PpoError> {
+            self.array(
+                self.key(b, path, key, expected)?,
+                &format!("{path}.{key}"),
+                expected,
+            )
+        };
+        let actions_v = column("actions", "a list of N actions (0 or 1)")?;
+        let n = actions_v.len();
+        let rows = |key: &str| -> Result<Vec<[f32; 4]>, PpoError> {
+            let expected = format!("a list of shape [{n}, 4] (one observation per action)");
+            let list = column(key, &expected)?;
+            if list.len() != n {
+                return Err(self.wrong(
+                    &format!("{path}.{key}"),
+                    &expected,
+                    &Value::Array(list.clone()),
+                ));
+            }
+            list.iter()
+                .enumerate()
+                .map(|(t, row)| {
+                    let v = self.floats(row, &format!("{path}.{key}[{t}]"), Some(4), &expected)?;
+                    Ok([v[0], v[1], v[2], v[3]])
+                })
+                .collect()
+        };
+        let states = rows("states")?;
+        let next_states = rows("next_states")?;
+        let expected = format!("a list of {n} numbers (one per action)");
+        let rewards = self.floats(
+            self.key(b, path, "rewards", &expected)?,
+            &format!("{path}.rewards"),
+            Some(n),
+            &expected,
+        )?;
+        let dones_expected = format!("a list of {n} booleans (one per action)");
+        let dones_v = column("dones", &dones_expected)?;
+        if dones_v.len() != n {
+            return Err(self.wrong(
+                &format!("{path}.dones"),
+                &dones_expected,
+                &Value::Array(dones_v.clone()),
+            ));
+        }
+        let dones = dones_v
+            .iter()
+            .enumerate()
+            .map(|(t, d)| {
+                d.as_bool()
+                    .ok_or_else(|| self.wrong(&format!("{path}.dones[{t}]"), "true or false", d))
+            })
+            .collect::<Result<Vec<bool>, _>>()?;
+        let actions = actions_v
+            .iter()
+            .enumerate()
+            .map(|(t, a)| match a.as_u64() {
+                Some(a @ 0..=1) => Ok(a as usize),
+                _ => Err(self.wrong(&format!("{path}.actions[{t}]"), "0 or 1", a)),
+            })
+            .collect::<Result<Vec<usize>, _>>()?;
+        if n == 0 {
+            return Err(self.wrong(
+                &format!("{path}.actions"),
+                "at least one transition",
+                &Value::Array(vec![]),
+            ));
+        }
+        Ok(Transitions {
+            states,
+            actions,
+            rewards,
+            next_states,
+            terminated: dones.clone(),
+            dones,
+        })
+    }
+}
+
+const HYPER: &str = "an object with actor_lr, critic_lr, gamma, lmbda, epochs, eps, hidden_dim";
+const BATCH: &str = "an object with states, actions, rewards, next_states, dones";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case_json() -> Value {
+        serde_json::json!({"cases": [{
+            "hyper": {"actor_lr": 1e-3, "critic_lr": 1e-2, "gamma": 0.98, "lmbda": 0.95,
+                      "epochs": 2, "eps": 0.2, "hidden_dim": 2},
+            "weights_before": {
+                "actor.fc1.weight": [[0.1, 0.2, 0.3, 0.4], [-0.1, 0.0, 0.1, 0.2]],
+                "actor.fc1.bias": [0.0, 0.1], "actor.fc2.weight": [[0.5, -0.5], [0.2, 0.1]],
+                "actor.fc2.bias": [0.0, 0.0],
+                "critic.fc1.weight": [[0.1, 0.2, 0.3, 0.4], [-0.1, 0.0, 0.1, 0.2]],
+                "critic.fc1.bias": [0.0, 0.1], "critic.fc2.weight": [[0.5, -0.5]],
+                "critic.fc2.bias": [0.0]},
+            "batch": {"states": [[0.0, 0.1, 0.0, 0.1]], "actions": [1], "rewards": [1.0],
+                      "next_states": [[0.0, 0.2, 0.0, 0.0]], "dones": [true]}}]})
+    }
+
+    #[test]
+    fn a_small_case_replays() -> Result<(), PpoError> {
+        let cases = parse_replay(&case_json().to_string(), "t.json")?;
+        let out = replay_case(&cases[0])?;
+        assert_eq!(out.td_target, vec![[1.0]]); // done: no bootstrap
+        assert_eq!(out.epochs.len(), 2);
+        Ok(())
+    }
+
+    #[test]
+    fn errors_name_the_key_and_shape() {
+        let mut j = case_json();
+        j["cases"][0]["weights_before"]["critic.fc2.weight"] = serde_json::json!([[0.5]]);
+        let err = parse_replay(&j.to_string(), "t.json")
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            err.contains("cases[0].weights_before.critic.fc2.weight[0]") && err.contains("[1, 2]"),
+            "{err}"
+        );
+        let mut j = case_json();
+        if let Some(b) = j["cases"][0]["batch"].as_object_mut() {
+            b.remove("next_states");
+        }
+        let err = parse_replay(&j.to_string(), "t.json")
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            err.contains("missing key 'cases[0].batch.next_states'") && err.contains("[1, 4]"),
+            "{err}"
+        );
+    }
+}

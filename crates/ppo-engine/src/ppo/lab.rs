@@ -1,0 +1,495 @@
+//! The clip lab: one of PPO's knobs changed at a time, every arm trained over the same
+//! seeds, so that a difference between arms is a difference between settings and not the
+//! luck of one seed.
+//!
+//! An [`Experiment`] lists its arms; the first is always the base configuration (the seed's
+//! settings unless the caller changed them). [`run`] trains every `(arm, seed)` pair on a
+//! pool of threads and summarises each arm: the band of its smoothed return curves, each
+//! seed's mean of the last 50 returns, and what the updates did (approx_kl, clip fraction,
+//! the ratios' largest distance from 1, epochs run).
+//!
+//! ```
+//! use ppo_engine::ppo::lab::Experiment;
+//! use ppo_engine::ppo::PpoConfig;
+//!
+//! let arms = Experiment::Eps.arms(&PpoConfig::default());
+//! assert_eq!(arms.len(), 3);
+//! assert_eq!(arms[0].config, PpoConfig::default());
+//! assert!(arms[2].config.no_clip);
+//! ```
+
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
+
+use crate::i18n::{pad_left, pad_right, t};
+use crate::tr;
+use serde::Serialize;
+
+use super::config::{Algorithm, PpoConfig};
+use super::moving_average::smoothed_returns;
+use super::seeds::{Band, SeedError, mean_std, train_jobs};
+use super::train::{EpisodeReport, mean_last};
+
+/// The returns each seed's final score averages.
+pub const LAST: usize = 50;
+
+/// The experiments of the clip lab, and the policy-gradient lesson's comparison.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Experiment {
+    /// The clip range: ε = 0.2 (the seed), 0.05, and no clip at all.
+    Eps,
+    /// Passes over each episode: 10 (the seed), 1 and 40.
+    Epochs,
+    /// The actor's learning rate: 1e-3 (the seed) and ten times that.
+    ActorLr,
+    /// Early stopping: 40 epochs with and without `target_kl = 0.01`, beside the seed.
+    TargetKl,
+    /// PPO (the seed) against REINFORCE with a baseline.
+    Reinforce,
+}
+
+/// One setting of an experiment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Arm {
+    /// How the lesson and the plot name it, e.g. `ε = 0.05`.
+    pub label: String,
+    /// Its configuration.
+    pub config: PpoConfig,
+}
+
+impl Experiment {
+    /// Every experiment, in the order the lessons use them.
+    pub const ALL: [Self; 5] = [
+        Self::Eps,
+        Self::Epochs,
+        Self::ActorLr,
+        Self::TargetKl,
+        Self::Reinforce,
+    ];
+
+    /// The name on the command line and in lessons (`eps`, `epochs`, `actor-lr`,
+    /// `target-kl`, `reinforce`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Eps => "eps",
+            Self::Epochs => "epochs",
+            Self::ActorLr => "actor-lr",
+            Self::TargetKl => "target-kl",
+            Self::Reinforce => "reinforce",
+        }
+    }
+
+    /// The experiment called `name`.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|e| e.name() == name)
+    }
+
+    /// The question the experiment answers.
+    #[must_use]
+    pub fn question(self) -> &'static str {
+        match self {
+            Self::Eps => t(
+                "What does the clip range do, and what happens without a clip?",
+                "截断范围起什么作用？不截断又会怎样？",
+            ),
+            Self::Epochs => t(
+                "How many passes over one episode help, and when do they hurt?",
+                "在一个回合的数据上训练几轮有帮助？什么时候反而有害？",
+            ),
+            Self::ActorLr => t(
+                "What does a ten times larger actor step do to PPO?",
+                "策略网络的步长放大十倍，PPO 会怎样？",
+            ),
+            Self::TargetKl => t(
+                "Can early stopping rescue too many epochs?",
+                "提前停止能挽救轮数过多的训练吗？",
+            ),
+            Self::Reinforce => t(
+                "What do the ratio, the clip and the epochs buy over REINFORCE?",
+                "与 REINFORCE 相比，比率、截断和多轮训练带来了什么？",
+            ),
+        }
+    }
+
+    /// The arms, `base` first (labelled with what it is), then the changed settings.
+    #[must_use]
+    pub fn arms(self, base: &PpoConfig) -> Vec<Arm> {
+        let arm = |label: String, config: PpoConfig| Arm { label, config };
+        let with = |f: &dyn Fn(&mut PpoConfig)| {
+            let mut c = base.clone();
+            f(&mut c);
+            c
+        };
+        let first = |what: String| arm(what, base.clone());
+        match self {
+            Self::Eps => vec![
+                first(format!("ε = {}", base.eps)),
+                arm("ε = 0.05".into(), with(&|c| c.eps = 0.05)),
+                arm(t("no clip", "不截断").into(), with(&|c| c.no_clip = true)),
+            ],
+            Self::Epochs => vec![
+                first(tr!("{} epochs", "{} 轮", base.epochs)),
+                arm(t("1 epoch", "1 轮").into(), with(&|c| c.epochs = 1)),
+                arm(t("40 epochs", "40 轮").into(), with(&|c| c.epochs = 40)),
+            ],
+            Self::ActorLr => vec![
+                first(format!("actor_lr = {:.0e}", base.actor_lr)),
+                arm(
+                    format!("actor_lr = {:.0e}", base.actor_lr * 10.0),
+                    with(&|c| c.actor_lr *= 10.0),
+                ),
+            ],
+            Self::TargetKl => vec![
+                first(tr!("{} epochs", "{} 轮", base.epochs)),
+                arm(t("40 epochs", "40 轮").into(), with(&|c| c.epochs = 40)),
+                arm(
+                    t("40 epochs, target_kl = 0.01", "40 轮，target_kl = 0.01").into(),
+                    with(&|c| {
+                        c.epochs = 40;
+                        c.target_kl = Some(0.01);
+                    }),
+                ),
+            ],
+            Self::Reinforce => vec![
+                first("PPO".into()),
+                arm(
+                    t("REINFORCE + baseline", "REINFORCE + 基线").into(),
+                    with(&|c| c.algorithm = Algorithm::Reinforce),
+                ),
+            ],
+        }
+    }
+}
+
+/// What the updates of one run did, averaged over its updates (the last epoch of each).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct UpdateStats {
+    /// Mean `approx_kl` of the last epoch that stepped.
+    pub approx_kl: f64,
+    /// Mean fraction of rows outside `[1 − ε, 1 + ε]` in the last epoch.
+    pub clip_fraction: f64,
+    /// Mean over updates of the largest `|r − 1|` in the last epoch.
+    pub max_ratio_deviation: f64,
+    /// Mean number of epochs that stepped.
+    pub epochs_run: f64,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Sums {
+    kl: f64,
+    clip: f64,
+    dev: f64,
+    epochs: f64,
+    updates: f64,
+}
+
+impl Sums {
+    fn add(&mut self, report: &EpisodeReport) {
+        let trace = &report.trace;
+        self.updates += 1.0;
+        self.epochs += trace.epochs_run() as f64;
+        if let Some(e) = trace.epochs.last() {
+            self.kl += f64::from(e.approx_kl);
+            self.clip += f64::from(e.clip_fraction);
+            self.dev += e
+                .ratio
+                .iter()
+                .map(|r| f64::from((r - 1.0).abs()))
+                .fold(0.0, f64::max);
+        }
+    }
+
+    fn stats(self) -> UpdateStats {
+        let n = self.updates.max(1.0);
+        UpdateStats {
+            approx_kl: self.kl / n,
+            clip_fraction: self.clip / n,
+            max_ratio_deviation: self.dev / n,
+            epochs_run: self.epochs / n,
+        }
+    }
+}
+
+/// One arm's outcome over the seeds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ArmResult {
+    /// The arm's label.
+    pub label: String,
+    /// Its configuration.
+    pub config: PpoConfig,
+    /// Each seed's returns, in the order of the seeds.
+    pub returns: Vec<Vec<f64>>,
+    /// The band of the seeds' smoothed curves (moving average, window 9).
+    pub band: Band,
+    /// Each seed's mean of its last [`LAST`] returns.
+    pub finals: Vec<f64>,
+    /// Each seed's update statistics.
+    pub updates: Vec<UpdateStats>,
+}
+
+impl ArmResult {
+    /// The mean and sample std of [`Self::finals`].
+    #[must_use]
+    pub fn final_mean_std(&self) -> (f64, f64) {
+        mean_std(&self.finals)
+    }
+
+    /// The update statistics averaged over seeds.
+    #[must_use]
+    pub fn mean_updates(&self) -> UpdateStats {
+        let n = self.updates.len().max(1) as f64;
+        let sum = |f: fn(&UpdateStats) -> f64| self.updates.iter().map(f).sum::<f64>() / n;
+        UpdateStats {
+            approx_kl: sum(|u| u.approx_kl),
+            clip_fraction: sum(|u| u.clip_fraction),
+            max_ratio_deviation: sum(|u| u.max_ratio_deviation),
+            epochs_run: sum(|u| u.epochs_run),
+        }
+    }
+
+    /// The first episode (from 0, as on the plots' x axis) at which the mean smoothed curve
+    /// reaches `level`, if it does.
+    #[must_use]
+    pub fn first_reaching(&self, level: f64) -> Option<usize> {
+        self.band.mean.iter().position(|&v| v >= level)
+    }
+
+    /// The lowest seed's last-50 mean.
+    #[must_use]
+    pub fn worst_final(&self) -> f64 {
+        self.finals.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    /// One sentence the lessons quote: the final score over seeds, the worst seed, and when
+    /// the mean curve reaches 400.
+    #[must_use]
+    pub fn summary(&self) -> String {
+        let (mean, std) = self.final_mean_std();
+        let reach = self.first_reaching(400.0).map_or_else(
+            || t("never reaches 400", "始终没有达到 400").to_string(),
+            |e| tr!("reaches 400 at episode {e}", "在第 {e} 回合达到 400"),
+        );
+        tr!(
+            "{}: {mean:.1} ± {std:.1}, worst seed {:.1}; its mean curve {reach}",
+            "{}：{mean:.1} ± {std:.1}，最差的随机种子 {:.1}；均值曲线{reach}",
+            self.label,
+            self.worst_final()
+        )
+    }
+}
+
+/// A finished experiment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LabResult {
+    /// Which experiment.
+    pub experiment: Experiment,
+    /// The seeds every arm ran.
+    pub seeds: Vec<u64>,
+    /// Episodes per run.
+    pub episodes: usize,
+    /// The arms, base first.
+    pub arms: Vec<ArmResult>,
+}
+
+impl LabResult {
+    /// The result as a table, one row per setting: the mean ± sample std over seeds of each
+    /// seed's last-50 mean, and the update statistics averaged over seeds.
+    #[must_use]
+    pub fn table(&self) -> Vec<String> {
+        let mut lines = vec![format!(
+            "{} {} {:>9} {} {:>8} {}",
+            pad_right(
+                &tr!(
+                    "setting (last {LAST} returns)",
+                    "设置（最后 {LAST} 个回报）"
+                ),
+                30
+            ),
+            pad_left(t("mean ± std", "均值 ± 标准差"), 15),
+            "approx_kl",
+            pad_left(t("clip frac", "截断比例"), 9),
+            "max|r−1|",
+            pad_left(t("epochs", "轮数"), 6)
+        )];
+        for arm in &self.arms {
+            let (mean, std) = arm.final_mean_std();
+            let u = arm.mean_updates();
+            lines.push(format!(
+                "{} {:>15} {:>9.4} {:>9.3} {:>8.3} {:>6.1}",
+                pad_right(&arm.label, 30),
+                format!("{mean:.1} ± {std:.1}"),
+                u.approx_kl,
+                u.clip_fraction,
+                u.max_ratio_deviation,
+                u.epochs_run
+            ));
+        }
+        lines
+    }
+}
+
+/// Runs every arm of `experiment` (built from `base`) once per seed, `threads` runs at a
+/// time. `on_episode(done, total)` counts finished episodes over all runs (from worker
+/// threads), for a progress bar.
+///
+/// # Errors
+/// The first [`SeedError`]: an arm's invalid setting or a diverged run.
+pub fn run(
+    experiment: Experiment,
+    base: &PpoConfig,
+    seeds: &[u64],
+    threads: usize,
+    on_episode: impl Fn(usize, usize) + Sync,
+) -> Result<LabResult, SeedError> {
+    let arms = experiment.arms(base);
+    let jobs: Vec<(&PpoConfig, u64)> = arms
+        .iter()
+        .flat_map(|a| seeds.iter().map(move |&s| (&a.config, s)))
+        .collect();
+    // Runs are deterministic: a (config, seed) trained by an earlier experiment of this
+    // process (the base arm of every experiment, the 40 epochs of two) is not trained again.
+    let keys: Vec<String> = jobs.iter().map(|(c, s)| run_key(c, *s)).collect();
+    let mut found: Vec<Option<Finished>> = {
+        let cache = cache().lock().unwrap_or_else(|p| p.into_inner());
+        keys.iter().map(|k| cache.get(k).cloned()).collect()
+    };
+    let missing: Vec<usize> = (0..jobs.len()).filter(|&i| found[i].is_none()).collect();
+    let todo: Vec<(&PpoConfig, u64)> = missing.iter().map(|&i| jobs[i]).collect();
+    let total: usize = todo.iter().map(|(c, _)| c.num_episodes).sum();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let sums: Mutex<Vec<Sums>> = Mutex::new(vec![Sums::default(); todo.len()]);
+    let runs = train_jobs(&todo, threads, |job, report| {
+        if let Ok(mut s) = sums.lock() {
+            s[job].add(report);
+        }
+        let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        on_episode(n, total);
+    })?;
+    let sums = sums.into_inner().unwrap_or_else(|p| p.into_inner());
+    {
+        let mut cache = cache().lock().unwrap_or_else(|p| p.into_inner());
+        for ((&i, run), s) in missing.iter().zip(runs).zip(sums) {
+            let finished = Finished {
+                returns: run.summary.returns,
+                stats: s.stats(),
+            };
+            cache.insert(keys[i].clone(), finished.clone());
+            found[i] = Some(finished);
+        }
+    }
+    let finished: Vec<Finished> = found.into_iter().flatten().collect();
+    let per_arm = seeds.len();
+    let arms = arms
+        .into_iter()
+        .enumerate()
+        .map(|(k, arm)| {
+            let range = k * per_arm..(k + 1) * per_arm;
+            let returns: Vec<Vec<f64>> = finished[range.clone()]
+                .iter()
+                .map(|r| r.returns.clone())
+                .collect();
+            let smoothed: Vec<Vec<f64>> = returns.iter().map(|r| smoothed_returns(r)).collect();
+            ArmResult {
+                label: arm.label,
+                config: arm.config,
+                band: Band::of(&smoothed),
+                finals: returns.iter().map(|r| mean_last(r, LAST)).collect(),
+                updates: finished[range].iter().map(|r| r.stats).collect(),
+                returns,
+            }
+        })
+        .collect();
+    Ok(LabResult {
+        experiment,
+        seeds: seeds.to_vec(),
+        episodes: base.num_episodes,
+        arms,
+    })
+}
+
+/// One finished run, as the lab keeps it.
+#[derive(Debug, Clone)]
+struct Finished {
+    returns: Vec<f64>,
+    stats: UpdateStats,
+}
+
+/// The runs this process has finished, by [`run_key`].
+fn cache() -> &'static Mutex<HashMap<String, Finished>> {
+    static CACHE: OnceLock<Mutex<HashMap<String, Finished>>> = OnceLock::new();
+    CACHE.get_or_init(|| Mutex::new(HashMap::new()))
+}
+
+/// A run's identity: every setting and the seed.
+fn run_key(config: &PpoConfig, seed: u64) -> String {
+    format!("{seed}:{config:?}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    type TestResult = Result<(), Box<dyn std::error::Error>>;
+
+    #[test]
+    fn every_experiment_changes_one_thing_from_its_base() {
+        let base = PpoConfig::default();
+        for e in Experiment::ALL {
+            let arms = e.arms(&base);
+            assert_eq!(arms[0].config, base, "{}", e.name());
+            assert!(arms.len() >= 2);
+            for a in &arms[1..] {
+                assert_ne!(a.config, base, "{}: {}", e.name(), a.label);
+                assert!(a.config.validate().is_ok(), "{}", a.label);
+            }
+            assert_eq!(Experiment::from_name(e.name()), Some(e));
+        }
+        assert_eq!(Experiment::from_name("clip"), None);
+    }
+
+    #[test]
+    fn a_short_lab_summarises_every_arm_and_seed() -> TestResult {
+        let base = PpoConfig {
+            num_episodes: 12,
+            ..PpoConfig::default()
+        };
+        let calls = std::sync::atomic::AtomicUsize::new(0);
+        let lab = run(Experiment::Eps, &base, &[0, 1], 2, |_, total| {
+            calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            assert_eq!(total, 3 * 2 * 12);
+        })?;
+        assert_eq!(calls.into_inner(), 72);
+        // The same base arm in another experiment comes from the cache: only the two new
+        // settings train, and the base arm's numbers are the same.
+        let calls = std::sync::atomic::AtomicUsize::new(0);
+        let epochs = run(Experiment::Epochs, &base, &[0, 1], 2, |_, total| {
+            calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            assert_eq!(total, 2 * 2 * 12);
+        })?;
+        assert_eq!(calls.into_inner(), 48);
+        assert_eq!(epochs.arms[0].returns, lab.arms[0].returns);
+        assert_eq!(epochs.arms[0].updates, lab.arms[0].updates);
+        assert_eq!(lab.arms.len(), 3);
+        for arm in &lab.arms {
+            assert_eq!(arm.returns.len(), 2);
+            assert_eq!(arm.finals.len(), 2);
+            assert_eq!(arm.band.mean.len(), 12);
+            let u = arm.mean_updates();
+            assert!((u.epochs_run - 10.0).abs() < 1e-12);
+        }
+        // The base arm equals a plain run of each seed.
+        let (alone, _) =
+            crate::ppo::train(base.clone(), 1, |_| std::ops::ControlFlow::Continue(()))?;
+        assert_eq!(lab.arms[0].returns[1], alone.returns);
+        // After nine steps on a batch, the last epoch's ratios have moved off 1 in every arm.
+        assert!(
+            lab.arms
+                .iter()
+                .all(|a| a.mean_updates().max_ratio_deviation > 0.0)
+        );
+        Ok(())
+    }
+}
