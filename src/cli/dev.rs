@@ -42,6 +42,17 @@ pub enum DevCommand {
                       them too. In the repository run:\n  cargo run -- dev notebook-code"
     )]
     NotebookCode,
+    /// Rewrite the markdown cells of notebooks/*.ipynb from the lessons, keeping every code
+    /// cell and output (no evcxr).
+    #[command(
+        long_about = "Rewrite the markdown cells of notebooks/*.ipynb and notebooks/zh/*.ipynb \
+                      from the lessons, keeping every code cell and its saved output: for a \
+                      change of a lesson's text or of the code an anchor quotes, in seconds \
+                      and without evcxr. Refuses a notebook whose code cells differ from its \
+                      recipe (their outputs would be stale: run `dev notebooks`). In the \
+                      repository run:\n  cargo run -- dev notebook-markdown"
+    )]
+    NotebookMarkdown,
 }
 
 /// Arguments of `dev notebooks`.
@@ -60,6 +71,7 @@ pub fn run(args: &DevArgs) -> anyhow::Result<ExitCode> {
     match &args.command {
         DevCommand::Notebooks(args) => notebooks(args),
         DevCommand::NotebookCode => notebook_code(),
+        DevCommand::NotebookMarkdown => notebook_markdown(),
     }
 }
 
@@ -85,6 +97,17 @@ fn notebook_code() -> anyhow::Result<ExitCode> {
 }
 
 /// The message for a build without the notebook runner.
+fn notebook_markdown() -> anyhow::Result<ExitCode> {
+    let root = std::path::Path::new(ROOT);
+    let changed = crate::generator::native::write_markdown(root)?;
+    println!(
+        "{} notebooks changed ({}); check them with `cargo test --test notebook_code`",
+        changed.len(),
+        changed.join(", ")
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
 #[cfg(any(test, not(feature = "notebook-runner")))]
 fn no_runner_message() -> String {
     format!(

@@ -9,7 +9,7 @@ use anyhow::Context;
 use clap::Args;
 
 use crate::i18n::t;
-use crate::lesson::{Course, Environment, RunConfig, Session, Snapshot, anchor};
+use crate::lesson::{Course, RunConfig, Session, Snapshot, anchor};
 use crate::tr;
 
 /// Arguments of `ppo-tutor show`.
@@ -70,10 +70,7 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
         crate::tui::widgets::text::plain(&body, PLAIN_WIDTH)
     );
     if !s.python.is_empty() {
-        let source = match l.env {
-            Environment::CartPole => t("The seed", "原教程代码"),
-            Environment::Pendulum => t("The book", "书中代码"),
-        };
+        let source = capitalised(l.env.source_name());
         let _ = writeln!(
             out,
             "## {source}{}\n{}\n",
@@ -176,6 +173,14 @@ pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
         write!(out, "{}", render_step(&course, index, step, &snapshot))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `text` with its first letter upper-case ("The seed"; Chinese is unchanged).
+fn capitalised(text: &str) -> String {
+    let mut chars = text.chars();
+    chars.next().map_or_else(String::new, |first| {
+        first.to_uppercase().chain(chars).collect()
+    })
 }
 
 #[cfg(test)]

@@ -15,18 +15,19 @@ use serde_json::json;
 use super::args::{SeedList, parse_seed, parse_seeds};
 use crate::env::EnvId;
 use crate::i18n::t;
+use crate::lesson::RunConfig;
 use crate::plot::{ascii_return_plot, save_return_plot, smoothed_returns};
 use crate::ppo::train::mean_last;
 use crate::ppo::{
-    Agent, Algorithm, ContinuousEpisodeReport, EpisodeReport, PpoConfig, PpoContinuous, PpoError,
-    TrainSummary, train, train_continuous,
+    AgentConfig, Algorithm, EpisodeReport, OnPolicyAgent, PpoConfig, PpoError, TrainSummary, train,
 };
+use crate::run::RunVisitor;
 use crate::tr;
 
 pub mod setup;
 mod several;
 
-pub use setup::{Setup, TrainEnv, parse_train_env};
+pub use setup::{TrainEnv, parse_train_env, run_config};
 
 /// Arguments of `ppo-tutor train`; defaults are the seed's on CartPole, the book's on
 /// Pendulum-v1.
@@ -161,7 +162,7 @@ impl TrainArgs {
 /// # Errors
 /// Training diverged, or an output file could not be written.
 pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
-    let setup = match Setup::from_args(args) {
+    let setup = match run_config(args) {
         Ok(setup) => setup,
         Err(err) => {
             eprintln!("{}{err}{}", super::error_prefix(), super::see_help());
@@ -186,19 +187,12 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         return several::run(args, &setup, &seeds.0);
     }
     let mut bars = Bars::new(!args.quiet && std::io::stderr().is_terminal(), !args.quiet);
-    let (summary, agent) = match &setup {
-        Setup::CartPole(config) => train(config.clone(), args.seed, |report| {
-            bars.update(&Progress::from(report));
-            ControlFlow::Continue(())
+    let (summary, agent) = setup
+        .visit(TrainOne {
+            seed: args.seed,
+            bars: &mut bars,
         })
-        .map(|(summary, agent)| (summary, Trained::CartPole(agent))),
-        Setup::Pendulum(config) => train_continuous(config.clone(), args.seed, |report| {
-            bars.update(&Progress::from(report));
-            ControlFlow::Continue(())
-        })
-        .map(|(summary, agent)| (summary, Trained::Pendulum(agent))),
-    }
-    .context(t("training stopped", "训练中止"))?;
+        .context(t("training stopped", "训练中止"))?;
     bars.finish();
 
     let smoothed = smoothed_returns(&summary.returns);
@@ -209,9 +203,7 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
     }
     let mut out = std::io::stdout();
     if let Some(path) = &args.save {
-        agent
-            .save(path)
-            .context(t("saving the agent", "保存智能体"))?;
+        agent(path).context(t("saving the agent", "保存智能体"))?;
         let shown = path.display();
         writeln!(
             out,
@@ -220,7 +212,7 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         )?;
     }
     if let Some(path) = &args.plot {
-        let title = crate::plot::labels::return_title(setup.env());
+        let title = crate::plot::labels::return_title(setup.env_id());
         save_return_plot(path, &title, &summary.returns, &smoothed)?;
         let shown = path.display();
         writeln!(
@@ -235,18 +227,25 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// A trained agent of either kind, to save.
-enum Trained {
-    CartPole(Agent),
-    Pendulum(PpoContinuous),
+/// Saves the trained agent to a file.
+type SaveAgent = Box<dyn FnOnce(&Path) -> Result<(), PpoError>>;
+
+/// Trains one seed of any agent, drawing the progress bars.
+struct TrainOne<'a> {
+    seed: u64,
+    bars: &'a mut Bars,
 }
 
-impl Trained {
-    fn save(&self, path: &Path) -> Result<(), PpoError> {
-        match self {
-            Self::CartPole(agent) => agent.save(path),
-            Self::Pendulum(agent) => agent.save(path),
-        }
+impl RunVisitor for TrainOne<'_> {
+    type Output = Result<(TrainSummary, SaveAgent), PpoError>;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> Self::Output {
+        let bars = self.bars;
+        let (summary, agent) = train(config.clone(), self.seed, |report| {
+            bars.update(&Progress::from(report));
+            ControlFlow::Continue(())
+        })?;
+        Ok((summary, Box::new(move |path| agent.save_to(path))))
     }
 }
 
@@ -254,14 +253,14 @@ impl Trained {
 /// on Pendulum-v1, `book_ppo_continuous.py`'s `mean_last_100`).
 pub(super) fn run_json(
     summary: &TrainSummary,
-    setup: &Setup,
+    setup: &RunConfig,
     seed: u64,
     smoothed: &[f64],
 ) -> serde_json::Value {
     let mut value = json!({
         "episodes": summary.returns.len(),
         "seed": seed,
-        "env": setup.env(),
+        "env": setup.env_id(),
         "env_steps": summary.env_steps,
         "wall_s": summary.wall_s,
         "steps_per_s": summary.steps_per_s(),
@@ -269,10 +268,12 @@ pub(super) fn run_json(
         "peak_rss_mb": peak_rss_mb(),
         "returns": summary.returns,
         "moving_average": smoothed,
-        "config": setup.config_json(),
+        "config": setup,
     });
-    if let Setup::Pendulum(_) = setup {
-        value["mean_last_100"] = json!(summary.mean_last(100));
+    // book_ppo_continuous.py's figure, beside the seed's.
+    let window = setup.env().spec().summary_window;
+    if window != 50 {
+        value[format!("mean_last_{window}")] = json!(summary.mean_last(window));
     }
     value
 }
@@ -288,7 +289,7 @@ pub fn peak_rss_mb() -> Option<f64> {
 
 fn print_summary(
     summary: &TrainSummary,
-    setup: &Setup,
+    setup: &RunConfig,
     seed: u64,
     smoothed: &[f64],
     plot: bool,
@@ -300,11 +301,8 @@ fn print_summary(
         .copied()
         .fold(f64::NEG_INFINITY, f64::max);
     // CartPole's returns are whole numbers; Pendulum's are not.
-    let best = match setup {
-        Setup::CartPole(_) => format!("{best}"),
-        Setup::Pendulum(_) => format!("{best:.1}"),
-    };
-    let (env, episodes, steps) = (setup.env(), summary.returns.len(), summary.env_steps);
+    let best = setup.env().format_return(best);
+    let (env, episodes, steps) = (setup.env_id(), summary.returns.len(), summary.env_steps);
     let (wall, rate) = (summary.wall_s, summary.steps_per_s());
     writeln!(
         out,
@@ -314,7 +312,7 @@ fn print_summary(
             "{env} 上的 PPO，随机种子 {seed}：{episodes} 个回合，环境共 {steps} 步，用时 {wall:.2} 秒（每秒 {rate:.0} 步）"
         )
     )?;
-    let last = setup.last();
+    let last = setup.env().spec().summary_window;
     let (n, mean, mean10) = (
         summary.returns.len().min(last),
         summary.mean_last(last),
@@ -347,20 +345,8 @@ struct Progress {
     episode_return: f64,
 }
 
-impl From<&EpisodeReport> for Progress {
-    fn from(r: &EpisodeReport) -> Self {
-        Self {
-            episode: r.episode,
-            iteration: r.iteration,
-            episode_in_iteration: r.episode_in_iteration,
-            iteration_len: r.iteration_len,
-            episode_return: r.episode_return,
-        }
-    }
-}
-
-impl From<&ContinuousEpisodeReport> for Progress {
-    fn from(r: &ContinuousEpisodeReport) -> Self {
+impl<T> From<&EpisodeReport<T>> for Progress {
+    fn from(r: &EpisodeReport<T>) -> Self {
         Self {
             episode: r.episode,
             iteration: r.iteration,

@@ -451,15 +451,7 @@ fn parse_recipe(text: &str) -> Vec<Piece> {
 
 /// The notebook's first cell.
 fn title_markdown(lesson: &Lesson) -> String {
-    let (engine, engine_zh) = match lesson.env {
-        crate::lesson::Environment::CartPole => {
-            ("the real PPO and CartPole", "真实的 PPO 和 CartPole")
-        }
-        crate::lesson::Environment::Pendulum => (
-            "the real PPOContinuous and Pendulum",
-            "真实的 PPOContinuous 和 Pendulum",
-        ),
-    };
+    let (engine, engine_zh) = lesson.env.spec().engine_name;
     tr!(
         "# Lesson {n}: {title}\n\n{summary}\n\nThis notebook mirrors lesson {n} of the terminal app \
          (`cargo run --release`), on the [evcxr](https://github.com/evcxr/evcxr) Rust \
@@ -488,10 +480,9 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
         step.text(Face::Notebook)
     );
     if !step.python.is_empty() {
-        let source = match (Lang::current(), lesson.env) {
-            (Lang::En, _) => format!("The {}", lesson.env.python_source()),
-            (Lang::Zh, crate::lesson::Environment::CartPole) => "原教程代码".to_string(),
-            (Lang::Zh, crate::lesson::Environment::Pendulum) => "书中代码".to_string(),
+        let source = match Lang::current() {
+            Lang::En => format!("The {}", lesson.env.python_source()),
+            Lang::Zh => lesson.env.source_name().to_string(),
         };
         let _ = write!(
             md,

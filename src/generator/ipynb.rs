@@ -33,7 +33,9 @@ pub struct Outputs {
 
 /// A text as a notebook stores it: a list of lines, each with its `\n` (one empty line for
 /// an empty text).
-fn lines(text: &str) -> Value {
+/// `text` as a notebook field: a list of lines, each but the last ending in `\n`.
+#[must_use]
+pub fn source_lines(text: &str) -> Value {
     let mut out: Vec<String> = text.split_inclusive('\n').map(str::to_string).collect();
     if out.is_empty() {
         out.push(String::new());
@@ -63,7 +65,7 @@ pub fn notebook_json(cells: &[Cell], outputs: &[Option<Outputs>]) -> Value {
             Cell::Markdown(md) => json!({
                 "cell_type": "markdown",
                 "metadata": {},
-                "source": lines(md.trim_end()),
+                "source": source_lines(md.trim_end()),
             }),
             Cell::Code(code) => {
                 count += 1;
@@ -72,7 +74,7 @@ pub fn notebook_json(cells: &[Cell], outputs: &[Option<Outputs>]) -> Value {
                     "execution_count": count,
                     "metadata": {},
                     "outputs": output_json(out.as_ref(), count),
-                    "source": lines(code),
+                    "source": source_lines(code),
                 })
             }
         })
@@ -105,14 +107,14 @@ fn output_json(out: Option<&Outputs>, count: usize) -> Vec<Value> {
         outs.push(json!({
             "name": "stdout",
             "output_type": "stream",
-            "text": lines(&out.stdout),
+            "text": source_lines(&out.stdout),
         }));
     }
     if !out.data.is_empty() {
         let data: serde_json::Map<String, Value> = out
             .data
             .iter()
-            .map(|(k, v)| (k.clone(), lines(v)))
+            .map(|(k, v)| (k.clone(), source_lines(v)))
             .collect();
         outs.push(json!({
             "data": data,

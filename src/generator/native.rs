@@ -408,6 +408,61 @@ pub fn write_all(root: &Path) -> anyhow::Result<Vec<String>> {
     Ok(written)
 }
 
+/// Rewrites the markdown cells of every committed notebook (both languages) from the
+/// lessons, keeping each code cell and every output as they are: for a change of a lesson's
+/// text or of the code an anchor quotes, without executing anything. Returns the notebook
+/// files it changed.
+///
+/// # Errors
+/// When a notebook's code cells differ from the ones its recipe makes (their outputs would
+/// be stale: run `dev notebooks` instead), or a file cannot be read or written.
+pub fn write_markdown(root: &Path) -> anyhow::Result<Vec<String>> {
+    use anyhow::{Context as _, ensure};
+    let mut changed = Vec::new();
+    for lang in Lang::ALL {
+        let _lang = lang.scoped();
+        let course = Course::embedded()?;
+        for lesson in &course.lessons {
+            let folder = super::build::folder(lesson);
+            let cells = super::build::notebook_cells(root, lesson)?;
+            let name = super::build::notebook_file(&folder);
+            let path = root.join(&name);
+            let text = std::fs::read_to_string(&path).with_context(|| format!("reading {name}"))?;
+            let mut nb: serde_json::Value =
+                serde_json::from_str(&text).with_context(|| format!("parsing {name}"))?;
+            let saved = nb["cells"]
+                .as_array_mut()
+                .map_or(&mut [][..], Vec::as_mut_slice);
+            let fix = format!("run `{}` {folder}", super::build::REGENERATE);
+            ensure!(
+                saved.len() == cells.len(),
+                "{name} has {} cells, its lesson and recipe make {}: {fix}",
+                saved.len(),
+                cells.len()
+            );
+            for (i, (cell, made)) in saved.iter_mut().zip(&cells).enumerate() {
+                match made {
+                    super::build::Cell::Markdown(md) => {
+                        ensure!(cell["cell_type"] == "markdown", "{name}, cell {i}: {fix}");
+                        cell["source"] = super::ipynb::source_lines(md.trim_end());
+                    }
+                    super::build::Cell::Code(code) => ensure!(
+                        cell["cell_type"] == "code"
+                            && super::ipynb::joined(&cell["source"]) == *code,
+                        "{name}, code cell {i} differs from its recipe (its outputs would be stale): {fix}"
+                    ),
+                }
+            }
+            let new = super::ipynb::to_text(&nb)?;
+            if new != text {
+                std::fs::write(&path, new).with_context(|| format!("writing {name}"))?;
+                changed.push(name);
+            }
+        }
+    }
+    Ok(changed)
+}
+
 #[cfg(test)]
 mod tests {
     use super::split_tail;

@@ -15,12 +15,8 @@ use super::widgets::{
     text,
 };
 use crate::i18n::t;
-use crate::lesson::{Environment, TensorView, VIEWS};
+use crate::lesson::{TensorView, VIEWS};
 use crate::tr;
-
-/// The bottom of the return plot's y-axis in a Pendulum run (returns are negative; a
-/// random policy scores around −1200).
-const PENDULUM_PLOT_FLOOR: f64 = -1800.0;
 
 /// The smallest terminal the layout fits.
 pub const MIN_SIZE: (u16, u16) = (80, 24);
@@ -162,10 +158,7 @@ fn code_lines(
     let mut lines = Vec::new();
     if !step.python.is_empty() {
         // Whose PyTorch program the lines quote (`Environment::python_source`).
-        let source = match env {
-            Environment::CartPole => t("the seed", "原教程代码"),
-            Environment::Pendulum => t("the book", "书中的代码"),
-        };
+        let source = env.source_name();
         lines.push(Line::styled(
             tr!("# {source} (PyTorch)", "# {source}（PyTorch）"),
             theme.dim(),
@@ -180,10 +173,7 @@ fn code_lines(
         .then(|| crate::lesson::anchor::find(&step.code))
         .flatten()
     {
-        lines.push(Line::styled(
-            format!("// crates/ppo-engine/src/{path}"),
-            theme.dim(),
-        ));
+        lines.push(Line::styled(format!("// ppo-engine: {path}"), theme.dim()));
         lines.extend(
             code.lines()
                 .map(|l| Line::styled(l.to_string(), theme.code())),
@@ -280,23 +270,10 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             previous: previous
                 .as_ref()
                 .map(|(label, values)| (label.as_str(), *values)),
-            max_return: match app.run.env {
-                Environment::CartPole => f64::from(app.run.config.env_id.max_episode_steps()),
-                Environment::Pendulum => 0.0,
-            },
-            min_return: match app.run.env {
-                Environment::CartPole => 0.0,
-                Environment::Pendulum => PENDULUM_PLOT_FLOOR,
-            },
+            max_return: app.run.config().max_return(),
+            min_return: app.run.env.spec().plot_floor,
             block: panel(
-                &match app.run.env {
-                    Environment::CartPole => {
-                        tr!("PPO on {}", "PPO 训练 {}", app.run.config.env_id)
-                    }
-                    Environment::Pendulum => {
-                        tr!("PPO on {}", "PPO 训练 {}", Environment::Pendulum.as_str())
-                    }
-                },
+                &tr!("PPO on {}", "PPO 训练 {}", app.run.config().env_id()),
                 theme,
             ),
             theme,

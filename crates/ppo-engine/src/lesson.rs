@@ -26,7 +26,7 @@ pub mod loader;
 pub mod progress;
 pub mod quiz;
 
-pub use live::session::RunConfig;
+pub use crate::run::{Environment, RunConfig};
 pub use live::{Mark, PolicyMap, Session, Snapshot, TensorView};
 pub use loader::{Course, LessonError};
 pub use progress::Progress;
@@ -52,47 +52,6 @@ pub struct Lesson {
     /// The environment whose live run the lesson shows (front matter `env`, by default
     /// CartPole-v1).
     pub env: Environment,
-}
-
-/// The environment a lesson's live run trains on: the seed's CartPole with its discrete
-/// PPO, or Pendulum with the book's `PPOContinuous`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, PartialOrd, Ord)]
-pub enum Environment {
-    /// `CartPole-v1`, the seed's PPO (two actions).
-    #[default]
-    CartPole,
-    /// `Pendulum-v1`, the Gaussian-policy PPO (one torque).
-    Pendulum,
-}
-
-impl Environment {
-    /// Both, in course order.
-    pub const ALL: [Environment; 2] = [Environment::CartPole, Environment::Pendulum];
-
-    /// Whose PyTorch program a step's `python` lines quote: the seed's (`seed_ppo.py`) on
-    /// CartPole, the book's `PPOContinuous` on Pendulum.
-    #[must_use]
-    pub fn python_source(self) -> &'static str {
-        match self {
-            Environment::CartPole => "seed",
-            Environment::Pendulum => "book",
-        }
-    }
-
-    /// The id as Gymnasium spells it (and a lesson's front matter writes it).
-    #[must_use]
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Environment::CartPole => "CartPole-v1",
-            Environment::Pendulum => "Pendulum-v1",
-        }
-    }
-
-    /// The environment called `name` (`CartPole-v1` or `Pendulum-v1`).
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|e| e.as_str() == name)
-    }
 }
 
 /// One step of a lesson: an explanation, the code that runs, and live values.

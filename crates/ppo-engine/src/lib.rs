@@ -6,7 +6,7 @@
 //!
 //! - [`env`](mod@env): a native CartPole-v1 and Pendulum-v1 identical to Gymnasium's (same
 //!   states, bit for bit, same seeds).
-//! - [`ppo`]: the agents behind one [`ppo::Agent`](ppo::AgentKind) abstraction: the seed's
+//! - [`ppo`]: the agents behind one abstraction, [`ppo::OnPolicyAgent`]: the seed's
 //!   PPO (*Hands-on RL*, `task_PPO.py`) and REINFORCE on CartPole, the book's
 //!   `PPOContinuous` on Pendulum, all on candle with the same numbers as PyTorch.
 //! - [`plot`]: return curves in the terminal and as PNG/SVG figures (plotters).
@@ -16,6 +16,7 @@
 //!   inline SVG, the lab. A notebook depends on this crate alone
 //!   (`:dep ppo-engine = { path = "../crates/ppo-engine" }`), plus `ppo-grade` where its
 //!   lesson has exercises.
+//! - [`run`]: the configuration of a run, the one place that matches on the environment.
 //! - [`i18n`]: the language of what is printed for people (English or Simplified Chinese).
 //!
 //! The engine never imports a face: the terminal app, the notebooks and the graders all
@@ -27,6 +28,7 @@ pub mod lesson;
 pub mod notebook;
 pub mod plot;
 pub mod ppo;
+pub mod run;
 
 /// The candle-core the engine is built on, so a notebook cell can write the candle exercise
 /// without a `:dep` of its own: `use ppo_engine::candle_core::{Result, Tensor};`.

@@ -33,6 +33,7 @@ pub(crate) mod kernels;
 pub mod lab;
 pub mod model;
 pub mod moving_average;
+pub mod on_policy;
 pub mod ops;
 pub mod replay_file;
 pub mod seeds;
@@ -47,15 +48,15 @@ pub use agent::{Agent, Losses, Transitions};
 pub use checkpoint::CheckpointKind;
 pub use config::{Algorithm, PpoConfig};
 pub use continuous::{
-    ContinuousEpisodeReport, ContinuousEpochTrace, ContinuousTrainer, ContinuousTransitions,
-    ContinuousUpdateTrace, PolicyNetContinuous, PpoContinuous, PpoContinuousConfig,
-    train_continuous,
+    ContinuousEpisodeReport, ContinuousEpochTrace, ContinuousTransitions, ContinuousUpdateTrace,
+    PolicyNetContinuous, PpoContinuous, PpoContinuousConfig,
 };
 pub use gradient::{SurrogateGradients, surrogate_gradients};
 pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
 pub use moving_average::moving_average;
+pub use on_policy::{AgentConfig, Batch, EnvStep, Environment, OnPolicyAgent};
 pub use trace::{EarlyStop, EpochTrace, UpdateTrace};
-pub use train::{EpisodeReport, TrainSummary, Trainer, train};
+pub use train::{ContinuousTrainer, EpisodeReport, TrainSummary, Trainer, Training, train};
 
 use crate::env::EnvError;
 

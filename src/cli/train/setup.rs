@@ -11,13 +11,12 @@
 
 use std::fmt;
 
-use serde_json::json;
-
 use super::{AlgorithmArg, TrainArgs};
 use crate::env::EnvId;
 use crate::env::pendulum::ENV_ID as PENDULUM_V1;
 use crate::i18n::t;
-use crate::ppo::{PpoConfig, PpoContinuousConfig, PpoError};
+use crate::lesson::RunConfig;
+use crate::ppo::{PpoContinuousConfig, PpoError};
 use crate::tr;
 
 /// A Gymnasium id `ppo-tutor train` and `play` accept.
@@ -72,95 +71,44 @@ pub fn parse_train_env(s: &str) -> Result<TrainEnv, String> {
         })
 }
 
-/// What one `ppo-tutor train` command trains: an agent and its hyper-parameters.
-#[derive(Debug, Clone)]
-pub enum Setup {
-    /// The seed's PPO on CartPole.
-    CartPole(PpoConfig),
-    /// The book's `PPOContinuous` on Pendulum-v1.
-    Pendulum(PpoContinuousConfig),
-}
-
-impl Setup {
-    /// The configuration `args` describe, checked.
-    ///
-    /// # Errors
-    /// A usage message naming the flag: a value out of range, or a CartPole-only switch
-    /// given for Pendulum-v1 (with why it does not apply).
-    pub fn from_args(args: &TrainArgs) -> Result<Self, String> {
-        let setup = match args.env_id {
-            TrainEnv::CartPole(env_id) => Self::CartPole(args.config_for(env_id)),
-            TrainEnv::Pendulum => {
-                refuse_cartpole_switches(args)?;
-                let book = PpoContinuousConfig::default();
-                Self::Pendulum(PpoContinuousConfig {
-                    actor_lr: args.actor_lr.unwrap_or(book.actor_lr),
-                    critic_lr: args.critic_lr.unwrap_or(book.critic_lr),
-                    hidden_dim: args.hidden_dim.unwrap_or(book.hidden_dim),
-                    gamma: args.gamma.unwrap_or(book.gamma),
-                    lmbda: args.lmbda.unwrap_or(book.lmbda),
-                    epochs: args.epochs.unwrap_or(book.epochs),
-                    eps: args.eps.unwrap_or(book.eps),
-                    num_episodes: args.episodes.unwrap_or(book.num_episodes),
-                })
-            }
-        };
-        let checked = match &setup {
-            Self::CartPole(config) => config.validate(),
-            Self::Pendulum(config) => config.validate(),
-        };
-        match checked {
-            Ok(()) => Ok(setup),
-            Err(PpoError::InvalidConfig {
-                field,
-                value,
-                expected,
-            }) => {
-                let flag = flag_of(field);
-                Err(tr!(
-                    "invalid --{flag} {value}: expected {expected}",
-                    "--{flag} {value} 无效：应为 {expected}"
-                ))
-            }
-            Err(other) => Err(other.to_string()),
+/// The configuration `ppo-tutor train`'s flags give: the environment's reference settings
+/// with every flag given applied, checked.
+///
+/// # Errors
+/// A message naming the flag (`invalid --gamma 2: expected ...`), or a CartPole-only
+/// switch given with Pendulum-v1, with its reason.
+pub fn run_config(args: &TrainArgs) -> Result<RunConfig, String> {
+    let setup = match args.env_id {
+        TrainEnv::CartPole(env_id) => RunConfig::CartPole(args.config_for(env_id)),
+        TrainEnv::Pendulum => {
+            refuse_cartpole_switches(args)?;
+            let book = PpoContinuousConfig::default();
+            RunConfig::Pendulum(PpoContinuousConfig {
+                actor_lr: args.actor_lr.unwrap_or(book.actor_lr),
+                critic_lr: args.critic_lr.unwrap_or(book.critic_lr),
+                hidden_dim: args.hidden_dim.unwrap_or(book.hidden_dim),
+                gamma: args.gamma.unwrap_or(book.gamma),
+                lmbda: args.lmbda.unwrap_or(book.lmbda),
+                epochs: args.epochs.unwrap_or(book.epochs),
+                eps: args.eps.unwrap_or(book.eps),
+                num_episodes: args.episodes.unwrap_or(book.num_episodes),
+            })
         }
-    }
-
-    /// The environment's Gymnasium id.
-    #[must_use]
-    pub fn env(&self) -> &'static str {
-        match self {
-            Self::CartPole(config) => config.env_id.as_str(),
-            Self::Pendulum(_) => PENDULUM_V1,
+    };
+    match setup.validate() {
+        Ok(()) => Ok(setup),
+        Err(PpoError::InvalidConfig {
+            field,
+            value,
+            expected,
+        }) => {
+            let flag = flag_of(field);
+            Err(tr!(
+                "invalid --{flag} {value}: expected {expected}",
+                "--{flag} {value} 无效：应为 {expected}"
+            ))
         }
-    }
-
-    /// Episodes per run.
-    #[must_use]
-    pub fn num_episodes(&self) -> usize {
-        match self {
-            Self::CartPole(config) => config.num_episodes,
-            Self::Pendulum(config) => config.num_episodes,
-        }
-    }
-
-    /// How many final episodes the summary averages: the seed's 50 on CartPole, the book's
-    /// measurement's 100 on Pendulum-v1 (`mean_last_100` in `book_ppo_continuous.py`).
-    #[must_use]
-    pub fn last(&self) -> usize {
-        match self {
-            Self::CartPole(_) => 50,
-            Self::Pendulum(_) => 100,
-        }
-    }
-
-    /// The hyper-parameters as the `--json` documents record them.
-    #[must_use]
-    pub fn config_json(&self) -> serde_json::Value {
-        match self {
-            Self::CartPole(config) => json!(config),
-            Self::Pendulum(config) => json!(config),
-        }
+        Err(other) => Err(other.to_string()),
     }
 }
 

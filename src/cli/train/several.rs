@@ -9,17 +9,21 @@ use std::time::Instant;
 use anyhow::Context;
 use serde_json::json;
 
-use super::{Setup, TrainArgs, peak_rss_mb};
+use super::{TrainArgs, peak_rss_mb};
 use crate::i18n::t;
+use crate::lesson::RunConfig;
 use crate::plot::{ascii_band_plot, labels, save_band_plot, smoothed_returns};
-use crate::ppo::seeds::{Band, SeedRun, mean_std, train_continuous_seeds, train_seeds};
+use crate::ppo::AgentConfig;
+use crate::ppo::seeds::ReportOf;
+use crate::ppo::seeds::{Band, SeedError, SeedRun, mean_std, train_seeds};
+use crate::run::RunVisitor;
 use crate::tr;
 
 /// Trains `setup` once per seed and reports as the module says.
 ///
 /// # Errors
 /// A run that diverged, or an output file that could not be written.
-pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Result<ExitCode> {
+pub(super) fn run(args: &TrainArgs, setup: &RunConfig, seeds: &[u64]) -> anyhow::Result<ExitCode> {
     let threads = std::thread::available_parallelism()
         .map_or(1, usize::from)
         .min(seeds.len());
@@ -43,17 +47,13 @@ pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Res
             );
         }
     };
-    let runs = match setup {
-        Setup::CartPole(config) => train_seeds(config, seeds, threads, |seed, report| {
-            on_episode(seed, report.episode);
-        }),
-        Setup::Pendulum(config) => {
-            train_continuous_seeds(config, seeds, threads, |seed, report| {
-                on_episode(seed, report.episode);
-            })
-        }
-    }
-    .context(t("training stopped", "训练中止"))?;
+    let runs = setup
+        .visit(Seeds {
+            seeds,
+            threads,
+            on_episode: &on_episode,
+        })
+        .context(t("training stopped", "训练中止"))?;
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -63,12 +63,12 @@ pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Res
         .map(|r| smoothed_returns(&r.summary.returns))
         .collect();
     let band = Band::of(&smoothed);
-    let last = setup.last();
+    let last = setup.env().spec().summary_window;
     let finals: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(last)).collect();
 
     let mut out = std::io::stdout().lock();
     let steps: u64 = runs.iter().map(|r| r.summary.env_steps).sum();
-    let (env, n_runs) = (setup.env(), runs.len());
+    let (env, n_runs) = (setup.env_id(), runs.len());
     writeln!(
         out,
         "{}",
@@ -113,7 +113,7 @@ pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Res
         std::fs::write(path, format!("{value}\n")).with_context(|| super::writing(path))?;
     }
     if let Some(path) = &args.plot {
-        let title = labels::band_title(setup.env(), runs.len());
+        let title = labels::band_title(setup.env_id(), runs.len());
         save_band_plot(path, &title, &band, runs.len())?;
         let shown = path.display();
         writeln!(
@@ -132,16 +132,16 @@ pub(super) fn run(args: &TrainArgs, setup: &Setup, seeds: &[u64]) -> anyhow::Res
 /// the summary over seeds (`mean_last_50`; on Pendulum-v1 `mean_last_100` too, the one
 /// `(mean, std)` gives) and the band.
 fn seeds_json(
-    setup: &Setup,
+    setup: &RunConfig,
     runs: &[SeedRun],
     smoothed: &[Vec<f64>],
     band: &Band,
     (mean, std): (f64, f64),
     wall_s: f64,
 ) -> serde_json::Value {
-    let key = format!("mean_last_{}", setup.last());
+    let key = format!("mean_last_{}", setup.env().spec().summary_window);
     let over_seeds = |k: usize| {
-        if k == setup.last() {
+        if k == setup.env().spec().summary_window {
             (mean, std)
         } else {
             let means: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(k)).collect();
@@ -152,7 +152,7 @@ fn seeds_json(
     let mut value = json!({
         "episodes": setup.num_episodes(),
         "seeds": runs.iter().map(|r| r.seed).collect::<Vec<_>>(),
-        "env": setup.env(),
+        "env": setup.env_id(),
         "wall_s": wall_s,
         "peak_rss_mb": peak_rss_mb(),
         "mean_last_50": { "mean": mean_50, "std": std_50 },
@@ -164,12 +164,35 @@ fn seeds_json(
                 "returns": r.summary.returns,
                 "moving_average": s,
             });
-            run[&key] = json!(r.summary.mean_last(setup.last()));
+            run[&key] = json!(r.summary.mean_last(setup.env().spec().summary_window));
             run
         }).collect::<Vec<_>>(),
         "band": { "of": "moving_average", "mean": band.mean, "low": band.low, "high": band.high },
-        "config": setup.config_json(),
+        "config": setup,
     });
     value[&key] = json!({ "mean": mean, "std": std });
     value
+}
+
+/// Trains every seed of any agent, for [`RunConfig::visit`].
+struct Seeds<'a> {
+    seeds: &'a [u64],
+    threads: usize,
+    on_episode: &'a (dyn Fn(u64, usize) + Sync),
+}
+
+impl RunVisitor for Seeds<'_> {
+    type Output = Result<Vec<SeedRun>, SeedError>;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> Self::Output {
+        let on_episode = self.on_episode;
+        train_seeds(
+            config,
+            self.seeds,
+            self.threads,
+            |seed, report: &ReportOf<C>| {
+                on_episode(seed, report.episode);
+            },
+        )
+    }
 }

@@ -24,8 +24,9 @@
 //!   [`ContinuousUpdateTrace`] ([`trace`]).
 //! - [`checkpoint`]: safetensors with PyTorch's names, marked as a Pendulum-v1 agent.
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_continuous_update_pytorch.json`).
-//! - [`train`](mod@train): the book's episode loop on Pendulum-v1 as a step-by-step
-//!   [`ContinuousTrainer`], and [`train_continuous`].
+//! - the book's episode loop on Pendulum-v1 is the shared
+//!   [`Training`](super::train::Training) ([`ContinuousTrainer`]): this agent implements
+//!   [`OnPolicyAgent`] below.
 //!
 //! ```
 //! use ppo_engine::ppo::{ContinuousTransitions, PpoContinuous, PpoContinuousConfig};
@@ -49,14 +50,26 @@ pub mod normal;
 pub mod params;
 pub mod replay;
 pub mod trace;
-pub mod train;
+#[cfg(test)]
+mod train;
 
+use std::path::Path;
+
+use crate::env::Pendulum;
+use crate::ppo::PpoError;
+use crate::ppo::checkpoint::CheckpointKind;
+use crate::ppo::model::NamedWeights;
+use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent};
+
+pub use crate::ppo::train::ContinuousTrainer;
 pub use agent::{ContinuousTransitions, PpoContinuous};
 pub use config::PpoContinuousConfig;
 pub use model::{ContinuousActorSnapshot, PolicyNetContinuous, softplus, softplus_f32};
 pub use normal::{log_prob, normal_log_prob};
 pub use trace::{ContinuousEpochTrace, ContinuousUpdateTrace};
-pub use train::{ContinuousEpisodeReport, ContinuousTrainer, train_continuous};
+
+/// What one training episode on Pendulum produced.
+pub type ContinuousEpisodeReport = crate::ppo::train::EpisodeReport<ContinuousUpdateTrace>;
 
 /// Observations per state: Pendulum's `(cos θ, sin θ, θ̇)`.
 pub const STATE_DIM: usize = 3;
@@ -66,3 +79,85 @@ pub const ACTION_DIM: usize = 1;
 pub const REWARD_SHIFT: f64 = 8.0;
 /// See [`REWARD_SHIFT`].
 pub const REWARD_SCALE: f64 = 8.0;
+
+impl Batch for ContinuousTransitions {
+    type Obs = [f32; 3];
+    type Action = f32;
+
+    /// `terminated` is not kept: Pendulum never terminates, and the book's `done` is all
+    /// its update reads.
+    fn record(
+        &mut self,
+        state: [f32; 3],
+        action: f32,
+        reward: f32,
+        next_state: [f32; 3],
+        done: bool,
+        _terminated: bool,
+    ) {
+        self.push(state, action, reward, next_state, done);
+    }
+
+    fn steps(&self) -> usize {
+        self.len()
+    }
+
+    /// Never: the pendulum has no terminal state (its episodes end at the time limit).
+    fn terminated(&self) -> Vec<bool> {
+        vec![false; self.len()]
+    }
+}
+
+impl AgentConfig for PpoContinuousConfig {
+    type Agent = PpoContinuous;
+
+    fn validate(&self) -> Result<(), PpoError> {
+        PpoContinuousConfig::validate(self)
+    }
+
+    fn num_episodes(&self) -> usize {
+        self.num_episodes
+    }
+
+    fn env_id(&self) -> &'static str {
+        crate::env::pendulum::ENV_ID
+    }
+
+    /// Pendulum's rewards are at most 0.
+    fn max_return(&self) -> f64 {
+        0.0
+    }
+}
+
+impl OnPolicyAgent for PpoContinuous {
+    type Config = PpoContinuousConfig;
+    type Env = Pendulum;
+    type Batch = ContinuousTransitions;
+    type Trace = ContinuousUpdateTrace;
+
+    const CHECKPOINT: CheckpointKind = CheckpointKind::PendulumPpoContinuous;
+
+    fn create(config: &PpoContinuousConfig, seed: u64) -> Result<Self, PpoError> {
+        PpoContinuous::new(config, seed)
+    }
+
+    fn environment(_config: &PpoContinuousConfig) -> Pendulum {
+        Pendulum::new()
+    }
+
+    fn act(&mut self, obs: &[f32; 3]) -> Result<f32, PpoError> {
+        self.take_action(obs)
+    }
+
+    fn learn(&mut self, batch: &ContinuousTransitions) -> Result<ContinuousUpdateTrace, PpoError> {
+        self.update(batch)
+    }
+
+    fn named_weights(&self) -> Result<NamedWeights, PpoError> {
+        self.weights()
+    }
+
+    fn load_from(path: &Path, config: &PpoContinuousConfig, seed: u64) -> Result<Self, PpoError> {
+        PpoContinuous::load(path, config, seed)
+    }
+}

@@ -14,6 +14,14 @@ pub mod gradient;
 pub mod replay;
 pub mod trace;
 
+use std::path::Path;
+
+use crate::env::CartPole;
+use crate::ppo::PpoError;
+use crate::ppo::checkpoint::CheckpointKind;
+use crate::ppo::model::NamedWeights;
+use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent};
+
 pub use agent::{Agent, Losses, Transitions};
 pub use config::{Algorithm, PpoConfig};
 pub use trace::{EarlyStop, EpochTrace, UpdateTrace};
@@ -22,3 +30,83 @@ pub use trace::{EarlyStop, EpochTrace, UpdateTrace};
 pub const STATE_DIM: usize = 4;
 /// Actions: 0 pushes left, 1 pushes right.
 pub const ACTION_DIM: usize = 2;
+
+impl Batch for Transitions {
+    type Obs = [f32; 4];
+    type Action = usize;
+
+    fn record(
+        &mut self,
+        state: [f32; 4],
+        action: usize,
+        reward: f32,
+        next_state: [f32; 4],
+        done: bool,
+        terminated: bool,
+    ) {
+        self.push(state, action, reward, next_state, done, terminated);
+    }
+
+    fn steps(&self) -> usize {
+        self.len()
+    }
+
+    fn terminated(&self) -> Vec<bool> {
+        self.terminated.clone()
+    }
+}
+
+impl AgentConfig for PpoConfig {
+    type Agent = Agent;
+
+    fn validate(&self) -> Result<(), PpoError> {
+        PpoConfig::validate(self)
+    }
+
+    fn num_episodes(&self) -> usize {
+        self.num_episodes
+    }
+
+    fn env_id(&self) -> &'static str {
+        self.env_id.as_str()
+    }
+
+    fn max_return(&self) -> f64 {
+        f64::from(self.env_id.max_episode_steps())
+    }
+}
+
+/// The seed's PPO, or REINFORCE when `config.algorithm` says so: one agent, two update
+/// rules on the same networks.
+impl OnPolicyAgent for Agent {
+    type Config = PpoConfig;
+    type Env = CartPole;
+    type Batch = Transitions;
+    type Trace = UpdateTrace;
+
+    const CHECKPOINT: CheckpointKind = CheckpointKind::CartPolePpo;
+
+    fn create(config: &PpoConfig, seed: u64) -> Result<Self, PpoError> {
+        Agent::new(config, seed)
+    }
+
+    fn environment(config: &PpoConfig) -> CartPole {
+        CartPole::new(config.env_id)
+    }
+
+    fn act(&mut self, obs: &[f32; 4]) -> Result<usize, PpoError> {
+        self.take_action(obs)
+    }
+
+    fn learn(&mut self, batch: &Transitions) -> Result<UpdateTrace, PpoError> {
+        self.update(batch)
+    }
+
+    fn named_weights(&self) -> Result<NamedWeights, PpoError> {
+        self.weights()
+    }
+
+    fn load_from(path: &Path, config: &PpoConfig, seed: u64) -> Result<Self, PpoError> {
+        Agent::load(path, config, seed)
+    }
+}

@@ -2,8 +2,8 @@
 //! give. PPO runs differ a lot from seed to seed, so a claim about a setting is a claim
 //! about its spread as well as its mean.
 //!
-//! [`train_seeds`] runs the seed's PPO on CartPole, [`train_continuous_seeds`] the book's
-//! `PPOContinuous` on Pendulum; both go through [`SeedTrainer`], one run per seed.
+//! [`train_seeds`] runs any agent ([`AgentConfig`]: the seed's PPO on CartPole, the book's
+//! `PPOContinuous` on Pendulum, ...) once per seed, each a [`Training`].
 //!
 //! ```
 //! use ppo_engine::ppo::seeds::{Band, mean_std};
@@ -18,65 +18,11 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use super::PpoError;
-use super::config::PpoConfig;
-use super::continuous::{ContinuousEpisodeReport, ContinuousTrainer, PpoContinuousConfig};
-use super::train::{EpisodeReport, TrainSummary, Trainer};
+use super::on_policy::{AgentConfig, OnPolicyAgent};
+use super::train::{EpisodeReport, TrainSummary, Training};
 
-/// A training run these functions can drive over many seeds: started from a configuration
-/// and a seed, stepped one episode at a time, summed up at the end. [`Trainer`] (CartPole)
-/// and [`ContinuousTrainer`] (Pendulum) are two.
-pub trait SeedTrainer: Sized {
-    /// The hyper-parameters shared by every seed's run.
-    type Config: Sync;
-    /// What each episode reports.
-    type Report;
-    /// A fresh run of `config` from `seed`.
-    ///
-    /// # Errors
-    /// [`PpoError::InvalidConfig`] for a hyper-parameter out of range.
-    fn start(config: &Self::Config, seed: u64) -> Result<Self, PpoError>;
-    /// The next episode, or `None` once the run is done.
-    ///
-    /// # Errors
-    /// [`PpoError::Diverged`] naming the episode.
-    fn episode(&mut self) -> Result<Option<Self::Report>, PpoError>;
-    /// The run's returns, env steps and time so far.
-    fn summary(&self) -> TrainSummary;
-}
-
-impl SeedTrainer for Trainer {
-    type Config = PpoConfig;
-    type Report = EpisodeReport;
-
-    fn start(config: &PpoConfig, seed: u64) -> Result<Self, PpoError> {
-        Trainer::new(config.clone(), seed)
-    }
-
-    fn episode(&mut self) -> Result<Option<EpisodeReport>, PpoError> {
-        self.next_episode()
-    }
-
-    fn summary(&self) -> TrainSummary {
-        Trainer::summary(self)
-    }
-}
-
-impl SeedTrainer for ContinuousTrainer {
-    type Config = PpoContinuousConfig;
-    type Report = ContinuousEpisodeReport;
-
-    fn start(config: &PpoContinuousConfig, seed: u64) -> Result<Self, PpoError> {
-        ContinuousTrainer::new(config.clone(), seed)
-    }
-
-    fn episode(&mut self) -> Result<Option<ContinuousEpisodeReport>, PpoError> {
-        self.next_episode()
-    }
-
-    fn summary(&self) -> TrainSummary {
-        ContinuousTrainer::summary(self)
-    }
-}
+/// What each episode of agent `C::Agent` reports.
+pub type ReportOf<C> = EpisodeReport<<<C as AgentConfig>::Agent as OnPolicyAgent>::Trace>;
 
 /// One seed's finished run.
 #[derive(Debug, Clone)]
@@ -98,71 +44,32 @@ pub struct SeedError {
     pub source: PpoError,
 }
 
-/// Trains `config` (the seed's PPO on CartPole) once per seed of `seeds`, on up to
-/// `threads` threads at once, and returns the runs in the order of `seeds`. `on_episode`
-/// sees every episode of every run as it finishes (from the worker threads).
+/// Trains `config` once per seed of `seeds`, on up to `threads` threads at once, and
+/// returns the runs in the order of `seeds`. `on_episode` sees every episode of every run
+/// as it finishes (from the worker threads).
 ///
 /// # Errors
 /// The first [`SeedError`]: invalid settings (reported by each seed's trainer), or a run
 /// that diverged.
-pub fn train_seeds(
-    config: &PpoConfig,
+pub fn train_seeds<C: AgentConfig>(
+    config: &C,
     seeds: &[u64],
     threads: usize,
-    on_episode: impl Fn(u64, &EpisodeReport) + Sync,
+    on_episode: impl Fn(u64, &ReportOf<C>) + Sync,
 ) -> Result<Vec<SeedRun>, SeedError> {
-    train_seeds_of::<Trainer>(config, seeds, threads, on_episode)
+    let jobs: Vec<(&C, u64)> = seeds.iter().map(|&s| (config, s)).collect();
+    train_jobs(&jobs, threads, |i, report| on_episode(jobs[i].1, report))
 }
 
-/// [`train_seeds`] for the book's `PPOContinuous` on Pendulum-v1.
+/// Trains each `(config, seed)` of `jobs`, on up to `threads` threads at once, and returns
+/// the runs in the order of `jobs`. `on_episode` gets the job's index and every episode.
 ///
 /// # Errors
 /// As [`train_seeds`].
-pub fn train_continuous_seeds(
-    config: &PpoContinuousConfig,
-    seeds: &[u64],
+pub fn train_jobs<C: AgentConfig>(
+    jobs: &[(&C, u64)],
     threads: usize,
-    on_episode: impl Fn(u64, &ContinuousEpisodeReport) + Sync,
-) -> Result<Vec<SeedRun>, SeedError> {
-    train_seeds_of::<ContinuousTrainer>(config, seeds, threads, on_episode)
-}
-
-/// [`train_seeds`] for any [`SeedTrainer`].
-///
-/// # Errors
-/// As [`train_seeds`].
-pub fn train_seeds_of<T: SeedTrainer>(
-    config: &T::Config,
-    seeds: &[u64],
-    threads: usize,
-    on_episode: impl Fn(u64, &T::Report) + Sync,
-) -> Result<Vec<SeedRun>, SeedError> {
-    let jobs: Vec<(&T::Config, u64)> = seeds.iter().map(|&s| (config, s)).collect();
-    train_jobs_of::<T>(&jobs, threads, |i, report| on_episode(jobs[i].1, report))
-}
-
-/// Trains each `(config, seed)` of `jobs` (the seed's PPO on CartPole), on up to `threads`
-/// threads at once, and returns the runs in the order of `jobs`. `on_episode` gets the
-/// job's index and every episode.
-///
-/// # Errors
-/// As [`train_seeds`].
-pub fn train_jobs(
-    jobs: &[(&PpoConfig, u64)],
-    threads: usize,
-    on_episode: impl Fn(usize, &EpisodeReport) + Sync,
-) -> Result<Vec<SeedRun>, SeedError> {
-    train_jobs_of::<Trainer>(jobs, threads, on_episode)
-}
-
-/// [`train_jobs`] for any [`SeedTrainer`].
-///
-/// # Errors
-/// As [`train_seeds`].
-pub fn train_jobs_of<T: SeedTrainer>(
-    jobs: &[(&T::Config, u64)],
-    threads: usize,
-    on_episode: impl Fn(usize, &T::Report) + Sync,
+    on_episode: impl Fn(usize, &ReportOf<C>) + Sync,
 ) -> Result<Vec<SeedRun>, SeedError> {
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<SeedRun, SeedError>>>> =
@@ -177,7 +84,7 @@ pub fn train_jobs_of<T: SeedTrainer>(
             if failed.load(Ordering::Relaxed) {
                 break;
             }
-            let run = one_seed::<T>(config, seed, &|report: &T::Report| on_episode(i, report));
+            let run = one_seed(config, seed, &|report: &ReportOf<C>| on_episode(i, report));
             if run.is_err() {
                 failed.store(true, Ordering::Relaxed);
             }
@@ -205,14 +112,14 @@ pub fn train_jobs_of<T: SeedTrainer>(
     Ok(runs)
 }
 
-fn one_seed<T: SeedTrainer>(
-    config: &T::Config,
+fn one_seed<C: AgentConfig>(
+    config: &C,
     seed: u64,
-    on_episode: &dyn Fn(&T::Report),
+    on_episode: &dyn Fn(&ReportOf<C>),
 ) -> Result<SeedRun, SeedError> {
     let fail = |source| SeedError { seed, source };
-    let mut trainer = T::start(config, seed).map_err(fail)?;
-    while let Some(report) = trainer.episode().map_err(fail)? {
+    let mut trainer = Training::<C::Agent>::new(config.clone(), seed).map_err(fail)?;
+    while let Some(report) = trainer.next_episode().map_err(fail)? {
         on_episode(&report);
     }
     Ok(SeedRun {
@@ -268,6 +175,7 @@ pub fn mean_std(values: &[f64]) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ppo::{PpoConfig, PpoContinuousConfig};
 
     fn short() -> PpoConfig {
         PpoConfig {
@@ -294,7 +202,7 @@ mod tests {
         Ok(())
     }
 
-    /// Pendulum runs in parallel are the runs of [`crate::ppo::train_continuous`].
+    /// Pendulum runs in parallel are the runs of [`crate::ppo::train`], one at a time.
     #[test]
     fn continuous_runs_in_parallel_equal_runs_one_at_a_time()
     -> Result<(), Box<dyn std::error::Error>> {
@@ -303,14 +211,14 @@ mod tests {
             ..PpoContinuousConfig::default()
         };
         let episodes = AtomicUsize::new(0);
-        let runs = train_continuous_seeds(&config, &[1, 0], 2, |_, r| {
+        let runs = train_seeds(&config, &[1, 0], 2, |_, r| {
             assert_eq!(r.steps, 200);
             episodes.fetch_add(1, Ordering::Relaxed);
         })?;
         assert_eq!(episodes.into_inner(), 2 * 2);
         assert_eq!(runs.iter().map(|r| r.seed).collect::<Vec<_>>(), [1, 0]);
         for run in &runs {
-            let (alone, _) = crate::ppo::train_continuous(config.clone(), run.seed, |_| {
+            let (alone, _) = crate::ppo::train(config.clone(), run.seed, |_| {
                 std::ops::ControlFlow::Continue(())
             })?;
             assert_eq!(run.summary.returns, alone.returns, "seed {}", run.seed);
@@ -320,7 +228,7 @@ mod tests {
             lmbda: 2.0,
             ..config
         };
-        let err = train_continuous_seeds(&bad, &[0], 1, |_, _| {}).err();
+        let err = train_seeds(&bad, &[0], 1, |_, _| {}).err();
         assert!(err.is_some_and(|e| e.to_string().contains("lmbda")));
         Ok(())
     }

@@ -11,7 +11,10 @@
 //! can draw those bars. (Where `num_episodes` is not a multiple of 10 the seed silently drops
 //! the remainder; here the first iterations take one episode more instead.)
 //!
-//! [`Trainer`] is `Send`: a face runs it on a worker thread and forwards each report.
+//! [`Training`] is written once for every agent ([`OnPolicyAgent`]): [`Trainer`] is the
+//! seed's PPO (or REINFORCE) on CartPole, [`ContinuousTrainer`] the book's
+//! `PPOContinuous` on Pendulum. It is `Send`: a face runs it on a worker thread and forwards
+//! each report.
 //!
 //! ```
 //! use ppo_engine::ppo::{PpoConfig, Trainer};
@@ -30,17 +33,18 @@ use std::time::{Duration, Instant};
 
 use serde::Serialize;
 
-use super::agent::{Agent, Losses, Transitions};
+use super::PpoError;
+use super::agent::{Agent, Losses};
+use super::continuous::PpoContinuous;
+use super::on_policy::{AgentConfig, Batch, Environment, OnPolicyAgent};
 use super::trace::UpdateTrace;
-use super::{PpoConfig, PpoError};
-use crate::env::CartPole;
 
 /// The seed's number of progress bars.
 pub const ITERATIONS: usize = 10;
 
-/// What one training episode produced.
+/// What one training episode produced; `T` is the agent's update trace.
 #[derive(Debug, Clone, Serialize)]
-pub struct EpisodeReport {
+pub struct EpisodeReport<T = UpdateTrace> {
     /// The episode, from 0.
     pub episode: usize,
     /// Its progress bar, 0 to 9 ("Iteration i").
@@ -49,7 +53,8 @@ pub struct EpisodeReport {
     pub episode_in_iteration: usize,
     /// How many episodes that bar holds.
     pub iteration_len: usize,
-    /// The undiscounted return, the seed's `episode_return`.
+    /// The undiscounted return, the seed's `episode_return` (the environment's rewards,
+    /// before any rescaling inside the update).
     pub episode_return: f64,
     /// Environment steps in the episode.
     pub steps: usize,
@@ -60,7 +65,7 @@ pub struct EpisodeReport {
     /// Gymnasium's `truncated` for each step: the time limit, reached on the last step or never.
     pub truncated: Vec<bool>,
     /// The update on this episode, every intermediate.
-    pub trace: UpdateTrace,
+    pub trace: T,
 }
 
 /// Training so far, and the final result.
@@ -70,7 +75,7 @@ pub struct TrainSummary {
     pub returns: Vec<f64>,
     /// Environment steps over all episodes.
     pub env_steps: u64,
-    /// Wall-clock time spent in [`Trainer::next_episode`].
+    /// Wall-clock time spent in [`Training::next_episode`].
     pub wall_s: f64,
 }
 
@@ -103,27 +108,51 @@ pub fn mean_last(values: &[f64], k: usize) -> f64 {
     }
 }
 
-/// The training loop as a state machine: call [`Trainer::next_episode`] until it gives `None`.
+/// Which bar episode `episode` of `num_episodes` belongs to: `(iteration, index within it,
+/// bar length)`. The seed's ten bars; where `num_episodes` is not a multiple of 10 the
+/// first bars take one episode more.
+#[must_use]
+pub fn iteration_of(num_episodes: usize, episode: usize) -> (usize, usize, usize) {
+    let bars = ITERATIONS.min(num_episodes).max(1);
+    let (base, extra) = (num_episodes / bars, num_episodes % bars);
+    let mut start = 0;
+    for i in 0..bars {
+        let len = base + usize::from(i < extra);
+        if episode < start + len {
+            return (i, episode - start, len);
+        }
+        start += len;
+    }
+    (bars - 1, episode.saturating_sub(start), base)
+}
+
+/// The training loop of any agent as a state machine: call [`Training::next_episode`]
+/// until it gives `None`.
 #[derive(Debug, Clone)]
-pub struct Trainer {
-    config: PpoConfig,
+pub struct Training<A: OnPolicyAgent> {
+    config: A::Config,
     seed: u64,
-    agent: Agent,
-    env: CartPole,
+    agent: A,
+    env: A::Env,
     returns: Vec<f64>,
     env_steps: u64,
     elapsed: Duration,
 }
 
-impl Trainer {
+/// The seed's PPO (or REINFORCE) on CartPole, one episode at a time.
+pub type Trainer = Training<Agent>;
+/// The book's `PPOContinuous` on Pendulum-v1, one episode at a time.
+pub type ContinuousTrainer = Training<PpoContinuous>;
+
+impl<A: OnPolicyAgent> Training<A> {
     /// A fresh agent (initialised from `seed`) and environment (first reset with `seed`,
     /// as the seed's `env.reset(seed=0)`).
     ///
     /// # Errors
     /// [`PpoError::InvalidConfig`] for a hyper-parameter out of range.
-    pub fn new(config: PpoConfig, seed: u64) -> Result<Self, PpoError> {
-        let agent = Agent::new(&config, seed)?;
-        let env = CartPole::new(config.env_id);
+    pub fn new(config: A::Config, seed: u64) -> Result<Self, PpoError> {
+        let agent = A::create(&config, seed)?;
+        let env = A::environment(&config);
         Ok(Self {
             config,
             seed,
@@ -137,14 +166,20 @@ impl Trainer {
 
     /// The hyper-parameters.
     #[must_use]
-    pub fn config(&self) -> &PpoConfig {
+    pub fn config(&self) -> &A::Config {
         &self.config
     }
 
     /// The agent as trained so far.
     #[must_use]
-    pub fn agent(&self) -> &Agent {
+    pub fn agent(&self) -> &A {
         &self.agent
+    }
+
+    /// The agent, ending the run.
+    #[must_use]
+    pub fn into_agent(self) -> A {
+        self.agent
     }
 
     /// The returns of the episodes played so far.
@@ -156,7 +191,7 @@ impl Trainer {
     /// Whether every episode has been played.
     #[must_use]
     pub fn is_done(&self) -> bool {
-        self.returns.len() >= self.config.num_episodes
+        self.returns.len() >= self.config.num_episodes()
     }
 
     /// The result so far.
@@ -172,42 +207,27 @@ impl Trainer {
     /// Which bar episode `episode` belongs to: `(iteration, index within it, bar length)`.
     #[must_use]
     pub fn iteration_of(&self, episode: usize) -> (usize, usize, usize) {
-        let n = self.config.num_episodes;
-        let bars = ITERATIONS.min(n).max(1);
-        let (base, extra) = (n / bars, n % bars);
-        let mut start = 0;
-        for i in 0..bars {
-            let len = base + usize::from(i < extra);
-            if episode < start + len {
-                return (i, episode - start, len);
-            }
-            start += len;
-        }
-        (bars - 1, episode.saturating_sub(start), base)
+        iteration_of(self.config.num_episodes(), episode)
     }
 
     /// Plays one episode and updates the agent on it; `None` once all episodes are done.
     ///
     /// # Errors
-    /// [`PpoError::Diverged`] naming the episode when an action probability, target or
-    /// loss turns NaN or infinite.
-    pub fn next_episode(&mut self) -> Result<Option<EpisodeReport>, PpoError> {
-        self.episode(None)
+    /// [`PpoError::Diverged`] naming the episode when an action, target or loss turns NaN
+    /// or infinite.
+    pub fn next_episode(&mut self) -> Result<Option<EpisodeReport<A::Trace>>, PpoError> {
+        self.episode(A::learn)
     }
 
-    /// [`Trainer::next_episode`] with the update's losses computed by `losses` (see
-    /// [`Agent::update_with`]).
+    /// [`Training::next_episode`] with the update done by `update` (the agent's own
+    /// [`OnPolicyAgent::learn`], or one with a learner's losses).
     ///
     /// # Errors
-    /// As [`Trainer::next_episode`], plus an error `losses` returned.
-    pub fn next_episode_with(
+    /// As [`Training::next_episode`], plus an error `update` returned.
+    pub fn episode(
         &mut self,
-        losses: &Losses<'_>,
-    ) -> Result<Option<EpisodeReport>, PpoError> {
-        self.episode(Some(losses))
-    }
-
-    fn episode(&mut self, losses: Option<&Losses<'_>>) -> Result<Option<EpisodeReport>, PpoError> {
+        update: impl FnOnce(&mut A, &A::Batch) -> Result<A::Trace, PpoError>,
+    ) -> Result<Option<EpisodeReport<A::Trace>>, PpoError> {
         if self.is_done() {
             return Ok(None);
         }
@@ -218,17 +238,13 @@ impl Trainer {
             other => other,
         };
         let (transitions, episode_return) = self.play_episode(episode).map_err(diverged)?;
-        let trace = match losses {
-            None => self.agent.update(&transitions),
-            Some(losses) => self.agent.update_with(&transitions, losses),
-        }
-        .map_err(diverged)?;
-        let steps = transitions.len();
+        let trace = update(&mut self.agent, &transitions).map_err(diverged)?;
+        let steps = transitions.steps();
         self.returns.push(episode_return);
         self.env_steps += steps as u64;
         self.elapsed += started.elapsed();
         let (iteration, episode_in_iteration, iteration_len) = self.iteration_of(episode);
-        let limit = self.config.env_id.max_episode_steps() as usize;
+        let limit = self.env.time_limit();
         Ok(Some(EpisodeReport {
             episode,
             iteration,
@@ -237,24 +253,24 @@ impl Trainer {
             episode_return,
             steps,
             total_steps: self.env_steps,
-            terminated: transitions.terminated,
+            terminated: transitions.terminated(),
             truncated: (1..=steps).map(|t| t >= limit).collect(),
             trace,
         }))
     }
 
     // ANCHOR: episode_loop
-    /// One episode with the current policy: the seed's `while not done` loop.
-    fn play_episode(&mut self, episode: usize) -> Result<(Transitions, f64), PpoError> {
+    /// One episode with the current policy: the `while not done` loop of the seed and the book.
+    fn play_episode(&mut self, episode: usize) -> Result<(A::Batch, f64), PpoError> {
         let seed = (episode == 0).then_some(self.seed); // env.reset(seed=seed) only once
         let mut state = self.env.reset(seed);
-        let mut transition_dict = Transitions::default();
+        let mut transition_dict = A::Batch::default();
         let mut episode_return = 0.0;
         loop {
-            let action = self.agent.take_action(&state)?;
+            let action = self.agent.act(&state)?; // the seed's agent.take_action(state)
             let step = self.env.step(action)?;
             let done = step.terminated || step.truncated;
-            transition_dict.push(
+            transition_dict.record(
                 state,
                 action,
                 step.reward as f32,
@@ -272,25 +288,40 @@ impl Trainer {
     // ANCHOR_END: episode_loop
 }
 
-impl Iterator for Trainer {
-    type Item = Result<EpisodeReport, PpoError>;
+impl Training<Agent> {
+    /// [`Training::next_episode`] with the update's losses computed by `losses` (see
+    /// [`Agent::update_with`]).
+    ///
+    /// # Errors
+    /// As [`Training::next_episode`], plus an error `losses` returned.
+    pub fn next_episode_with(
+        &mut self,
+        losses: &Losses<'_>,
+    ) -> Result<Option<EpisodeReport>, PpoError> {
+        self.episode(|agent, batch| agent.update_with(batch, losses))
+    }
+}
+
+impl<A: OnPolicyAgent> Iterator for Training<A> {
+    type Item = Result<EpisodeReport<A::Trace>, PpoError>;
 
     fn next(&mut self) -> Option<Self::Item> {
         self.next_episode().transpose()
     }
 }
 
-/// Trains for `config.num_episodes`, calling `on_episode` after each; it may stop early by
-/// returning [`ControlFlow::Break`].
+/// Trains the agent `config` configures for `config.num_episodes`, calling `on_episode`
+/// after each; it may stop early by returning [`ControlFlow::Break`].
 ///
 /// # Errors
 /// [`PpoError::InvalidConfig`] before training; [`PpoError::Diverged`] during it.
-pub fn train(
-    config: PpoConfig,
+#[allow(clippy::type_complexity)]
+pub fn train<C: AgentConfig>(
+    config: C,
     seed: u64,
-    mut on_episode: impl FnMut(&EpisodeReport) -> ControlFlow<()>,
-) -> Result<(TrainSummary, Agent), PpoError> {
-    let mut trainer = Trainer::new(config, seed)?;
+    mut on_episode: impl FnMut(&EpisodeReport<<C::Agent as OnPolicyAgent>::Trace>) -> ControlFlow<()>,
+) -> Result<(TrainSummary, C::Agent), PpoError> {
+    let mut trainer = Training::<C::Agent>::new(config, seed)?;
     while let Some(report) = trainer.next_episode()? {
         if on_episode(&report).is_break() {
             break;
@@ -302,6 +333,7 @@ pub fn train(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ppo::PpoConfig;
 
     #[test]
     fn trainer_is_send() {

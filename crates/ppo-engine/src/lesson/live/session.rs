@@ -16,104 +16,178 @@
 //! ```
 
 use super::{PolicyMap, Snapshot};
-use crate::lesson::Environment;
 use crate::ppo::model::ActorSnapshot;
 use crate::ppo::{
-    ContinuousTrainer, PpoConfig, PpoContinuousConfig, PpoError, Trainer, moving_average,
-    surrogate_gradients,
+    Agent, AgentConfig, EpisodeReport, OnPolicyAgent, PpoContinuous, PpoError, Training,
+    moving_average, surrogate_gradients,
 };
+use crate::run::{RunConfig, RunVisitor};
 
 /// The window of the return curve's moving average, as in the seed's plot.
 pub const MOVING_AVERAGE_WINDOW: usize = 9;
 
-/// The settings of a run: the seed's PPO on CartPole, or the book's `PPOContinuous` on
-/// Pendulum. `Session::new` takes either config directly (`From`).
-#[derive(Debug, Clone, PartialEq)]
-pub enum RunConfig {
-    /// CartPole-v1 (or v0) with the discrete PPO.
-    CartPole(PpoConfig),
-    /// Pendulum-v1 with the Gaussian-policy PPO.
-    Pendulum(PpoContinuousConfig),
+/// An agent the live session can show: what it keeps of the policy before an episode,
+/// and how the episode's report fills the snapshot.
+pub trait LiveAgent: OnPolicyAgent {
+    /// What is kept of the policy that plays the episode, before its update changes it.
+    type Before: Send;
+
+    /// What the tutor shows before the run's first episode: the settings, no numbers yet.
+    fn first_snapshot(config: &Self::Config, seed: u64) -> Snapshot;
+
+    /// Keeps what [`LiveAgent::show`] needs of the policy before the episode.
+    ///
+    /// # Errors
+    /// [`PpoError::Candle`] if the weights cannot be copied (a bug).
+    fn before_episode(&self) -> Result<Self::Before, PpoError>;
+
+    /// Fills the agent's own parts of `snapshot` from the episode's report (the return
+    /// curve, the episode count and the weights are filled for every agent).
+    ///
+    /// # Errors
+    /// [`PpoError::Candle`] if a gradient or a map cannot be computed (a bug).
+    fn show(
+        &self,
+        before: Self::Before,
+        report: EpisodeReport<Self::Trace>,
+        snapshot: &mut Snapshot,
+    ) -> Result<(), PpoError>;
 }
 
-impl From<PpoConfig> for RunConfig {
-    fn from(c: PpoConfig) -> Self {
-        Self::CartPole(c)
+impl LiveAgent for Agent {
+    /// The policy the episode is played with, before the episode's update changes it: its
+    /// probabilities are the ones the actions were sampled from (`old_log_probs`); and
+    /// θ_old as candle variables, for the two policy gradients of the batch it played.
+    type Before = (ActorSnapshot, crate::ppo::PolicyNet);
+
+    fn first_snapshot(config: &crate::ppo::PpoConfig, seed: u64) -> Snapshot {
+        Snapshot::new(config, seed)
+    }
+
+    fn before_episode(&self) -> Result<Self::Before, PpoError> {
+        Ok((
+            ActorSnapshot::of(self.actor())?,
+            self.actor().frozen_copy()?,
+        ))
+    }
+
+    fn show(
+        &self,
+        (played_with, theta_old): Self::Before,
+        report: EpisodeReport,
+        s: &mut Snapshot,
+    ) -> Result<(), PpoError> {
+        s.probs = probs_over(&played_with, &report.trace.states);
+        s.terminated = report.terminated;
+        s.truncated = report.truncated;
+        s.gradients = Some(surrogate_gradients(
+            &theta_old,
+            &report.trace.states,
+            &report.trace.actions,
+            &report.trace.advantage,
+        )?);
+        s.trace = Some(report.trace);
+        Ok(())
     }
 }
 
-impl From<PpoContinuousConfig> for RunConfig {
-    fn from(c: PpoContinuousConfig) -> Self {
-        Self::Pendulum(c)
+impl LiveAgent for PpoContinuous {
+    type Before = ();
+
+    fn first_snapshot(config: &crate::ppo::PpoContinuousConfig, seed: u64) -> Snapshot {
+        Snapshot::new_pendulum(config, seed)
+    }
+
+    fn before_episode(&self) -> Result<(), PpoError> {
+        Ok(())
+    }
+
+    /// The update's trace and the policy's `(μ, σ)` map after the update.
+    fn show(
+        &self,
+        (): (),
+        report: EpisodeReport<crate::ppo::ContinuousUpdateTrace>,
+        s: &mut Snapshot,
+    ) -> Result<(), PpoError> {
+        s.continuous = Some(report.trace);
+        s.policy_map = Some(PolicyMap::of(|state| self.mu_std(state)));
+        Ok(())
     }
 }
 
-impl RunConfig {
-    /// The defaults of `env`'s run: the seed's hyper-parameters, or the book's for Pendulum.
-    #[must_use]
-    pub fn default_for(env: Environment) -> Self {
-        match env {
-            Environment::CartPole => Self::CartPole(PpoConfig::default()),
-            Environment::Pendulum => Self::Pendulum(PpoContinuousConfig::default()),
-        }
+/// A run the session drives, whatever its agent.
+trait LiveRun: std::fmt::Debug + Send {
+    /// Plays one episode and fills `snapshot`; false once the run is done.
+    fn next(&mut self, snapshot: &mut Snapshot) -> Result<bool, PpoError>;
+    /// Whether every episode has been played.
+    fn is_done(&self) -> bool;
+    /// A copy of the run.
+    fn clone_box(&self) -> Box<dyn LiveRun>;
+}
+
+impl<A: LiveAgent> LiveRun for Training<A> {
+    fn next(&mut self, s: &mut Snapshot) -> Result<bool, PpoError> {
+        let before = self.agent().before_episode()?;
+        let Some(report) = self.next_episode()? else {
+            return Ok(false);
+        };
+        s.episodes = report.episode + 1;
+        s.returns.push(report.episode_return);
+        s.moving_average = moving_average(&s.returns, MOVING_AVERAGE_WINDOW).unwrap_or_default();
+        self.agent().show(before, report, s)?;
+        s.weights = self.agent().named_weights()?;
+        Ok(true)
     }
 
-    /// The environment the run trains on.
-    #[must_use]
-    pub fn env(&self) -> Environment {
-        match self {
-            Self::CartPole(_) => Environment::CartPole,
-            Self::Pendulum(_) => Environment::Pendulum,
-        }
+    fn is_done(&self) -> bool {
+        Training::is_done(self)
     }
 
-    /// Episodes the run trains for.
-    #[must_use]
-    pub fn num_episodes(&self) -> usize {
-        match self {
-            Self::CartPole(c) => c.num_episodes,
-            Self::Pendulum(c) => c.num_episodes,
-        }
-    }
-
-    /// What the tutor shows before the run's first episode.
-    #[must_use]
-    pub fn first_snapshot(&self, seed: u64) -> Snapshot {
-        match self {
-            Self::CartPole(c) => Snapshot::new(c, seed),
-            Self::Pendulum(c) => Snapshot::new_pendulum(c, seed),
-        }
+    fn clone_box(&self) -> Box<dyn LiveRun> {
+        Box::new(self.clone())
     }
 }
 
-/// The trainer behind a session.
-#[derive(Debug, Clone)]
-enum Run {
-    CartPole(Box<Trainer>),
-    Pendulum(Box<ContinuousTrainer>),
+/// Starts the run of a configuration, for [`RunConfig::visit`].
+struct Start(u64);
+
+impl RunVisitor for Start {
+    type Output = Result<Box<dyn LiveRun>, PpoError>;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> Self::Output
+    where
+        C::Agent: LiveAgent,
+    {
+        Ok(Box::new(Training::<C::Agent>::new(config.clone(), self.0)?))
+    }
 }
 
 /// A training run and what the tutor shows of it after its latest episode.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Session {
-    run: Run,
+    run: Box<dyn LiveRun>,
     snapshot: Snapshot,
 }
 
+impl Clone for Session {
+    fn clone(&self) -> Self {
+        Self {
+            run: self.run.clone_box(),
+            snapshot: self.snapshot.clone(),
+        }
+    }
+}
+
 impl Session {
-    /// A fresh agent and environment from `config` and `seed` (see [`Trainer::new`] and
-    /// [`ContinuousTrainer::new`]), with nothing trained yet: the snapshot holds only the
-    /// hyper-parameters.
+    /// A fresh agent and environment from `config` and `seed` (see [`Training::new`]), with
+    /// nothing trained yet: the snapshot holds only the hyper-parameters.
     ///
     /// # Errors
     /// [`PpoError::InvalidConfig`] for a hyper-parameter out of range.
     pub fn new(config: impl Into<RunConfig>, seed: u64) -> Result<Self, PpoError> {
         let config = config.into();
         let snapshot = config.first_snapshot(seed);
-        let run = match config {
-            RunConfig::CartPole(c) => Run::CartPole(Box::new(Trainer::new(c, seed)?)),
-            RunConfig::Pendulum(c) => Run::Pendulum(Box::new(ContinuousTrainer::new(c, seed)?)),
-        };
+        let run = config.visit(Start(seed))?;
         Ok(Self { run, snapshot })
     }
 
@@ -138,41 +212,14 @@ impl Session {
 
     /// Plays one episode, updates the agent on it and brings the snapshot up to date: the
     /// return curve and its moving average, the batch and every intermediate of the update,
-    /// the probabilities the episode was played with, the flags and the updated weights.
+    /// what the agent shows of its policy ([`LiveAgent::show`]) and the updated weights.
     /// `None` once the run has played all its episodes.
     ///
     /// # Errors
     /// [`PpoError::Diverged`] naming the episode, or [`PpoError::Candle`] if the weights
     /// cannot be read back (a bug).
     pub fn next_episode(&mut self) -> Result<Option<&Snapshot>, PpoError> {
-        let trainer = match &mut self.run {
-            Run::CartPole(trainer) => trainer,
-            Run::Pendulum(trainer) => return next_pendulum(trainer, &mut self.snapshot),
-        };
-        // The policy the episode is played with, before the episode's update changes it:
-        // its probabilities are the ones the actions were sampled from (`old_log_probs`).
-        let played_with = ActorSnapshot::of(trainer.agent().actor())?;
-        // θ_old as candle variables, for the two policy gradients of the batch it played.
-        let theta_old = trainer.agent().actor().frozen_copy()?;
-        let Some(report) = trainer.next_episode()? else {
-            return Ok(None);
-        };
-        let s = &mut self.snapshot;
-        s.episodes = report.episode + 1;
-        s.returns.push(report.episode_return);
-        s.moving_average = moving_average(&s.returns, MOVING_AVERAGE_WINDOW).unwrap_or_default();
-        s.probs = probs_over(&played_with, &report.trace.states);
-        s.terminated = report.terminated;
-        s.truncated = report.truncated;
-        s.gradients = Some(surrogate_gradients(
-            &theta_old,
-            &report.trace.states,
-            &report.trace.actions,
-            &report.trace.advantage,
-        )?);
-        s.trace = Some(report.trace);
-        s.weights = trainer.agent().weights()?;
-        Ok(Some(&self.snapshot))
+        Ok(self.run.next(&mut self.snapshot)?.then_some(&self.snapshot))
     }
 
     /// What the tutor shows now.
@@ -190,30 +237,8 @@ impl Session {
     /// Whether every episode of the run has been played.
     #[must_use]
     pub fn is_done(&self) -> bool {
-        match &self.run {
-            Run::CartPole(t) => t.is_done(),
-            Run::Pendulum(t) => t.is_done(),
-        }
+        self.run.is_done()
     }
-}
-
-/// [`Session::next_episode`] for a Pendulum run: the return curve, the update's trace, the
-/// weights and the policy's `(μ, σ)` map after the update.
-fn next_pendulum<'a>(
-    trainer: &mut ContinuousTrainer,
-    s: &'a mut Snapshot,
-) -> Result<Option<&'a Snapshot>, PpoError> {
-    let Some(report) = trainer.next_episode()? else {
-        return Ok(None);
-    };
-    s.episodes = report.episode + 1;
-    s.returns.push(report.episode_return);
-    s.moving_average = moving_average(&s.returns, MOVING_AVERAGE_WINDOW).unwrap_or_default();
-    s.continuous = Some(report.trace);
-    s.weights = trainer.agent().weights()?;
-    let agent = trainer.agent();
-    s.policy_map = Some(PolicyMap::of(|state| agent.mu_std(state)));
-    Ok(Some(s))
 }
 
 /// `π(·|s)` under `policy` for each of `states` (NaN where a probability is missing).
@@ -233,7 +258,9 @@ fn probs_over(policy: &ActorSnapshot, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lesson::Environment;
     use crate::lesson::live::LIVE;
+    use crate::ppo::{ContinuousTrainer, PpoConfig, PpoContinuousConfig, Trainer};
 
     type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -295,9 +322,8 @@ mod tests {
     #[test]
     fn probs_are_those_of_the_policy_that_played() -> TestResult {
         let mut session = Session::new(PpoConfig::default(), 0)?;
-        let Run::CartPole(trainer) = &session.run else {
-            return Err("a CartPole session".into());
-        };
+        // The same seed's fresh agent: the policy the first episode is played with.
+        let trainer = Trainer::new(PpoConfig::default(), 0)?;
         let before = ActorSnapshot::of(trainer.agent().actor())?;
         let s = session.next_episode()?.ok_or("no episode")?;
         let trace = s.trace.as_ref().ok_or("no trace")?;

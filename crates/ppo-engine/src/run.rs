@@ -1,0 +1,337 @@
+//! The configuration of a run: which environment, which agent, which settings. This is the
+//! one place that matches on the environment; everything else is generic over
+//! [`AgentConfig`] and reaches the right agent through [`RunConfig::visit`], or reads what
+//! differs between environments from [`Environment::spec`].
+//!
+//! ```
+//! use ppo_engine::ppo::{AgentConfig, OnPolicyAgent, Training};
+//! use ppo_engine::run::{Environment, RunConfig, RunVisitor};
+//!
+//! /// The first return of a run, for any agent.
+//! struct FirstReturn;
+//! impl RunVisitor for FirstReturn {
+//!     type Output = Result<f64, ppo_engine::ppo::PpoError>;
+//!     fn visit<C: AgentConfig>(self, config: &C) -> Self::Output
+//!     where
+//!         C::Agent: ppo_engine::lesson::live::session::LiveAgent,
+//!     {
+//!         let mut run = Training::<C::Agent>::new(config.clone(), 0)?;
+//!         Ok(run.next_episode()?.map_or(0.0, |r| r.episode_return))
+//!     }
+//! }
+//! for env in Environment::ALL {
+//!     let first = RunConfig::default_for(env).visit(FirstReturn)?;
+//!     assert_eq!(first > 0.0, env == Environment::CartPole); // Pendulum's rewards are ≤ 0
+//! }
+//! # Ok::<(), ppo_engine::ppo::PpoError>(())
+//! ```
+
+use crate::i18n::t;
+use crate::lesson::Snapshot;
+use crate::lesson::live::session::LiveAgent;
+use crate::ppo::{AgentConfig, PpoConfig, PpoContinuousConfig, PpoError};
+
+/// Declares the agents a run can train: the [`Environment`] enum, the [`RunConfig`] enum
+/// and the dispatch between them. One line per agent: `Variant(ConfigType) = SPEC`; the
+/// first is the default.
+macro_rules! agents {
+    ($( $(#[doc = $doc:expr])* $env:ident($config:ty) = $spec:expr ),+ $(,)?) => {
+        /// The environment a run (and a lesson's live view) trains on, one per agent.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum Environment {
+            $( $(#[doc = $doc])* $env, )+
+        }
+
+        const COUNT: usize = [$(stringify!($env)),+].len();
+
+        /// The first agent's: CartPole-v1 with the seed's PPO.
+        impl Default for Environment {
+            fn default() -> Self {
+                Self::ALL[0]
+            }
+        }
+
+        impl Environment {
+            /// Every environment, in course order.
+            pub const ALL: [Environment; COUNT] = [$(Environment::$env),+];
+
+            /// What differs between the environments.
+            #[must_use]
+            pub const fn spec(self) -> &'static EnvSpec {
+                match self {
+                    $( Environment::$env => &$spec, )+
+                }
+            }
+        }
+
+        /// The settings of a run: which agent on which environment, and its
+        /// hyper-parameters. `Session::new` takes any agent's config directly (`From`).
+        #[derive(Debug, Clone, PartialEq, serde::Serialize)]
+        #[serde(untagged)]
+        pub enum RunConfig {
+            $( $(#[doc = $doc])* $env($config), )+
+        }
+
+        $(
+            impl From<$config> for RunConfig {
+                fn from(c: $config) -> Self {
+                    Self::$env(c)
+                }
+            }
+        )+
+
+        impl RunConfig {
+            /// Calls `visitor` with the agent configuration inside: the one dispatch from
+            /// a run's environment to code generic over the agents (training, the live
+            /// session, `ppo-tutor train`, its `--seeds`).
+            pub fn visit<V: RunVisitor>(&self, visitor: V) -> V::Output {
+                match self {
+                    $( Self::$env(c) => visitor.visit(c), )+
+                }
+            }
+
+            /// The defaults of `env`'s run: the reference hyper-parameters of its agent
+            /// (the seed's, or the book's for Pendulum).
+            #[must_use]
+            pub fn default_for(env: Environment) -> Self {
+                match env {
+                    $( Environment::$env => Self::$env(<$config>::default()), )+
+                }
+            }
+
+            /// The environment the run trains on.
+            #[must_use]
+            pub fn env(&self) -> Environment {
+                match self {
+                    $( Self::$env(_) => Environment::$env, )+
+                }
+            }
+        }
+    };
+}
+
+agents! {
+    /// `CartPole-v1` (or v0), the seed's PPO or REINFORCE (two actions).
+    CartPole(PpoConfig) = CARTPOLE,
+    /// `Pendulum-v1`, the book's Gaussian-policy `PPOContinuous` (one torque).
+    Pendulum(PpoContinuousConfig) = PENDULUM,
+}
+
+const CARTPOLE: EnvSpec = EnvSpec {
+    id: "CartPole-v1",
+    python_source: "seed",
+    source_name: ("the seed", "原教程代码"),
+    engine_name: ("the real PPO and CartPole", "真实的 PPO 和 CartPole"),
+    summary_window: 50,
+    whole_returns: true,
+    plot_floor: 0.0,
+};
+
+const PENDULUM: EnvSpec = EnvSpec {
+    id: "Pendulum-v1",
+    python_source: "book",
+    source_name: ("the book", "书中代码"),
+    engine_name: (
+        "the real PPOContinuous and Pendulum",
+        "真实的 PPOContinuous 和 Pendulum",
+    ),
+    summary_window: 100,
+    whole_returns: false,
+    plot_floor: -1800.0,
+};
+
+/// What differs between the environments outside the agents themselves: names, the
+/// source the lessons quote, and how results are summed up and drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnvSpec {
+    /// The id as Gymnasium spells it (and a lesson's front matter writes it).
+    pub id: &'static str,
+    /// Whose PyTorch program a step's `python` lines quote: `seed` (`seed_ppo.py`) or `book`.
+    pub python_source: &'static str,
+    /// That program in prose, English and Chinese ("the seed", "原教程代码").
+    pub source_name: (&'static str, &'static str),
+    /// What every number of a notebook comes from, English and Chinese.
+    pub engine_name: (&'static str, &'static str),
+    /// How many last episodes a summary averages (50 as the seed prints, 100 as the book's
+    /// Pendulum script).
+    pub summary_window: usize,
+    /// Whether returns are whole numbers (CartPole's +1 per step).
+    pub whole_returns: bool,
+    /// The return plot's lowest value (CartPole's 0; Pendulum's returns are negative, a
+    /// random policy scoring around −1200).
+    pub plot_floor: f64,
+}
+
+impl Environment {
+    /// Whose PyTorch program a step's `python` lines quote: the seed's (`seed_ppo.py`) on
+    /// CartPole, the book's `PPOContinuous` on Pendulum.
+    #[must_use]
+    pub fn python_source(self) -> &'static str {
+        self.spec().python_source
+    }
+
+    /// That program in prose, in the current language ("the seed", "书中代码").
+    #[must_use]
+    pub fn source_name(self) -> &'static str {
+        let (en, zh) = self.spec().source_name;
+        t(en, zh)
+    }
+
+    /// The id as Gymnasium spells it (and a lesson's front matter writes it).
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        self.spec().id
+    }
+
+    /// The environment called `name` (`CartPole-v1` or `Pendulum-v1`).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|e| e.as_str() == name)
+    }
+
+    /// A return formatted as the environment's returns are (whole numbers on CartPole, one
+    /// decimal on Pendulum).
+    #[must_use]
+    pub fn format_return(self, value: f64) -> String {
+        if self.spec().whole_returns {
+            format!("{value}")
+        } else {
+            format!("{value:.1}")
+        }
+    }
+}
+
+/// Code generic over the agents, called with the run's configuration, typed: see
+/// [`RunConfig::visit`].
+pub trait RunVisitor {
+    /// What the visit returns.
+    type Output;
+
+    /// Called with the run's configuration.
+    fn visit<C: AgentConfig>(self, config: &C) -> Self::Output
+    where
+        C::Agent: LiveAgent;
+}
+
+impl RunConfig {
+    /// The Gymnasium id of the run's environment (`CartPole-v0` where the config says so).
+    #[must_use]
+    pub fn env_id(&self) -> &'static str {
+        self.visit(EnvId)
+    }
+
+    /// Episodes the run trains for.
+    #[must_use]
+    pub fn num_episodes(&self) -> usize {
+        self.visit(NumEpisodes)
+    }
+
+    /// Every setting in its range.
+    ///
+    /// # Errors
+    /// [`PpoError::InvalidConfig`] naming the first field out of range.
+    pub fn validate(&self) -> Result<(), PpoError> {
+        self.visit(Validate)
+    }
+
+    /// The highest return an episode can have (CartPole's time limit; 0 on Pendulum), for
+    /// a plot's scale.
+    #[must_use]
+    pub fn max_return(&self) -> f64 {
+        self.visit(MaxReturn)
+    }
+
+    /// What the tutor shows before the run's first episode.
+    #[must_use]
+    pub fn first_snapshot(&self, seed: u64) -> Snapshot {
+        self.visit(FirstSnapshot(seed))
+    }
+}
+
+struct NumEpisodes;
+
+impl RunVisitor for NumEpisodes {
+    type Output = usize;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> usize {
+        config.num_episodes()
+    }
+}
+
+struct Validate;
+
+impl RunVisitor for Validate {
+    type Output = Result<(), PpoError>;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> Result<(), PpoError> {
+        config.validate()
+    }
+}
+
+struct EnvId;
+
+impl RunVisitor for EnvId {
+    type Output = &'static str;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> &'static str {
+        config.env_id()
+    }
+}
+
+struct MaxReturn;
+
+impl RunVisitor for MaxReturn {
+    type Output = f64;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> f64 {
+        config.max_return()
+    }
+}
+
+struct FirstSnapshot(u64);
+
+impl RunVisitor for FirstSnapshot {
+    type Output = Snapshot;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> Snapshot
+    where
+        C::Agent: LiveAgent,
+    {
+        C::Agent::first_snapshot(config, self.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_specs_differ() {
+        for env in Environment::ALL {
+            assert_eq!(Environment::from_name(env.as_str()), Some(env));
+            assert_eq!(RunConfig::default_for(env).env(), env);
+        }
+        assert_eq!(Environment::from_name("Acrobot-v1"), None);
+        assert_eq!(Environment::CartPole.format_return(500.0), "500");
+        assert_eq!(Environment::Pendulum.format_return(-123.456), "-123.5");
+    }
+
+    #[test]
+    fn the_config_serialises_as_its_agent_s() -> Result<(), serde_json::Error> {
+        let config = RunConfig::default_for(Environment::Pendulum);
+        assert_eq!(
+            serde_json::to_value(&config)?,
+            serde_json::to_value(PpoContinuousConfig::default())?
+        );
+        let bad = RunConfig::from(PpoConfig {
+            gamma: 2.0,
+            ..PpoConfig::default()
+        });
+        assert!(matches!(
+            bad.validate(),
+            Err(PpoError::InvalidConfig { field: "gamma", .. })
+        ));
+        assert_eq!(bad.num_episodes(), 500);
+        Ok(())
+    }
+}
