@@ -19,7 +19,8 @@ use crate::lesson::RunConfig;
 use crate::plot::{ascii_return_plot, save_return_plot, smoothed_returns};
 use crate::ppo::train::mean_last;
 use crate::ppo::{
-    AgentConfig, Algorithm, EpisodeReport, OnPolicyAgent, PpoConfig, PpoError, TrainSummary, train,
+    AgentConfig, Algorithm, EpisodeReport, OnPolicyAgent, PpoConfig, PpoError, TrainSummary,
+    UpdatePath, train,
 };
 use crate::run::RunVisitor;
 use crate::tr;
@@ -187,16 +188,18 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         return several::run(args, &setup, &seeds.0);
     }
     let mut bars = Bars::new(!args.quiet && std::io::stderr().is_terminal(), !args.quiet);
+    let mut paths = Paths::default();
     let (summary, agent) = setup
         .visit(TrainOne {
             seed: args.seed,
             bars: &mut bars,
+            paths: &mut paths,
         })
         .context(t("training stopped", "训练中止"))?;
     bars.finish();
 
     let smoothed = smoothed_returns(&summary.returns);
-    print_summary(&summary, &setup, args.seed, &smoothed, !args.quiet)?;
+    print_summary(&summary, &setup, args.seed, &smoothed, &paths, !args.quiet)?;
     if let Some(path) = &args.json {
         let value = run_json(&summary, &setup, args.seed, &smoothed);
         std::fs::write(path, format!("{value}\n")).with_context(|| writing(path))?;
@@ -234,15 +237,17 @@ type SaveAgent = Box<dyn FnOnce(&Path) -> Result<(), PpoError>>;
 struct TrainOne<'a> {
     seed: u64,
     bars: &'a mut Bars,
+    paths: &'a mut Paths,
 }
 
 impl RunVisitor for TrainOne<'_> {
     type Output = Result<(TrainSummary, SaveAgent), PpoError>;
 
     fn visit<C: AgentConfig>(self, config: &C) -> Self::Output {
-        let bars = self.bars;
+        let (bars, paths) = (self.bars, self.paths);
         let (summary, agent) = train(config.clone(), self.seed, |report| {
             bars.update(&Progress::from(report));
+            paths.add(C::Agent::path_of(&report.trace));
             ControlFlow::Continue(())
         })?;
         Ok((summary, Box::new(move |path| agent.save_to(path))))
@@ -292,6 +297,7 @@ fn print_summary(
     setup: &RunConfig,
     seed: u64,
     smoothed: &[f64],
+    paths: &Paths,
     plot: bool,
 ) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();
@@ -326,6 +332,7 @@ fn print_summary(
             "最后 {n} 个回合的平均回报：{mean:.1}（最后 10 个：{mean10:.1}，最高：{best}）"
         )
     )?;
+    writeln!(out, "{}", paths.line())?;
     if plot {
         let width = crossterm::terminal::size().map_or(80, |(w, _)| usize::from(w));
         writeln!(out)?;
@@ -334,6 +341,60 @@ fn print_summary(
         }
     }
     Ok(())
+}
+
+/// How many updates ran on each [`UpdatePath`], for the summary.
+#[derive(Debug, Default)]
+struct Paths {
+    plain: usize,
+    candle: usize,
+}
+
+impl Paths {
+    fn add(&mut self, path: UpdatePath) {
+        match path {
+            UpdatePath::Plain => self.plain += 1,
+            UpdatePath::Candle => self.candle += 1,
+        }
+    }
+
+    /// The summary's line: which implementation ran the updates, and why candle if it ran
+    /// every one of them.
+    fn line(&self) -> String {
+        let (plain, candle) = (self.plain, self.candle);
+        if candle == 0 {
+            return tr!(
+                "update path: plain f32 kernels for all {plain} updates",
+                "更新路径：全部 {plain} 次更新均用纯 f32 内核"
+            );
+        }
+        if plain > 0 {
+            return tr!(
+                "update path: plain f32 kernels for {plain} updates, candle (autograd) for {candle}",
+                "更新路径：{plain} 次更新用纯 f32 内核，{candle} 次用 candle（自动求导）"
+            );
+        }
+        let why = if UpdatePath::forced() == Some(UpdatePath::Candle) {
+            t(
+                ", forced by PPO_TUTOR_UPDATE=candle",
+                "，由 PPO_TUTOR_UPDATE=candle 强制",
+            )
+        } else if UpdatePath::plain_available() {
+            t(
+                ", which these options or shapes need",
+                "，因为这些选项或形状需要自动求导",
+            )
+        } else {
+            t(
+                ", as this CPU lacks AVX2+FMA",
+                "，因为本机 CPU 不支持 AVX2+FMA",
+            )
+        };
+        tr!(
+            "update path: candle (autograd) for all {candle} updates{why}",
+            "更新路径：全部 {candle} 次更新均用 candle（自动求导）{why}"
+        )
+    }
 }
 
 /// What the progress bars need from one episode, of either agent.

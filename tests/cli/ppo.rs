@@ -387,3 +387,74 @@ fn train_switches_to_reinforce_or_drops_the_clip() -> TestResult {
     assert_eq!(out.status.code(), Some(2));
     Ok(())
 }
+
+/// Issue 26, section 3: `train` says which implementation ran its updates, and
+/// `PPO_TUTOR_UPDATE=candle` runs every update on candle with the same numbers, on both
+/// agents; a value it does not know changes nothing.
+#[test]
+fn train_names_the_update_path_and_candle_can_be_forced() -> TestResult {
+    use ppo_tutor::ppo::update_path::UPDATE_VAR;
+    let dir = tempfile::tempdir()?;
+    let plain = ppo_tutor::ppo::UpdatePath::plain_available();
+    if !plain {
+        eprintln!(
+            "this CPU lacks AVX2+FMA: both runs below are on candle (the comparison of the two \
+             paths is skipped; the lines and the switch are still checked)"
+        );
+    }
+    for (env, episodes) in [("CartPole-v1", 6), ("Pendulum-v1", 2)] {
+        let run = |setting: Option<&str>,
+                   lang: &str|
+         -> Result<(String, Value), Box<dyn std::error::Error>> {
+            let json = dir.path().join(format!("{env}-{setting:?}-{lang}.json"));
+            let mut cmd = english();
+            match setting {
+                Some(value) => cmd.env(UPDATE_VAR, value),
+                None => cmd.env_remove(UPDATE_VAR),
+            };
+            let n = episodes.to_string();
+            let out = cmd
+                .args([
+                    "--lang",
+                    lang,
+                    "train",
+                    "-q",
+                    "--env",
+                    env,
+                    "--episodes",
+                    &n,
+                ])
+                .args(["--json", path(&json)?])
+                .output()?;
+            assert!(out.status.success(), "{env} {setting:?}: {}", stderr(&out));
+            let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+            Ok((String::from_utf8(out.stdout)?, run["returns"].clone()))
+        };
+        let (auto, auto_returns) = run(None, "en")?;
+        let (forced, forced_returns) = run(Some("candle"), "en")?;
+        let (unknown, unknown_returns) = run(Some("turbo"), "en")?;
+        let automatic_line = if plain {
+            format!("update path: plain f32 kernels for all {episodes} updates")
+        } else {
+            format!(
+                "update path: candle (autograd) for all {episodes} updates, as this CPU lacks AVX2+FMA"
+            )
+        };
+        assert!(auto.contains(&automatic_line), "{env}: {auto}");
+        assert!(unknown.contains(&automatic_line), "{env}: {unknown}");
+        let forced_line = format!(
+            "update path: candle (autograd) for all {episodes} updates, forced by PPO_TUTOR_UPDATE=candle"
+        );
+        assert!(forced.contains(&forced_line), "{env}: {forced}");
+        // the plain path is candle's operations one for one: the same returns, bit for bit
+        assert!(auto_returns.as_array().is_some_and(|r| r.len() == episodes));
+        assert_eq!(forced_returns, auto_returns, "{env}");
+        assert_eq!(unknown_returns, auto_returns, "{env}");
+        let (zh, _) = run(Some("candle"), "zh")?;
+        let zh_line = format!(
+            "更新路径：全部 {episodes} 次更新均用 candle（自动求导），由 PPO_TUTOR_UPDATE=candle 强制"
+        );
+        assert!(zh.contains(&zh_line), "{env}: {zh}");
+    }
+    Ok(())
+}

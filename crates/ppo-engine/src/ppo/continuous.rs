@@ -153,6 +153,10 @@ impl OnPolicyAgent for PpoContinuous {
         self.update(batch)
     }
 
+    fn path_of(trace: &ContinuousUpdateTrace) -> crate::ppo::UpdatePath {
+        trace.path
+    }
+
     fn named_weights(&self) -> Result<NamedWeights, PpoError> {
         self.weights()
     }

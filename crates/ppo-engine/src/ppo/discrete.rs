@@ -102,6 +102,10 @@ impl OnPolicyAgent for Agent {
         self.update(batch)
     }
 
+    fn path_of(trace: &UpdateTrace) -> crate::ppo::UpdatePath {
+        trace.path
+    }
+
     fn named_weights(&self) -> Result<NamedWeights, PpoError> {
         self.weights()
     }

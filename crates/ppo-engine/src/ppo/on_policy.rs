@@ -208,6 +208,9 @@ pub trait OnPolicyAgent: Sized + Clone + Debug + Send + 'static {
     /// [`PpoError::EmptyBatch`], [`PpoError::InvalidBatch`] or [`PpoError::NonFinite`].
     fn learn(&mut self, batch: &Self::Batch) -> Result<Self::Trace, PpoError>;
 
+    /// Which implementation ran the update `trace` records (plain `f32` kernels or candle).
+    fn path_of(trace: &Self::Trace) -> super::UpdatePath;
+
     /// The weights, with PyTorch's names.
     ///
     /// # Errors

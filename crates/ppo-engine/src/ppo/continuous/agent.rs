@@ -23,12 +23,17 @@
 //! The only differences from the discrete [`Agent`](crate::ppo::Agent): the rescaled
 //! rewards, and `log π` from the Gaussian density instead of `log(gather(softmax))`.
 //!
-//! The code below, on candle tensors, is the update the lessons show. For batches of 3 to
-//! 512 transitions (Pendulum's are 200) on x86-64 with AVX2 and FMA, `update` runs the same
-//! IEEE operations in the same order on plain `f32` slices instead (the private module
-//! `lean`, whose tests compare both number for number): the same traces and weights, bit
-//! for bit, about 20 times faster (measured on a loaded 2-core machine, release build: 300
-//! episodes in 6.0-6.7 s with the tensors, 0.31 s without; the book's 2000 in 1.4-1.8 s).
+//! The code below, on candle tensors with autograd, is the update the lessons show
+//! ([`UpdatePath::Candle`]). `update` runs the same IEEE operations in the same order on
+//! plain `f32` slices instead ([`UpdatePath::Plain`], the private module `lean`, whose tests
+//! compare both number for number) when the batch has 3 to 512 transitions (Pendulum's are
+//! 200), `hidden_dim` is 2 to 512 with transitions × `hidden_dim` > 256, the CPU is x86-64
+//! with AVX2 and FMA (detected at run time), and `PPO_TUTOR_UPDATE` is not `candle`; on
+//! candle otherwise ([`update_path`](crate::ppo::update_path) has the rule,
+//! [`ContinuousUpdateTrace::path`] the path that ran). The plain path gives the same traces
+//! and weights, bit for bit, about 20 times faster (measured on a loaded 2-core machine,
+//! release build: 300 episodes in 6.0-6.7 s with the tensors, 0.31 s without; the book's
+//! 2000 in 1.4-1.8 s). `PPO_TUTOR_UPDATE=candle` forces candle for every update.
 //!
 //! Acting samples `a = μ + σ·z`, `z ~ N(0, 1)` from `rand_distr`'s `StandardNormal` fed by
 //! the agent's seeded PCG64 (numpy's generator, [`NumpyRng`]); μ and σ come from a plain-Rust
@@ -49,7 +54,9 @@ use crate::env::seeding::NumpyRng;
 use crate::ppo::PpoError;
 use crate::ppo::adam::Adam;
 use crate::ppo::advantage::compute_advantage;
+use crate::ppo::kernels::isa;
 use crate::ppo::model::{Linear, NamedWeights, ValueNet, WeightTensor};
+use crate::ppo::update_path::{UpdatePath, choose_path};
 
 mod lean;
 
@@ -331,7 +338,8 @@ impl PpoContinuous {
     }
 
     /// The book's `update(transition_dict)`: `epochs` Adam steps of both networks on one
-    /// episode, returning every intermediate.
+    /// episode, returning every intermediate. Runs on plain `f32` slices or on candle as the
+    /// [module doc](self) says; the trace's `path` says which.
     ///
     /// # Errors
     /// [`PpoError::EmptyBatch`] / [`PpoError::InvalidBatch`] for a malformed batch;
@@ -340,9 +348,22 @@ impl PpoContinuous {
         &mut self,
         batch: &ContinuousTransitions,
     ) -> Result<ContinuousUpdateTrace, PpoError> {
+        self.update_as(batch, UpdatePath::forced())
+    }
+
+    /// `update` with `forced` in place of `PPO_TUTOR_UPDATE`'s setting, so that the tests
+    /// choose a path whatever the environment says.
+    fn update_as(
+        &mut self,
+        batch: &ContinuousTransitions,
+        forced: Option<UpdatePath>,
+    ) -> Result<ContinuousUpdateTrace, PpoError> {
         batch.check()?;
         // the same operations on plain f32 slices where they are candle's (see `lean`)
-        if let Some(simd) = lean::handles(&self.config, batch) {
+        let conditions = lean::conditions(&self.config, batch.len());
+        if choose_path(&conditions, forced) == UpdatePath::Plain
+            && let Some(simd) = isa()
+        {
             return lean::update(simd, self, batch);
         }
         self.update_with_tensors(batch)
@@ -404,6 +425,7 @@ impl PpoContinuous {
             std: to_vec(&std)?,
             old_log_probs: to_vec(&old_log_probs)?,
             epochs: Vec::with_capacity(cfg.epochs),
+            path: UpdatePath::Candle,
         };
         check_finite("td_target", &trace.td_target)?;
         check_finite("advantage", &trace.advantage)?;

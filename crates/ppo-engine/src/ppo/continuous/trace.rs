@@ -10,11 +10,15 @@
 //! td_target, td_delta, advantage (N)
 //! mu, std = π's (μ, σ) before the update, old_log_probs = log N(a; μ, σ) (N)
 //! per epoch: log_probs, ratio, surr1, surr2 (N); actor_loss, critic_loss (scalars)
+//! per update: path (which implementation ran)
 //! ```
 //!
-//! The names are those of `ppo_continuous_update_pytorch.json`'s `expected` object.
+//! The names are those of `ppo_continuous_update_pytorch.json`'s `expected` object (`path`
+//! is ours).
 
 use serde::Serialize;
+
+use crate::ppo::update_path::UpdatePath;
 
 /// One episode's batch and everything the update computed from it.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -49,6 +53,10 @@ pub struct ContinuousUpdateTrace {
     pub old_log_probs: Vec<f32>,
     /// One entry per epoch, in order.
     pub epochs: Vec<ContinuousEpochTrace>,
+    /// Which implementation computed this update: the plain `f32` kernels or candle with
+    /// autograd (the same numbers; see [`update_path`](crate::ppo::update_path) for when
+    /// each runs, and `PPO_TUTOR_UPDATE=candle` to force candle).
+    pub path: UpdatePath,
 }
 
 /// One pass over the batch: values before that epoch's optimizer step.

@@ -20,6 +20,18 @@
 //! `log π` is `log(gather(softmax))` as in the seed (not `log_softmax`), so the numbers
 //! match PyTorch's to float rounding.
 //!
+//! The code below, on candle tensors with autograd, is the update the lessons show
+//! ([`UpdatePath::Candle`]). The same IEEE operations in the same order also run on plain
+//! `f32` slices (the private module `lean`, whose tests compare both number for number):
+//! [`UpdatePath::Plain`], the same trace and weights bit for bit, about ten times faster.
+//! `update` runs plain when the losses are the built-in ones (not [`Agent::update_with`]'s),
+//! the algorithm is PPO with the clip (not REINFORCE, not `no_clip`), `entropy_coef` is 0,
+//! the batch has 3 to 512 transitions, `hidden_dim` is 2 to 512 with
+//! transitions × `hidden_dim` > 256, the CPU is x86-64 with AVX2 and FMA (detected at run
+//! time), and `PPO_TUTOR_UPDATE` is not `candle`; on candle otherwise
+//! ([`update_path`](crate::ppo::update_path) has the rule, [`UpdateTrace::path`] the path
+//! that ran). `PPO_TUTOR_UPDATE=candle` forces candle for every update.
+//!
 //! ```
 //! use ppo_engine::ppo::{Agent, PpoConfig, Transitions};
 //!
@@ -42,7 +54,9 @@ use crate::env::seeding::NumpyRng;
 use crate::ppo::PpoError;
 use crate::ppo::adam::Adam;
 use crate::ppo::advantage::{compute_advantage, normalize_advantage};
+use crate::ppo::kernels::isa;
 use crate::ppo::model::{ActorSnapshot, Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
+use crate::ppo::update_path::{UpdatePath, choose_path};
 
 mod lean;
 
@@ -347,7 +361,8 @@ impl Agent {
     }
 
     /// The seed's `update(transition_dict)`: `epochs` Adam steps of both networks on one
-    /// episode, returning every intermediate.
+    /// episode, returning every intermediate. Runs on plain `f32` slices or on candle as the
+    /// [module doc](self) says; the trace's `path` says which.
     ///
     /// # Errors
     /// [`PpoError::EmptyBatch`] / [`PpoError::InvalidBatch`] for a malformed batch;
@@ -360,7 +375,7 @@ impl Agent {
     /// the built-in lines (the `ppo_losses` exercise plugs a learner's function in here).
     /// Everything else is the same: the targets, the advantage, the opt-in entropy bonus
     /// (added to the returned actor loss) and the Adam steps; the trace records the
-    /// returned losses.
+    /// returned losses. Always on candle, whose autograd differentiates `losses`.
     ///
     /// # Errors
     /// As [`Agent::update`], plus [`PpoError::Candle`] carrying an error `losses` returned.
@@ -377,11 +392,23 @@ impl Agent {
         batch: &Transitions,
         losses: Option<&Losses<'_>>,
     ) -> Result<UpdateTrace, PpoError> {
+        self.run_update_as(batch, losses, UpdatePath::forced())
+    }
+
+    /// `run_update` with `forced` in place of `PPO_TUTOR_UPDATE`'s setting, so that
+    /// the tests choose a path whatever the environment says.
+    fn run_update_as(
+        &mut self,
+        batch: &Transitions,
+        losses: Option<&Losses<'_>>,
+        forced: Option<UpdatePath>,
+    ) -> Result<UpdateTrace, PpoError> {
         batch.check()?;
         // The seed's configuration runs without tensors, with the same float operations
         // (bit for bit the numbers of `update_with_tensors`; see `lean`).
-        if losses.is_none()
-            && let Some(simd) = lean::handles(&self.config, batch)
+        let conditions = lean::conditions(&self.config, batch.len(), losses.is_some());
+        if choose_path(&conditions, forced) == UpdatePath::Plain
+            && let Some(simd) = isa()
         {
             return lean::update(simd, self, batch);
         }
@@ -476,6 +503,7 @@ impl Agent {
             epochs: Vec::with_capacity(cfg.epochs),
             early_stop: None,
             explained_variance: None,
+            path: UpdatePath::Candle,
         };
         check_batch(&mut trace)?;
 

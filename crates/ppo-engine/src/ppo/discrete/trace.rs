@@ -9,10 +9,12 @@
 //! td_target, td_delta, advantage, lambda_return, old_log_probs (N)
 //! per epoch: log_probs, ratio, surr1, surr2, clipped (N); actor_loss, critic_loss, approx_kl,
 //!            clip_fraction, entropy (scalars)
-//! per update: explained_variance, early_stop (scalars)
+//! per update: explained_variance, early_stop (scalars), path (which implementation ran)
 //! ```
 
 use serde::Serialize;
+
+use crate::ppo::update_path::UpdatePath;
 
 /// One episode's batch and everything the update computed from it.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -54,6 +56,10 @@ pub struct UpdateTrace {
     /// perfect critic, 0 one no better than a constant, below 0 worse. `None` when the
     /// targets do not vary.
     pub explained_variance: Option<f32>,
+    /// Which implementation computed this update: the plain `f32` kernels or candle with
+    /// autograd (the same numbers; see [`update_path`](crate::ppo::update_path) for when
+    /// each runs, and `PPO_TUTOR_UPDATE=candle` to force candle).
+    pub path: UpdatePath,
 }
 
 /// An update that `target_kl` ended before its last epoch.

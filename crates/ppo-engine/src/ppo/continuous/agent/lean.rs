@@ -2,12 +2,14 @@
 //! for one.
 //!
 //! [`PpoContinuous::update`] is written with candle tensors and autograd (the lessons show
-//! that code). For batches of 3 to 512 transitions and hidden layers of 2 to 512 units, on
-//! x86-64 with AVX2 and FMA, it runs this module instead, which performs the very same IEEE
+//! that code). For batches of 3 to 512 transitions and hidden layers of 2 to 512 units
+//! (more than 256 hidden-layer entries), on x86-64 with AVX2 and FMA, and unless
+//! `PPO_TUTOR_UPDATE=candle`, it runs this module instead ([`UpdatePath::Plain`]; see
+//! [`conditions`] and [`update_path`](crate::ppo::update_path)), which performs the very same IEEE
 //! operations in the same order, so that every number (targets, log-probabilities, ratios,
 //! losses, gradients, weights) is bit for bit the tensor version's, only without building
 //! some 200 tensors per epoch. The matrix products and sums are the discrete agent's
-//! kernels ([`kernels`](crate::ppo::agent::kernels), whose summation orders the discrete
+//! kernels ([`kernels`](crate::ppo::kernels), whose summation orders the discrete
 //! `lean` module documents) with 3 inputs instead of 4; what is new here is the Gaussian
 //! head and its backward pass, in the order candle's backward visits the graph:
 //!
@@ -25,7 +27,8 @@
 //! ```
 //!
 //! Its tests compare both versions, number for number, on batch sizes on either side of
-//! every switch of gemm's paths, with other widths and epochs.
+//! every switch of gemm's paths, with other widths and epochs; on a CPU without AVX2 and FMA
+//! they print `SKIPPED` instead of comparing candle with candle.
 
 use super::{ContinuousTransitions, PpoContinuous, check_finite};
 use crate::ppo::PpoError;
@@ -38,19 +41,25 @@ use crate::ppo::continuous::trace::{ContinuousEpochTrace, ContinuousUpdateTrace}
 use crate::ppo::continuous::{PpoContinuousConfig, REWARD_SCALE, REWARD_SHIFT, STATE_DIM};
 use crate::ppo::kernels::{
     CriticKernels, Grads, Isa, Params, Scratch, Surrogate, critic_loss, fc1_backward_row,
-    hidden_columns, hidden_layer, input_columns, isa, kernel, output_column, shapes_fit,
-    store_columns, take, vec_sum,
+    hidden_columns, hidden_layer, input_columns, isa, kernel, output_column, store_columns, take,
+    vec_sum,
 };
+use crate::ppo::update_path::{PathConditions, UpdatePath};
 
 use candle_core::{Device, Tensor};
 
-/// Whether this module computes the update of an agent configured by `config` on `batch`
-/// (see the module doc).
-pub(super) fn handles(config: &PpoContinuousConfig, batch: &ContinuousTransitions) -> Option<Isa> {
-    if shapes_fit(batch.len(), config.hidden_dim) {
-        isa()
-    } else {
-        None
+/// What decides whether this module computes the update of an agent configured by
+/// `config` on a batch of `rows` transitions: the shapes and the CPU (the losses are always
+/// the book's clipped surrogate and critic loss); see
+/// [`choose_path`](crate::ppo::update_path::choose_path).
+pub(super) fn conditions(config: &PpoContinuousConfig, rows: usize) -> PathConditions {
+    PathConditions {
+        learner_losses: false,
+        clipped_surrogate: true,
+        entropy_bonus: false,
+        rows,
+        hidden: config.hidden_dim,
+        avx2_fma: isa().is_some(),
     }
 }
 
@@ -269,6 +278,7 @@ fn epochs(
         std: old.iter().map(|r| r.std).collect(),
         old_log_probs: old.iter().map(|r| r.log_prob).collect(),
         epochs: Vec::with_capacity(cfg.epochs),
+        path: UpdatePath::Plain,
     };
     check_finite("td_target", &trace.td_target)?;
     check_finite("advantage", &trace.advantage)?;
@@ -511,6 +521,7 @@ fn actor_columns<const D: usize, const L: usize>(
 mod tests {
     use super::*;
     use crate::env::seeding::NumpyRng;
+    use crate::ppo::update_path::{choose_path, plain_runs_here};
 
     /// `n` consecutive transitions of a random walk over Pendulum-like states and torques
     /// beyond the clip range; the episode ends at the last one.
@@ -536,22 +547,38 @@ mod tests {
         serde_json::to_string(value).unwrap_or_else(|e| format!("unserialisable: {e}"))
     }
 
-    /// Three updates of two agents built alike, one without tensors and one with them.
+    /// Three updates of two agents built alike, one on the path chosen for it (plain, which
+    /// the trace must say) and one forced onto candle as `PPO_TUTOR_UPDATE=candle` forces it:
+    /// the same traces (or the same error), weights and acting snapshots, bit for bit.
+    /// Callers first check that this CPU runs the plain path ([`plain_runs_here`]).
     fn compare(config: &PpoContinuousConfig, n: usize, seed: u64) -> Result<(), PpoError> {
         let mut lean_agent = PpoContinuous::new(config, seed)?;
         let mut tensor_agent = PpoContinuous::new(config, seed)?;
         let mut rng = NumpyRng::from_seed(seed + 1000 * n as u64);
         for update in 0..3 {
             let batch = walk(n, &mut rng);
-            assert_eq!(
-                handles(config, &batch).is_some(),
-                isa().is_some(),
-                "n = {n}: the lean path should take this batch where the CPU allows it"
-            );
-            // a diverged update is an error in both, after the same steps
-            let lean = lean_agent.update(&batch).map(|t| text(&t));
-            let tensors = tensor_agent.update_with_tensors(&batch).map(|t| text(&t));
             let what = format!("n = {n}, update {update}, {config:?}");
+            assert_eq!(
+                choose_path(&conditions(config, n), None),
+                UpdatePath::Plain,
+                "the plain path should take this batch: {what}"
+            );
+            // a diverged update is an error in both, after the same steps; automatic, whatever
+            // PPO_TUTOR_UPDATE says in the environment of the tests
+            let lean = lean_agent.update_as(&batch, None);
+            let tensors = tensor_agent.update_as(&batch, Some(UpdatePath::Candle));
+            if let (Ok(lean), Ok(tensors)) = (&lean, &tensors) {
+                assert_eq!(lean.path, UpdatePath::Plain, "{what}");
+                assert_eq!(tensors.path, UpdatePath::Candle, "forced candle: {what}");
+            }
+            // every number, the path aside
+            let numbers = |t: ContinuousUpdateTrace| {
+                text(&ContinuousUpdateTrace {
+                    path: UpdatePath::Candle,
+                    ..t
+                })
+            };
+            let (lean, tensors) = (lean.map(numbers), tensors.map(numbers));
             assert_eq!(
                 format!("{lean:?}"),
                 format!("{tensors:?}"),
@@ -579,6 +606,9 @@ mod tests {
     /// (32-blocks, 64-blocks, N ≤ 256 for the horizontal kernel), Pendulum's 200, the ends.
     #[test]
     fn bit_for_bit_the_tensor_update_at_every_path_boundary() -> Result<(), PpoError> {
+        if !plain_runs_here("bit_for_bit_the_tensor_update_at_every_path_boundary") {
+            return Ok(());
+        }
         let config = PpoContinuousConfig::default();
         let sizes = (3..=10)
             .chain(30..=34)
@@ -596,6 +626,9 @@ mod tests {
     /// Other widths, epochs, clip ranges and learning rates.
     #[test]
     fn bit_for_bit_the_tensor_update_with_other_settings() -> Result<(), PpoError> {
+        if !plain_runs_here("bit_for_bit_the_tensor_update_with_other_settings") {
+            return Ok(());
+        }
         let base = PpoContinuousConfig::default();
         let configs = [
             PpoContinuousConfig {
@@ -629,17 +662,55 @@ mod tests {
         Ok(())
     }
 
-    /// Batches the lean path leaves to the tensors.
+    /// `PPO_TUTOR_UPDATE=candle`'s setting on Pendulum's 200-step episodes: every update
+    /// says candle and equals, bit for bit, the same updates on the plain path, whose traces
+    /// say plain (the setting is given here as the agent receives it; `tests/cli/ppo.rs`
+    /// sets the variable).
     #[test]
-    fn other_shapes_use_the_tensors() {
+    fn forcing_candle_gives_the_plain_numbers() -> Result<(), PpoError> {
+        if !plain_runs_here("forcing_candle_gives_the_plain_numbers") {
+            return Ok(());
+        }
+        let config = PpoContinuousConfig::default();
+        let mut plain = PpoContinuous::new(&config, 11)?;
+        let mut candle = PpoContinuous::new(&config, 11)?;
+        let mut rng = NumpyRng::from_seed(11);
+        for episode in 0..5 {
+            let batch = walk(200, &mut rng);
+            let a = plain.update_as(&batch, None)?;
+            let b = candle.update_as(&batch, Some(UpdatePath::Candle))?;
+            assert_eq!((a.path, b.path), (UpdatePath::Plain, UpdatePath::Candle));
+            let a = ContinuousUpdateTrace { path: b.path, ..a };
+            assert_eq!(text(&a), text(&b), "episode {episode}");
+        }
+        assert_eq!(text(&plain.weights()?), text(&candle.weights()?));
+        Ok(())
+    }
+
+    /// Batches the plain path leaves to the tensors, on any CPU: the conditions say candle,
+    /// and so does the trace of an update.
+    #[test]
+    fn other_shapes_use_the_tensors() -> Result<(), PpoError> {
         let mut rng = NumpyRng::from_seed(0);
         let base = PpoContinuousConfig::default();
-        assert!(handles(&base, &walk(2, &mut rng)).is_none());
-        assert!(handles(&base, &walk(513, &mut rng)).is_none());
         let narrow = PpoContinuousConfig {
             hidden_dim: 1,
-            ..base
+            ..base.clone()
         };
-        assert!(handles(&narrow, &walk(50, &mut rng)).is_none());
+        for (config, n) in [(&base, 2), (&base, 513), (&narrow, 50)] {
+            assert_eq!(
+                choose_path(&conditions(config, n), None),
+                UpdatePath::Candle,
+                "n = {n}, {config:?}"
+            );
+            let trace = PpoContinuous::new(config, 0)?.update_as(&walk(n, &mut rng), None)?;
+            assert_eq!(trace.path, UpdatePath::Candle, "n = {n}, {config:?}");
+        }
+        assert_eq!(
+            choose_path(&conditions(&base, 200), None) == UpdatePath::Plain,
+            isa().is_some(),
+            "the book's batches run plain exactly where the CPU allows it"
+        );
+        Ok(())
     }
 }

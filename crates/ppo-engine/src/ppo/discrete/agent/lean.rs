@@ -1,7 +1,9 @@
 //! The seed's update on plain `f32` slices: candle's float operations, one for one.
 //!
 //! [`Agent::update`](super::Agent::update) is written with candle tensors and autograd (the
-//! lessons show that code). For the seed's configuration it runs this module instead, which
+//! lessons show that code). For the seed's configuration it runs this module instead
+//! ([`UpdatePath::Plain`]; [`conditions`] and [`update_path`](crate::ppo::update_path) say
+//! exactly when, `PPO_TUTOR_UPDATE=candle` turns it off), which
 //! performs the very same IEEE operations in the same order, so that every number (losses,
 //! ratios, gradients, weights) is bit for bit the tensor version's, only without building
 //! some 150 tensors per epoch. (Measured on the seed's 500 episodes, seeds 0-2, test-profile
@@ -27,12 +29,13 @@
 //! ```
 //!
 //! The shapes decide gemm's path, so the module takes batches of 3 to 512 transitions and
-//! hidden layers of 2 to 512 units (up to 512, every k-sum is one block of gemm's) and leaves
-//! the rest to the tensors. Its tests compare both, number for number, on batch sizes on
-//! either side of every switch of path.
+//! hidden layers of 2 to 512 units (up to 512, every k-sum is one block of gemm's; and more
+//! than 256 hidden-layer entries) and leaves the rest to the tensors. Its tests compare
+//! both, number for number, on batch sizes on either side of every switch of path; on a CPU
+//! without AVX2 and FMA they print `SKIPPED` instead of comparing candle with candle.
 //!
 //! The matrix products, sums and the clipped surrogate are in
-//! [`kernels`](super::kernels), generic in the number of inputs, which the continuous
+//! [`kernels`](crate::ppo::kernels), generic in the number of inputs, which the continuous
 //! agent's update on plain slices shares; this module has what is the discrete actor's own
 //! (softmax, `log(gather)`, the entropy, the 2-logit output layer).
 
@@ -44,9 +47,10 @@ use crate::ppo::discrete::{Algorithm, PpoConfig, STATE_DIM};
 use crate::ppo::kernels::{
     CriticKernels, Grads, Isa, Params, Scratch, Surrogate, critic_loss, exp_exact,
     fc1_backward_row, hidden_columns, hidden_layer, horizontal_columns, input_columns, isa, kernel,
-    shapes_fit, store_columns, take, vec_sum,
+    store_columns, take, vec_sum,
 };
 use crate::ppo::model::ActorSnapshot;
+use crate::ppo::update_path::{PathConditions, UpdatePath};
 
 /// Buffers reused from update to update.
 #[derive(Clone, Default)]
@@ -68,16 +72,19 @@ impl std::fmt::Debug for Workspace {
     }
 }
 
-/// Whether this module computes `agent`'s update on `batch` (see the module doc).
-pub(super) fn handles(config: &PpoConfig, batch: &Transitions) -> Option<Isa> {
-    let n = batch.len();
-    let hidden = config.hidden_dim;
-    let seed_losses =
-        config.algorithm == Algorithm::Ppo && !config.no_clip && config.entropy_coef == 0.0;
-    if !(seed_losses && shapes_fit(n, hidden)) {
-        return None;
+/// What decides whether this module computes the update of an agent configured by
+/// `config` on a batch of `rows` transitions, `learner_losses` when the losses are a
+/// learner's ([`Agent::update_with`](super::Agent::update_with)); see
+/// [`choose_path`](crate::ppo::update_path::choose_path).
+pub(super) fn conditions(config: &PpoConfig, rows: usize, learner_losses: bool) -> PathConditions {
+    PathConditions {
+        learner_losses,
+        clipped_surrogate: config.algorithm == Algorithm::Ppo && !config.no_clip,
+        entropy_bonus: config.entropy_coef != 0.0,
+        rows,
+        hidden: config.hidden_dim,
+        avx2_fma: isa().is_some(),
     }
-    isa()
 }
 
 /// Runs the update; the kernels run under `simd` (see [`Kernels`]).
@@ -265,6 +272,7 @@ fn epochs(
         epochs: Vec::with_capacity(cfg.epochs),
         early_stop: None,
         explained_variance: None,
+        path: UpdatePath::Plain,
     };
     check_batch(&mut trace)?;
 
@@ -601,6 +609,7 @@ fn actor_columns<const L: usize>(
 mod tests {
     use super::*;
     use crate::env::seeding::NumpyRng;
+    use crate::ppo::update_path::{choose_path, plain_runs_here};
 
     /// `n` consecutive transitions of a random walk over CartPole-sized states; the episode
     /// ends at the last one (terminated or truncated, alternating with `n`).
@@ -627,21 +636,31 @@ mod tests {
         serde_json::to_string(value).unwrap_or_else(|e| format!("unserialisable: {e}"))
     }
 
-    /// Three updates of two agents built alike, one without tensors and one with them.
+    /// Three updates of two agents built alike, one on the path chosen for it (plain, which
+    /// the trace must say) and one forced onto candle as `PPO_TUTOR_UPDATE=candle` forces it:
+    /// the same traces, weights and acting snapshots, bit for bit. Callers first check that
+    /// this CPU runs the plain path ([`plain_runs_here`]).
     fn compare(config: &PpoConfig, n: usize, seed: u64) -> Result<(), PpoError> {
         let mut lean_agent = Agent::new(config, seed)?;
         let mut tensor_agent = Agent::new(config, seed)?;
         let mut rng = NumpyRng::from_seed(seed + 1000 * n as u64);
         for update in 0..3 {
             let batch = walk(n, &mut rng);
-            assert_eq!(
-                handles(config, &batch).is_some(),
-                isa().is_some(),
-                "n = {n}: the lean path should take this batch where the CPU allows it"
-            );
-            let lean = lean_agent.update(&batch)?;
-            let tensors = tensor_agent.update_with_tensors(&batch, None)?;
             let what = format!("n = {n}, update {update}, {config:?}");
+            // automatic, whatever PPO_TUTOR_UPDATE says in the environment of the tests
+            let lean = lean_agent.run_update_as(&batch, None, None)?;
+            let tensors = tensor_agent.run_update_as(&batch, None, Some(UpdatePath::Candle))?;
+            assert_eq!(
+                lean.path,
+                UpdatePath::Plain,
+                "the plain path should take this batch: {what}"
+            );
+            assert_eq!(tensors.path, UpdatePath::Candle, "forced candle: {what}");
+            // every number, the path aside
+            let lean = UpdateTrace {
+                path: tensors.path,
+                ..lean
+            };
             assert_eq!(text(&lean), text(&tensors), "trace differs: {what}");
             assert_eq!(
                 text(&lean_agent.weights()?),
@@ -662,6 +681,9 @@ mod tests {
     /// (32-blocks, 64-blocks, N·out ≤ 256 for the horizontal kernel) and the ends.
     #[test]
     fn bit_for_bit_the_tensor_update_at_every_path_boundary() -> Result<(), PpoError> {
+        if !plain_runs_here("bit_for_bit_the_tensor_update_at_every_path_boundary") {
+            return Ok(());
+        }
         let config = PpoConfig::default();
         let sizes = (3..=34)
             .chain(62..=66)
@@ -677,6 +699,9 @@ mod tests {
     /// The opt-in switches the lean path supports, other widths, and early stopping.
     #[test]
     fn bit_for_bit_the_tensor_update_with_switches() -> Result<(), PpoError> {
+        if !plain_runs_here("bit_for_bit_the_tensor_update_with_switches") {
+            return Ok(());
+        }
         let base = PpoConfig::default();
         let configs = [
             PpoConfig {
@@ -712,12 +737,50 @@ mod tests {
         Ok(())
     }
 
-    /// Configurations and batches the lean path leaves to the tensors.
+    /// `PPO_TUTOR_UPDATE=candle`'s setting on the seed's training: every update of a
+    /// 20-episode CartPole run says candle and equals, bit for bit, the same run on the plain
+    /// path, whose traces say plain (the setting itself is read once per process, so it is
+    /// given here as the agents receive it; `tests/cli/ppo.rs` sets the variable).
     #[test]
-    fn other_configurations_use_the_tensors() {
+    fn forcing_candle_gives_the_plain_numbers() -> Result<(), PpoError> {
+        if !plain_runs_here("forcing_candle_gives_the_plain_numbers") {
+            return Ok(());
+        }
+        let config = PpoConfig::default();
+        let mut plain = Agent::new(&config, 11)?;
+        let mut candle = Agent::new(&config, 11)?;
+        let mut rng = NumpyRng::from_seed(11);
+        for episode in 0..20 {
+            let batch = walk(9 + 23 * episode, &mut rng);
+            let a = plain.run_update_as(&batch, None, None)?;
+            let b = candle.run_update_as(&batch, None, Some(UpdatePath::Candle))?;
+            assert_eq!((a.path, b.path), (UpdatePath::Plain, UpdatePath::Candle));
+            let a = UpdateTrace { path: b.path, ..a };
+            assert_eq!(text(&a), text(&b), "episode {episode}");
+        }
+        assert_eq!(text(&plain.weights()?), text(&candle.weights()?));
+        Ok(())
+    }
+
+    /// Configurations and batches the plain path leaves to the tensors, on any CPU: the
+    /// conditions say candle, and so does the trace of an update.
+    #[test]
+    fn other_configurations_use_the_tensors() -> Result<(), PpoError> {
         let mut rng = NumpyRng::from_seed(0);
         let batch = walk(50, &mut rng);
         let base = PpoConfig::default();
+        let candle = |config: &PpoConfig, batch: &Transitions| -> Result<(), PpoError> {
+            let chosen = choose_path(&conditions(config, batch.len(), false), None);
+            assert_eq!(
+                chosen,
+                UpdatePath::Candle,
+                "{config:?}, n = {}",
+                batch.len()
+            );
+            let trace = Agent::new(config, 0)?.run_update_as(batch, None, None)?;
+            assert_eq!(trace.path, UpdatePath::Candle, "{config:?}");
+            Ok(())
+        };
         for config in [
             PpoConfig {
                 entropy_coef: 0.01,
@@ -732,9 +795,21 @@ mod tests {
                 ..base.clone()
             },
         ] {
-            assert!(handles(&config, &batch).is_none(), "{config:?}");
+            candle(&config, &batch)?;
         }
-        assert!(handles(&base, &walk(2, &mut rng)).is_none());
-        assert!(handles(&base, &walk(513, &mut rng)).is_none());
+        candle(&base, &walk(2, &mut rng))?;
+        candle(&base, &walk(513, &mut rng))?;
+        // a learner's losses (the ppo_losses exercise)
+        assert!(conditions(&base, 50, true).learner_losses);
+        assert_eq!(
+            choose_path(&conditions(&base, 50, true), None),
+            UpdatePath::Candle
+        );
+        // and the seed's configuration runs plain exactly where the CPU allows it
+        assert_eq!(
+            choose_path(&conditions(&base, 50, false), None) == UpdatePath::Plain,
+            isa().is_some()
+        );
+        Ok(())
     }
 }
