@@ -50,6 +50,7 @@ pub mod model;
 pub mod moving_average;
 pub mod on_policy;
 pub mod ops;
+pub(crate) mod ranges;
 pub mod replay_file;
 pub mod seeds;
 pub mod train;

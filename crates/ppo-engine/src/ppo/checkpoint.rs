@@ -24,8 +24,8 @@ use std::path::Path;
 
 use candle_core::{DType, Device, Tensor};
 
+use super::PpoError;
 use super::model::{NamedWeights, WeightTensor};
-use super::{ACTION_DIM, Agent, PpoConfig, PpoError, STATE_DIM};
 
 /// Which agent a checkpoint holds: the environment and the algorithm it was trained for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -202,41 +202,6 @@ pub fn read_checkpoint(path: &Path, want: CheckpointKind) -> Result<NamedWeights
     Ok(weights)
 }
 
-/// Every parameter's name and shape for hidden width `hidden_dim`, in PyTorch's order.
-#[must_use]
-pub fn parameter_shapes(hidden_dim: usize) -> [(&'static str, Vec<usize>); 8] {
-    let h = hidden_dim;
-    [
-        ("actor.fc1.weight", vec![h, STATE_DIM]),
-        ("actor.fc1.bias", vec![h]),
-        ("actor.fc2.weight", vec![ACTION_DIM, h]),
-        ("actor.fc2.bias", vec![ACTION_DIM]),
-        ("critic.fc1.weight", vec![h, STATE_DIM]),
-        ("critic.fc1.bias", vec![h]),
-        ("critic.fc2.weight", vec![1, h]),
-        ("critic.fc2.bias", vec![1]),
-    ]
-}
-
-/// Checks that `weights` holds exactly the eight parameters with the shapes `hidden_dim`
-/// gives, and finite values.
-///
-/// # Errors
-/// [`PpoError::MissingKey`] or [`PpoError::WrongShape`] naming the tensor in `source`.
-pub fn check_weights(
-    weights: &NamedWeights,
-    hidden_dim: usize,
-    source: &str,
-) -> Result<(), PpoError> {
-    check_against(
-        weights,
-        &parameter_shapes(hidden_dim),
-        hidden_dim,
-        source,
-        "only the eight actor./critic. parameters",
-    )
-}
-
 /// Checks that `weights` holds exactly the tensors of `shapes` (name, shape for hidden width
 /// `hidden_dim`), with finite values; `only` says what an unknown tensor should have been.
 /// Both agents' checkpoints are checked with it.
@@ -286,90 +251,38 @@ pub(crate) fn check_against(
     Ok(())
 }
 
-impl Agent {
-    /// Writes the weights to a safetensors file (f32, PyTorch names), marked as a
-    /// `CartPole-v1` / `ppo` checkpoint ([`CheckpointKind`]).
-    ///
-    /// # Errors
-    /// [`PpoError::File`] when the file cannot be written.
-    pub fn save(&self, path: &Path) -> Result<(), PpoError> {
-        write_checkpoint(path, self.weights()?, CheckpointKind::CartPolePpo)
-    }
-
-    /// Reads a checkpoint written by [`Agent::save`]; the hidden width comes from the file
-    /// and overrides `config.hidden_dim`. Adam starts fresh; actions are sampled with `seed`.
-    ///
-    /// # Errors
-    /// [`PpoError::File`] for an unreadable file, one that is not safetensors, or one of a
-    /// Pendulum agent; [`PpoError::MissingKey`] / [`PpoError::WrongShape`] naming the tensor and its
-    /// expected shape.
-    pub fn load(path: &Path, config: &PpoConfig, seed: u64) -> Result<Self, PpoError> {
-        let file = path.display().to_string();
-        let weights = read_checkpoint(path, CheckpointKind::CartPolePpo)?;
-        let hidden_dim = match weights.get("actor.fc1.weight").map(|w| w.shape.as_slice()) {
-            Some(&[h, STATE_DIM]) if h > 0 => h,
-            Some(other) => {
-                return Err(PpoError::WrongShape {
-                    file,
-                    key: "actor.fc1.weight".into(),
-                    expected: format!("shape [hidden, {STATE_DIM}]"),
-                    got: format!("shape {other:?}"),
-                });
-            }
-            None => {
-                return Err(PpoError::MissingKey {
-                    file,
-                    key: "actor.fc1.weight".into(),
-                    expected: format!("an f32 tensor of shape [hidden, {STATE_DIM}]"),
-                });
-            }
-        };
-        let config = PpoConfig {
-            hidden_dim,
-            ..config.clone()
-        };
-        Agent::from_weights(&config, &weights, seed, &file)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn weights_round_trip_through_a_file() -> Result<(), Box<dyn std::error::Error>> {
-        let dir = tempfile::tempdir()?;
-        let path = dir.path().join("agent.safetensors");
-        let agent = Agent::new(&PpoConfig::default(), 5)?;
-        agent.save(&path)?;
-        let loaded = Agent::load(&path, &PpoConfig::default(), 0)?;
-        assert_eq!(agent.weights()?, loaded.weights()?);
-        Ok(())
-    }
-
-    #[test]
-    fn wrong_shapes_are_named() -> Result<(), Box<dyn std::error::Error>> {
-        let mut w = Agent::new(&PpoConfig::default(), 0)?.weights()?;
-        if let Some(t) = w.get_mut("critic.fc2.weight") {
-            t.shape = vec![2, 64];
+/// Reads a checkpoint of `kind` whose first layer takes `state_dim` inputs: its weights,
+/// the hidden width they have (which overrides the config's), and the file's name for
+/// errors. Both agents' `load` start here.
+///
+/// # Errors
+/// As [`read_checkpoint`], and [`PpoError::MissingKey`] / [`PpoError::WrongShape`] for a
+/// first layer missing or not of shape `[hidden, state_dim]`.
+pub fn read_sized(
+    path: &Path,
+    kind: CheckpointKind,
+    state_dim: usize,
+) -> Result<(NamedWeights, usize, String), PpoError> {
+    let file = path.display().to_string();
+    let weights = read_checkpoint(path, kind)?;
+    let key = "actor.fc1.weight";
+    let hidden_dim = match weights.get(key).map(|w| w.shape.as_slice()) {
+        Some(&[h, n]) if h > 0 && n == state_dim => h,
+        Some(other) => {
+            return Err(PpoError::WrongShape {
+                file,
+                key: key.into(),
+                expected: format!("shape [hidden, {state_dim}]"),
+                got: format!("shape {other:?}"),
+            });
         }
-        let err = check_weights(&w, 128, "x.safetensors")
-            .err()
-            .map(|e| e.to_string());
-        let err = err.unwrap_or_default();
-        assert!(
-            err.contains("critic.fc2.weight") && err.contains("[1, 128]"),
-            "{err}"
-        );
-        w.remove("actor.fc2.bias");
-        let err = check_weights(&w, 128, "x")
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default();
-        assert!(
-            err.contains("actor.fc2.bias") && err.contains("[2]"),
-            "{err}"
-        );
-        Ok(())
-    }
+        None => {
+            return Err(PpoError::MissingKey {
+                file,
+                key: key.into(),
+                expected: format!("an f32 tensor of shape [hidden, {state_dim}]"),
+            });
+        }
+    };
+    Ok((weights, hidden_dim, file))
 }

@@ -9,6 +9,7 @@
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
 
 pub mod agent;
+pub mod checkpoint;
 pub mod config;
 pub mod gradient;
 pub mod replay;

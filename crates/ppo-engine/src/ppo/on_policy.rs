@@ -149,6 +149,24 @@ pub trait Batch: Default + Clone + Debug + Send + 'static {
     fn terminated(&self) -> Vec<bool>;
 }
 
+/// Checks one episode's columns: at least one step, and every column (name, length) as long
+/// as `actions`, the `n` steps.
+///
+/// # Errors
+/// [`PpoError::EmptyBatch`], or [`PpoError::InvalidBatch`] naming the first column of
+/// another length.
+pub(crate) fn check_columns(n: usize, columns: &[(&str, usize)]) -> Result<(), PpoError> {
+    if n == 0 {
+        return Err(PpoError::EmptyBatch);
+    }
+    match columns.iter().find(|(_, len)| *len != n) {
+        Some((name, len)) => Err(PpoError::InvalidBatch(format!(
+            "{name} has {len} entries but actions has {n}: every column needs one per step"
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// The hyper-parameters of an agent's run.
 pub trait AgentConfig: Clone + Debug + PartialEq + Send + Sync + Serialize + 'static {
     /// The agent these settings train.

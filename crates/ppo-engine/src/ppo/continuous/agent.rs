@@ -56,6 +56,7 @@ use crate::ppo::adam::Adam;
 use crate::ppo::advantage::compute_advantage;
 use crate::ppo::kernels::isa;
 use crate::ppo::model::{Linear, NamedWeights, ValueNet, WeightTensor};
+use crate::ppo::on_policy::check_columns;
 use crate::ppo::update_path::{UpdatePath, choose_path};
 
 mod lean;
@@ -109,21 +110,15 @@ impl ContinuousTransitions {
     }
 
     fn check(&self) -> Result<(), PpoError> {
-        let n = self.len();
-        if n == 0 {
-            return Err(PpoError::EmptyBatch);
-        }
-        let lens = [
-            ("states", self.states.len()),
-            ("rewards", self.rewards.len()),
-            ("next_states", self.next_states.len()),
-            ("dones", self.dones.len()),
-        ];
-        if let Some((name, len)) = lens.iter().find(|(_, len)| *len != n) {
-            return Err(PpoError::InvalidBatch(format!(
-                "{name} has {len} entries but actions has {n}: every column needs one per step"
-            )));
-        }
+        check_columns(
+            self.len(),
+            &[
+                ("states", self.states.len()),
+                ("rewards", self.rewards.len()),
+                ("next_states", self.next_states.len()),
+                ("dones", self.dones.len()),
+            ],
+        )?;
         let numbers = [("actions", &self.actions), ("rewards", &self.rewards)];
         for (name, column) in numbers {
             if let Some(t) = column.iter().position(|x| !x.is_finite()) {

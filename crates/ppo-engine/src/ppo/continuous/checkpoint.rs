@@ -22,7 +22,7 @@ use std::path::Path;
 use super::agent::PpoContinuous;
 use super::{PpoContinuousConfig, STATE_DIM};
 use crate::ppo::PpoError;
-use crate::ppo::checkpoint::{CheckpointKind, read_checkpoint, write_checkpoint};
+use crate::ppo::checkpoint::{CheckpointKind, read_sized, write_checkpoint};
 
 impl PpoContinuous {
     /// Writes the weights to a safetensors file (f32, PyTorch names), marked as a
@@ -43,26 +43,8 @@ impl PpoContinuous {
     /// CartPole agent; [`PpoError::MissingKey`] / [`PpoError::WrongShape`] naming the tensor
     /// and its expected shape.
     pub fn load(path: &Path, config: &PpoContinuousConfig, seed: u64) -> Result<Self, PpoError> {
-        let file = path.display().to_string();
-        let weights = read_checkpoint(path, CheckpointKind::PendulumPpoContinuous)?;
-        let hidden_dim = match weights.get("actor.fc1.weight").map(|w| w.shape.as_slice()) {
-            Some(&[h, STATE_DIM]) if h > 0 => h,
-            Some(other) => {
-                return Err(PpoError::WrongShape {
-                    file,
-                    key: "actor.fc1.weight".into(),
-                    expected: format!("shape [hidden, {STATE_DIM}]"),
-                    got: format!("shape {other:?}"),
-                });
-            }
-            None => {
-                return Err(PpoError::MissingKey {
-                    file,
-                    key: "actor.fc1.weight".into(),
-                    expected: format!("an f32 tensor of shape [hidden, {STATE_DIM}]"),
-                });
-            }
-        };
+        let (weights, hidden_dim, file) =
+            read_sized(path, CheckpointKind::PendulumPpoContinuous, STATE_DIM)?;
         let config = PpoContinuousConfig {
             hidden_dim,
             ..config.clone()

@@ -62,70 +62,7 @@ impl PpoContinuousConfig {
     /// # Errors
     /// [`PpoError::InvalidConfig`] naming the first field out of range and its valid range.
     pub fn validate(&self) -> Result<(), PpoError> {
-        let bad = |field, value: String, expected| {
-            Err(PpoError::InvalidConfig {
-                field,
-                value,
-                expected,
-            })
-        };
-        if !(self.actor_lr.is_finite() && self.actor_lr > 0.0) {
-            return bad(
-                "actor_lr",
-                self.actor_lr.to_string(),
-                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
-            );
-        }
-        if !(self.critic_lr.is_finite() && self.critic_lr > 0.0) {
-            return bad(
-                "critic_lr",
-                self.critic_lr.to_string(),
-                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
-            );
-        }
-        if self.hidden_dim == 0 {
-            return bad(
-                "hidden_dim",
-                "0".into(),
-                crate::i18n::t("at least 1", "至少为 1"),
-            );
-        }
-        if !(self.gamma > 0.0 && self.gamma <= 1.0) {
-            return bad(
-                "gamma",
-                self.gamma.to_string(),
-                crate::i18n::t("a number in (0, 1]", "(0, 1] 内的数"),
-            );
-        }
-        if !(0.0..=1.0).contains(&self.lmbda) {
-            return bad(
-                "lmbda",
-                self.lmbda.to_string(),
-                crate::i18n::t("a number in [0, 1]", "[0, 1] 内的数"),
-            );
-        }
-        if self.epochs == 0 {
-            return bad(
-                "epochs",
-                "0".into(),
-                crate::i18n::t("at least 1", "至少为 1"),
-            );
-        }
-        if !(self.eps > 0.0 && self.eps < 1.0) {
-            return bad(
-                "eps",
-                self.eps.to_string(),
-                crate::i18n::t("a number in (0, 1)", "(0, 1) 内的数"),
-            );
-        }
-        if self.num_episodes == 0 {
-            return bad(
-                "num_episodes",
-                "0".into(),
-                crate::i18n::t("at least 1 episode", "至少 1 个回合"),
-            );
-        }
-        Ok(())
+        crate::ppo::ranges::check_shared!(self)
     }
 }
 

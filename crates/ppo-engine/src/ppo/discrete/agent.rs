@@ -56,6 +56,7 @@ use crate::ppo::adam::Adam;
 use crate::ppo::advantage::{compute_advantage, normalize_advantage};
 use crate::ppo::kernels::isa;
 use crate::ppo::model::{ActorSnapshot, Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
+use crate::ppo::on_policy::check_columns;
 use crate::ppo::update_path::{UpdatePath, choose_path};
 
 mod lean;
@@ -113,22 +114,16 @@ impl Transitions {
     }
 
     fn check(&self) -> Result<(), PpoError> {
-        let n = self.len();
-        if n == 0 {
-            return Err(PpoError::EmptyBatch);
-        }
-        let lens = [
-            ("states", self.states.len()),
-            ("rewards", self.rewards.len()),
-            ("next_states", self.next_states.len()),
-            ("dones", self.dones.len()),
-            ("terminated", self.terminated.len()),
-        ];
-        if let Some((name, len)) = lens.iter().find(|(_, len)| *len != n) {
-            return Err(PpoError::InvalidBatch(format!(
-                "{name} has {len} entries but actions has {n}: every column needs one per step"
-            )));
-        }
+        check_columns(
+            self.len(),
+            &[
+                ("states", self.states.len()),
+                ("rewards", self.rewards.len()),
+                ("next_states", self.next_states.len()),
+                ("dones", self.dones.len()),
+                ("terminated", self.terminated.len()),
+            ],
+        )?;
         if let Some((t, a)) = self
             .actions
             .iter()
@@ -201,7 +196,7 @@ impl Agent {
         source: &str,
     ) -> Result<Self, PpoError> {
         config.validate()?;
-        crate::ppo::checkpoint::check_weights(weights, config.hidden_dim, source)?;
+        super::checkpoint::check_weights(weights, config.hidden_dim, source)?;
         let layer = |prefix: &str, in_dim: usize, out_dim: usize| -> Result<Linear, PpoError> {
             let get = |name: &str| {
                 let key = format!("{prefix}.{name}");

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::env::EnvId;
 use crate::ppo::PpoError;
+use crate::ppo::ranges::{invalid, positive};
 
 /// Everything that sets one PPO run apart from another.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -112,96 +113,22 @@ impl PpoConfig {
     /// # Errors
     /// [`PpoError::InvalidConfig`] naming the first field out of range and its valid range.
     pub fn validate(&self) -> Result<(), PpoError> {
-        let bad = |field, value: String, expected| {
-            Err(PpoError::InvalidConfig {
-                field,
-                value,
-                expected,
-            })
-        };
-        if !(self.actor_lr.is_finite() && self.actor_lr > 0.0) {
-            return bad(
-                "actor_lr",
-                self.actor_lr.to_string(),
-                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
-            );
-        }
-        if !(self.critic_lr.is_finite() && self.critic_lr > 0.0) {
-            return bad(
-                "critic_lr",
-                self.critic_lr.to_string(),
-                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
-            );
-        }
-        if self.hidden_dim == 0 {
-            return bad(
-                "hidden_dim",
-                "0".into(),
-                crate::i18n::t("at least 1", "至少为 1"),
-            );
-        }
-        if !(self.gamma > 0.0 && self.gamma <= 1.0) {
-            return bad(
-                "gamma",
-                self.gamma.to_string(),
-                crate::i18n::t("a number in (0, 1]", "(0, 1] 内的数"),
-            );
-        }
-        if !(0.0..=1.0).contains(&self.lmbda) {
-            return bad(
-                "lmbda",
-                self.lmbda.to_string(),
-                crate::i18n::t("a number in [0, 1]", "[0, 1] 内的数"),
-            );
-        }
-        if self.epochs == 0 {
-            return bad(
-                "epochs",
-                "0".into(),
-                crate::i18n::t("at least 1", "至少为 1"),
-            );
-        }
-        if !(self.eps > 0.0 && self.eps < 1.0) {
-            return bad(
-                "eps",
-                self.eps.to_string(),
-                crate::i18n::t("a number in (0, 1)", "(0, 1) 内的数"),
-            );
-        }
-        if self.num_episodes == 0 {
-            return bad(
-                "num_episodes",
-                "0".into(),
-                crate::i18n::t("at least 1 episode", "至少 1 个回合"),
-            );
-        }
+        crate::ppo::ranges::check_shared!(self)?;
         if !(self.entropy_coef.is_finite() && self.entropy_coef >= 0.0) {
-            return bad(
+            return Err(invalid(
                 "entropy_coef",
-                self.entropy_coef.to_string(),
+                self.entropy_coef,
                 crate::i18n::t(
                     "a finite number >= 0 (0 turns the bonus off)",
                     "大于等于 0 的有限数（0 表示关闭熵奖励）",
                 ),
-            );
+            ));
         }
-        if let Some(norm) = self.max_grad_norm
-            && !(norm.is_finite() && norm > 0.0)
-        {
-            return bad(
-                "max_grad_norm",
-                norm.to_string(),
-                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
-            );
+        if let Some(norm) = self.max_grad_norm {
+            positive("max_grad_norm", norm)?;
         }
-        if let Some(kl) = self.target_kl
-            && !(kl.is_finite() && kl > 0.0)
-        {
-            return bad(
-                "target_kl",
-                kl.to_string(),
-                crate::i18n::t("a finite number > 0", "大于 0 的有限数"),
-            );
+        if let Some(kl) = self.target_kl {
+            positive("target_kl", kl)?;
         }
         Ok(())
     }

@@ -21,9 +21,9 @@
 use serde::Serialize;
 use serde_json::{Map, Value};
 
+use super::checkpoint::parameter_shapes;
 use super::{Agent, PpoConfig, Transitions};
 use crate::ppo::PpoError;
-use crate::ppo::checkpoint::parameter_shapes;
 use crate::ppo::model::{NamedWeights, WeightTensor};
 
 /// One case to replay.
