@@ -10,12 +10,9 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
-use serde_json::json;
 
 use crate::i18n::t;
-use crate::ppo::continuous::replay::{ContinuousReplayOutput, replay_continuous_case};
-use crate::ppo::replay::{ReplayOutput, replay_case};
-use crate::ppo::replay_file::{AnyReplay, parse_any_replay};
+use crate::ppo::replay_file::replay_any;
 use crate::tr;
 
 /// Arguments of `ppo-tutor replay`.
@@ -42,39 +39,21 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<ExitCode> {
     let text = std::fs::read_to_string(&args.file)
         .with_context(|| tr!("reading {name}", "读取 {name}"))?;
     let mut out = std::io::stdout().lock();
-    // (transitions, [(actor_loss, critic_loss)] per epoch) of each case, for the table
-    let summary: Vec<(usize, Vec<(f32, f32)>)> = match parse_any_replay(&text, &name)? {
-        AnyReplay::Discrete(cases) => {
-            let outputs = run_cases(&cases, replay_case)?;
-            if args.json {
-                writeln!(out, "{}", json!({ "cases": outputs }))?;
-                return Ok(ExitCode::SUCCESS);
-            }
-            cases
-                .iter()
-                .zip(&outputs)
-                .map(|(case, o): (_, &ReplayOutput)| {
-                    let losses = o.epochs.iter().map(|e| (e.actor_loss, e.critic_loss));
-                    (case.batch.len(), losses.collect())
-                })
-                .collect()
-        }
-        AnyReplay::Continuous(cases) => {
-            let outputs = run_cases(&cases, replay_continuous_case)?;
-            if args.json {
-                writeln!(out, "{}", json!({ "cases": outputs }))?;
-                return Ok(ExitCode::SUCCESS);
-            }
-            cases
-                .iter()
-                .zip(&outputs)
-                .map(|(case, o): (_, &ContinuousReplayOutput)| {
-                    let losses = o.epochs.iter().map(|e| (e.actor_loss, e.critic_loss));
-                    (case.batch.len(), losses.collect())
-                })
-                .collect()
-        }
-    };
+    let cases = replay_any(&text, &name)?
+        .into_iter()
+        .enumerate()
+        .map(|(i, case)| case.with_context(|| tr!("replaying cases[{i}]", "重放 cases[{i}]")))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    if args.json {
+        // The outputs' own JSON, in the fixture's key order: `{"cases":[...]}`.
+        let outputs: Vec<&str> = cases.iter().map(|c| c.output.as_str()).collect();
+        writeln!(out, "{{\"cases\":[{}]}}", outputs.join(","))?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    let summary: Vec<(usize, &[(f32, f32)])> = cases
+        .iter()
+        .map(|c| (c.transitions, c.losses.as_slice()))
+        .collect();
     for (i, (transitions, losses)) in summary.iter().enumerate() {
         let epochs = losses.len();
         writeln!(
@@ -105,18 +84,4 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<ExitCode> {
         )
     )?;
     Ok(ExitCode::SUCCESS)
-}
-
-/// Replays every case, naming the case in an error.
-fn run_cases<C, O>(
-    cases: &[C],
-    replay: impl Fn(&C) -> Result<O, crate::ppo::PpoError>,
-) -> anyhow::Result<Vec<O>> {
-    cases
-        .iter()
-        .enumerate()
-        .map(|(i, case)| {
-            replay(case).with_context(|| tr!("replaying cases[{i}]", "重放 cases[{i}]"))
-        })
-        .collect()
 }

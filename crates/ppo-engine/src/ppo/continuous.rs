@@ -59,7 +59,7 @@ use crate::env::Pendulum;
 use crate::ppo::PpoError;
 use crate::ppo::checkpoint::CheckpointKind;
 use crate::ppo::model::NamedWeights;
-use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent};
+use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent, Replayed};
 
 pub use crate::ppo::train::ContinuousTrainer;
 pub use agent::{ContinuousTransitions, PpoContinuous};
@@ -163,5 +163,29 @@ impl OnPolicyAgent for PpoContinuous {
 
     fn load_from(path: &Path, config: &PpoContinuousConfig, seed: u64) -> Result<Self, PpoError> {
         PpoContinuous::load(path, config, seed)
+    }
+
+    /// A Gaussian policy: `actor.fc_mu`.
+    fn replays(weights_before: &serde_json::Value) -> bool {
+        weights_before.get("actor.fc_mu.weight").is_some()
+    }
+
+    fn replay(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError> {
+        Ok(replay::parse_continuous_replay(text, file)?
+            .iter()
+            .map(|case| {
+                let out = replay::replay_continuous_case(case)?;
+                Ok(Replayed {
+                    transitions: case.batch.len(),
+                    losses: out
+                        .epochs
+                        .iter()
+                        .map(|e| (e.actor_loss, e.critic_loss))
+                        .collect(),
+                    output: serde_json::to_string(&out)
+                        .map_err(|e| PpoError::NonFinite(format!("the replay's output: {e}")))?,
+                })
+            })
+            .collect())
     }
 }

@@ -21,7 +21,7 @@ use crate::env::CartPole;
 use crate::ppo::PpoError;
 use crate::ppo::checkpoint::CheckpointKind;
 use crate::ppo::model::NamedWeights;
-use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent};
+use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent, Replayed};
 
 pub use agent::{Agent, Losses, Transitions};
 pub use config::{Algorithm, PpoConfig};
@@ -113,5 +113,29 @@ impl OnPolicyAgent for Agent {
 
     fn load_from(path: &Path, config: &PpoConfig, seed: u64) -> Result<Self, PpoError> {
         Agent::load(path, config, seed)
+    }
+
+    /// A softmax policy: `actor.fc2`, no Gaussian head.
+    fn replays(weights_before: &serde_json::Value) -> bool {
+        weights_before.get("actor.fc2.weight").is_some()
+    }
+
+    fn replay(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError> {
+        Ok(replay::parse_replay(text, file)?
+            .iter()
+            .map(|case| {
+                let out = replay::replay_case(case)?;
+                Ok(Replayed {
+                    transitions: case.batch.len(),
+                    losses: out
+                        .epochs
+                        .iter()
+                        .map(|e| (e.actor_loss, e.critic_loss))
+                        .collect(),
+                    output: serde_json::to_string(&out)
+                        .map_err(|e| PpoError::NonFinite(format!("the replay's output: {e}")))?,
+                })
+            })
+            .collect())
     }
 }

@@ -250,6 +250,32 @@ pub trait OnPolicyAgent: Sized + Clone + Debug + Send + 'static {
     /// [`PpoError::File`], [`PpoError::MissingKey`] or [`PpoError::WrongShape`], naming the
     /// file and the tensor.
     fn load_from(path: &Path, config: &Self::Config, seed: u64) -> Result<Self, PpoError>;
+
+    /// Whether a recorded update whose first case starts from `weights_before` (the
+    /// fixture's JSON object of named tensors) is this agent's.
+    fn replays(weights_before: &serde_json::Value) -> bool;
+
+    /// Replays every case of a recorded PyTorch update of this agent
+    /// (`tests/fixtures/*_update_pytorch.json`): one result per case; `file` names the file
+    /// in errors.
+    ///
+    /// # Errors
+    /// [`PpoError::File`], [`PpoError::MissingKey`] or [`PpoError::WrongShape`] naming the
+    /// key, when the file cannot be read as this agent's cases.
+    #[allow(clippy::type_complexity)]
+    fn replay(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError>;
+}
+
+/// One case of a recorded PyTorch update, replayed: what `ppo-tutor replay` prints.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Replayed {
+    /// The case's transitions.
+    pub transitions: usize,
+    /// `(actor_loss, critic_loss)` of each epoch.
+    pub losses: Vec<(f32, f32)>,
+    /// Every tensor the update computed, as JSON text in the fixture's key names, shapes
+    /// and order (f32 values printed as f32, shortest form).
+    pub output: String,
 }
 
 /// The observation type of agent `A`.

@@ -1,40 +1,65 @@
-//! A replay file of either agent: the seed's discrete PPO ([`super::replay`]) or the book's
-//! `PPOContinuous` ([`super::continuous::replay`]), told apart by the keys of its weights.
+//! A replay file of any agent (the seed's discrete PPO, the book's `PPOContinuous`, ...),
+//! told apart by the weights of its first case ([`OnPolicyAgent::replays`]).
 
 use serde_json::Value;
 
 use super::PpoError;
-use super::continuous::replay::{ContinuousReplayCase, parse_continuous_replay};
-use super::replay::{ReplayCase, parse_replay};
+use super::on_policy::{AgentConfig, OnPolicyAgent, Replayed};
+use crate::lesson::live::session::LiveAgent;
+use crate::run::{Environment, RunConfig, RunVisitor};
 
-/// A replay file of either agent, told apart by its keys.
-#[derive(Debug, Clone)]
-pub enum AnyReplay {
-    /// `ppo_update_pytorch.json`: the seed's discrete PPO on CartPole.
-    Discrete(Vec<ReplayCase>),
-    /// `ppo_continuous_update_pytorch.json`: the book's `PPOContinuous` on Pendulum.
-    Continuous(Vec<ContinuousReplayCase>),
-}
-
-/// Parses a replay file of either agent: one whose first case's `weights_before` holds
-/// `actor.fc_mu.weight` (a Gaussian policy) is the continuous agent's, any other the
-/// discrete agent's; `file` names it in errors.
+/// Replays every case of a recorded PyTorch update of any agent: the agent whose weights
+/// the first case's `weights_before` holds (the first agent, the seed's PPO, when none
+/// claims them); `file` names it in errors. One result per case.
 ///
 /// # Errors
-/// As [`parse_replay`] and [`parse_continuous_replay`].
-pub fn parse_any_replay(text: &str, file: &str) -> Result<AnyReplay, PpoError> {
+/// [`PpoError::File`] for a file that is not JSON; as [`OnPolicyAgent::replay`] for one
+/// that is not that agent's cases.
+#[allow(clippy::type_complexity)]
+pub fn replay_any(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError> {
     let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
         file: file.into(),
         reason: format!("not valid JSON ({e})"),
     })?;
-    let continuous = root
+    let weights = root
         .get("cases")
         .and_then(|c| c.get(0))
         .and_then(|c| c.get("weights_before"))
-        .is_some_and(|w| w.get("actor.fc_mu.weight").is_some());
-    if continuous {
-        Ok(AnyReplay::Continuous(parse_continuous_replay(text, file)?))
-    } else {
-        Ok(AnyReplay::Discrete(parse_replay(text, file)?))
+        .unwrap_or(&Value::Null);
+    let env = Environment::ALL
+        .into_iter()
+        .find(|env| RunConfig::default_for(*env).visit(Claims(weights)))
+        .unwrap_or_default();
+    RunConfig::default_for(env).visit(Replay { text, file })
+}
+
+/// Whether an agent claims a replay file's weights.
+struct Claims<'a>(&'a Value);
+
+impl RunVisitor for Claims<'_> {
+    type Output = bool;
+
+    fn visit<C: AgentConfig>(self, _config: &C) -> bool
+    where
+        C::Agent: LiveAgent,
+    {
+        C::Agent::replays(self.0)
+    }
+}
+
+/// Replays a file as an agent's.
+struct Replay<'a> {
+    text: &'a str,
+    file: &'a str,
+}
+
+impl RunVisitor for Replay<'_> {
+    type Output = Result<Vec<Result<Replayed, PpoError>>, PpoError>;
+
+    fn visit<C: AgentConfig>(self, _config: &C) -> Self::Output
+    where
+        C::Agent: LiveAgent,
+    {
+        C::Agent::replay(self.text, self.file)
     }
 }

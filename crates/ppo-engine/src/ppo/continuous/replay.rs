@@ -272,7 +272,7 @@ fn batch(r: &Reader<'_>, b: &Value, path: &str) -> Result<ContinuousTransitions,
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ppo::replay_file::{AnyReplay, parse_any_replay};
+    use crate::ppo::replay_file::replay_any;
 
     fn case_json() -> Value {
         serde_json::json!({"cases": [{
@@ -293,12 +293,16 @@ mod tests {
     #[test]
     fn a_small_case_replays() -> Result<(), PpoError> {
         let text = case_json().to_string();
-        let AnyReplay::Continuous(cases) = parse_any_replay(&text, "t.json")? else {
-            return Err(PpoError::InvalidBatch(
-                "not recognised as continuous".into(),
-            ));
-        };
+        let replayed = replay_any(&text, "t.json")?;
+        assert_eq!(replayed.len(), 1, "recognised as the continuous agent's");
+        let cases = parse_continuous_replay(&text, "t.json")?;
         let out = replay_continuous_case(&cases[0])?;
+        let first = replayed.into_iter().next().ok_or(PpoError::EmptyBatch)??;
+        assert_eq!(
+            first.output,
+            serde_json::to_string(&out).unwrap_or_default()
+        );
+        assert_eq!((first.transitions, first.losses.len()), (1, 2));
         assert_eq!(out.scaled_rewards, vec![[0.0]]); // (-8 + 8) / 8
         assert_eq!(out.td_target, vec![[0.0]]); // done: no bootstrap
         assert_eq!(out.epochs.len(), 2);
@@ -310,7 +314,7 @@ mod tests {
     fn errors_name_the_key_and_shape() {
         let mut j = case_json();
         j["cases"][0]["weights_before"]["actor.fc_std.weight"] = serde_json::json!([[0.5]]);
-        let err = parse_any_replay(&j.to_string(), "t.json")
+        let err = replay_any(&j.to_string(), "t.json")
             .err()
             .map(|e| e.to_string())
             .unwrap_or_default();
@@ -321,7 +325,7 @@ mod tests {
         );
         let mut j = case_json();
         j["cases"][0]["batch"]["states"] = serde_json::json!([[1.0, 0.0, 0.1, 0.0]]);
-        let err = parse_any_replay(&j.to_string(), "t.json")
+        let err = replay_any(&j.to_string(), "t.json")
             .err()
             .map(|e| e.to_string())
             .unwrap_or_default();

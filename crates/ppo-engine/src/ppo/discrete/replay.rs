@@ -15,7 +15,7 @@
 //!
 //! The continuous agent's fixture (`ppo_continuous_update_pytorch.json`, the book's
 //! `PPOContinuous` on Pendulum) has the same layout with a Gaussian actor
-//! (`actor.fc_mu`, `actor.fc_std`); [`replay_file::parse_any_replay`](super::replay_file::parse_any_replay)
+//! (`actor.fc_mu`, `actor.fc_std`); [`replay_file::replay_any`](crate::ppo::replay_file::replay_any)
 //! tells the two apart by those keys and [`continuous::replay`](super::continuous::replay) runs it.
 
 use serde::Serialize;
