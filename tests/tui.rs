@@ -11,7 +11,6 @@ use ppo_tutor::i18n::Lang;
 use ppo_tutor::lesson::{Course, Environment, Progress, RunConfig, Session};
 use ppo_tutor::ppo::{PpoConfig, PpoContinuousConfig};
 use ppo_tutor::tui::app::{App, Overlay, TrainState};
-use ppo_tutor::tui::components::sandbox::Field;
 use ppo_tutor::tui::keys::Action;
 use ppo_tutor::tui::theme::Theme;
 use ppo_tutor::tui::ui::View;
@@ -106,12 +105,12 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
 fn the_sandbox_switches_the_environment_to_pendulum() -> TestResult {
     let mut app = app()?;
     app.update(Action::Sandbox);
-    while app.sandbox.selected != Field::Env {
+    while app.sandbox.selected != "env" {
         app.update(Action::Down);
     }
     app.update(Action::Increase); // CartPole-v1 -> CartPole-v0
     app.update(Action::Increase); // -> Pendulum-v1, the book's defaults
-    assert_eq!(app.sandbox.env, Environment::Pendulum);
+    assert_eq!(app.sandbox.env(), Environment::Pendulum);
     insta::assert_snapshot!("sandbox_pendulum", screen(&app, 140, 45)?);
     app.update(Action::Enter);
     assert_eq!(app.run.env, Environment::Pendulum);
@@ -224,15 +223,21 @@ fn the_sandbox_changes_settings_and_keeps_the_old_curve() -> TestResult {
     app.update(Action::Increase); // eps 0.2 -> 0.25
     app.update(Action::Down);
     app.update(Action::Decrease); // gamma 0.98 -> 0.97
-    assert_eq!(app.sandbox.selected, Field::Gamma);
-    assert!((app.sandbox.config.eps - 0.25).abs() < 1e-12);
-    assert!((app.sandbox.config.gamma - 0.97).abs() < 1e-12);
+    assert_eq!(app.sandbox.selected, "gamma");
+    let edited = app
+        .sandbox
+        .config
+        .get::<PpoConfig>()
+        .cloned()
+        .unwrap_or_default();
+    assert!((edited.eps - 0.25).abs() < 1e-12);
+    assert!((edited.gamma - 0.97).abs() < 1e-12);
     assert!(
-        (app.run.config.eps - 0.2).abs() < 1e-12,
+        (app.run.cartpole().eps - 0.2).abs() < 1e-12,
         "nothing changes before Enter"
     );
     app.update(Action::Enter);
-    assert!((app.run.config.eps - 0.25).abs() < 1e-12);
+    assert!((app.run.cartpole().eps - 0.25).abs() < 1e-12);
     assert_eq!(
         app.run.previous.as_ref().map(|p| p.values.clone()),
         Some(old_curve)

@@ -145,7 +145,7 @@ impl App {
             overlay: Overlay::None,
             help: Help::default(),
             lesson_list: LessonList::default(),
-            sandbox: Sandbox::new(run.config.clone(), 0),
+            sandbox: Sandbox::default(),
             exercise: ExercisePanel::default(),
             quiz: Quiz::default(),
             lab: Lab::default(),
@@ -325,8 +325,11 @@ impl App {
             }
             Action::Help => self.open(Overlay::Help),
             Action::Sandbox => {
-                self.sandbox =
-                    Sandbox::for_run(&self.run.config(), &self.run.config, self.run.seed);
+                self.sandbox = Sandbox::for_run(
+                    self.run.config(),
+                    self.run.config_for(Environment::default()),
+                    self.run.seed,
+                );
                 self.open(Overlay::Sandbox);
             }
             Action::TrainToggle => {
@@ -481,7 +484,7 @@ impl App {
     #[must_use]
     pub fn lab_base(&self) -> PpoConfig {
         PpoConfig {
-            num_episodes: self.run.config.num_episodes,
+            num_episodes: self.run.cartpole().num_episodes,
             ..PpoConfig::default()
         }
     }

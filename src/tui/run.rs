@@ -5,7 +5,8 @@
 
 use crate::i18n::t;
 use crate::lesson::{Environment, RunConfig, Snapshot};
-use crate::ppo::{PpoConfig, PpoContinuousConfig};
+use crate::ppo::PpoConfig;
+use crate::run::RunConfigs;
 use crate::tr;
 
 use super::worker::{Command, WorkerEvent};
@@ -83,11 +84,9 @@ pub struct Run {
     /// The other environment's run while its lessons are not open (the worker keeps its
     /// session): browsing back continues it.
     pub parked: Option<ParkedRun>,
-    /// Hyper-parameters of the current CartPole run (or of the next one, in a Pendulum
-    /// lesson).
-    pub config: PpoConfig,
-    /// Hyper-parameters of the current Pendulum run (or of the next one).
-    pub pendulum: PpoContinuousConfig,
+    /// Hyper-parameters of each environment's run: the current one's, and the next one's
+    /// on every other environment.
+    pub configs: RunConfigs,
     /// The environment of the current run: the open lesson's.
     pub env: Environment,
     /// Seed of the current run.
@@ -100,20 +99,15 @@ impl Run {
     /// A fresh, paused run on `env` with the defaults (seed 0).
     #[must_use]
     pub fn new(env: Environment) -> Self {
-        let config = PpoConfig::default();
-        let pendulum = PpoContinuousConfig::default();
-        let snapshot = match env {
-            Environment::CartPole => Snapshot::new(&config, 0),
-            Environment::Pendulum => Snapshot::new_pendulum(&pendulum, 0),
-        };
+        let configs = RunConfigs::defaults();
+        let snapshot = configs[env].first_snapshot(0);
         Self {
             train: TrainState::Paused,
             snapshot,
             frame: 0,
             previous: None,
             parked: None,
-            config,
-            pendulum,
+            configs,
             env,
             seed: 0,
             outbox: Vec::new(),
@@ -129,10 +123,14 @@ impl Run {
     /// A run on `env` with that environment's settings in force.
     #[must_use]
     pub fn config_for(&self, env: Environment) -> RunConfig {
-        match env {
-            Environment::CartPole => RunConfig::CartPole(self.config.clone()),
-            Environment::Pendulum => RunConfig::Pendulum(self.pendulum.clone()),
-        }
+        self.configs[env].clone()
+    }
+
+    /// Hyper-parameters of the current CartPole run (or of the next one, in a Pendulum
+    /// lesson): what the clip lab starts from and the clip chart's ε.
+    #[must_use]
+    pub fn cartpole(&self) -> PpoConfig {
+        self.configs.get::<PpoConfig>().cloned().unwrap_or_default()
     }
 
     /// `t`: trains, pauses, or says that every episode is done.
@@ -173,10 +171,7 @@ impl Run {
         });
         self.show(config.first_snapshot(seed));
         self.env = config.env();
-        match config {
-            RunConfig::CartPole(c) => self.config = c,
-            RunConfig::Pendulum(p) => self.pendulum = p,
-        }
+        self.configs.set(config);
         self.seed = seed;
         self.train = TrainState::Paused;
         if run {

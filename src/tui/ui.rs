@@ -322,7 +322,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
         _ => {
             let trace = s.trace.as_ref();
             ClipChart {
-                eps: app.run.config.eps,
+                eps: app.run.cartpole().eps,
                 epoch: trace.and_then(|t| t.epochs.last()),
                 advantage: trace.map_or(&[], |t| t.advantage.as_slice()),
                 block: panel(t("L^CLIP against the ratio", "L^CLIP 随比率的变化"), theme),

@@ -13,6 +13,7 @@
 //! - [`train`](mod@train): `train_on_policy_agent` as a step-by-step [`Trainer`].
 //! - [`moving_average`](mod@moving_average): `rl_utils.moving_average`, for the return curve.
 //! - [`seeds`]: one configuration over several seeds in parallel, and the band of their curves.
+//! - [`knobs`]: the settings the sandbox changes, one notch at a time ([`knobs::Knob`]).
 //! - [`lab`]: the clip lab's experiments, one knob changed at a time over several seeds.
 //! - [`checkpoint`]: saving and loading an agent as safetensors with PyTorch's names.
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
@@ -45,6 +46,7 @@ pub mod checkpoint;
 pub mod continuous;
 pub mod discrete;
 pub(crate) mod kernels;
+pub mod knobs;
 pub mod lab;
 pub mod model;
 pub mod moving_average;

@@ -26,9 +26,13 @@
 //! # Ok::<(), ppo_engine::ppo::PpoError>(())
 //! ```
 
+use std::any::Any;
+use std::ops::{Index, IndexMut};
+
 use crate::i18n::t;
 use crate::lesson::Snapshot;
 use crate::lesson::live::session::LiveAgent;
+use crate::ppo::knobs::{self, KnobValue};
 use crate::ppo::{AgentConfig, PpoConfig, PpoContinuousConfig, PpoError};
 
 /// Declares the agents a run can train: the [`Environment`] enum, the [`RunConfig`] enum
@@ -55,6 +59,15 @@ macro_rules! agents {
             /// Every environment, in course order.
             pub const ALL: [Environment; COUNT] = [$(Environment::$env),+];
 
+            /// The number of environments.
+            pub const COUNT: usize = COUNT;
+
+            /// The position in [`Environment::ALL`].
+            #[must_use]
+            pub const fn index(self) -> usize {
+                self as usize
+            }
+
             /// What differs between the environments.
             #[must_use]
             pub const fn spec(self) -> &'static EnvSpec {
@@ -72,6 +85,13 @@ macro_rules! agents {
             $( $(#[doc = $doc])* $env($config), )+
         }
 
+        /// The first agent's defaults: CartPole-v1 with the seed's PPO.
+        impl Default for RunConfig {
+            fn default() -> Self {
+                Self::default_for(Environment::default())
+            }
+        }
+
         $(
             impl From<$config> for RunConfig {
                 fn from(c: $config) -> Self {
@@ -87,6 +107,22 @@ macro_rules! agents {
             pub fn visit<V: RunVisitor>(&self, visitor: V) -> V::Output {
                 match self {
                     $( Self::$env(c) => visitor.visit(c), )+
+                }
+            }
+
+            /// Calls `visitor` with the agent configuration inside, to change it: see
+            /// [`RunConfig::visit`].
+            pub fn visit_mut<V: RunVisitorMut>(&mut self, visitor: V) -> V::Output {
+                match self {
+                    $( Self::$env(c) => visitor.visit_mut(c), )+
+                }
+            }
+
+            /// The agent configuration inside, if it is a `C`.
+            #[must_use]
+            pub fn get<C: AgentConfig>(&self) -> Option<&C> {
+                match self {
+                    $( Self::$env(c) => (c as &dyn Any).downcast_ref::<C>(), )+
                 }
             }
 
@@ -119,6 +155,7 @@ agents! {
 
 const CARTPOLE: EnvSpec = EnvSpec {
     id: "CartPole-v1",
+    name: "CartPole",
     python_source: "seed",
     source_name: ("the seed", "原教程代码"),
     engine_name: ("the real PPO and CartPole", "真实的 PPO 和 CartPole"),
@@ -129,6 +166,7 @@ const CARTPOLE: EnvSpec = EnvSpec {
 
 const PENDULUM: EnvSpec = EnvSpec {
     id: "Pendulum-v1",
+    name: "Pendulum",
     python_source: "book",
     source_name: ("the book", "书中代码"),
     engine_name: (
@@ -146,6 +184,8 @@ const PENDULUM: EnvSpec = EnvSpec {
 pub struct EnvSpec {
     /// The id as Gymnasium spells it (and a lesson's front matter writes it).
     pub id: &'static str,
+    /// The environment without its version (`CartPole`), as the sandbox names it.
+    pub name: &'static str,
     /// Whose PyTorch program a step's `python` lines quote: `seed` (`seed_ppo.py`) or `book`.
     pub python_source: &'static str,
     /// That program in prose, English and Chinese ("the seed", "原教程代码").
@@ -213,6 +253,76 @@ pub trait RunVisitor {
         C::Agent: LiveAgent;
 }
 
+/// Code generic over the agents that changes the run's configuration: see
+/// [`RunConfig::visit_mut`].
+pub trait RunVisitorMut {
+    /// What the visit returns.
+    type Output;
+
+    /// Called with the run's configuration.
+    fn visit_mut<C: AgentConfig>(self, config: &mut C) -> Self::Output;
+}
+
+/// One value per [`Environment`] (the settings of each environment's run, say), indexed by
+/// the environment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PerEnvironment<T>([T; Environment::COUNT]);
+
+impl<T> PerEnvironment<T> {
+    /// `f(env)` for every environment.
+    #[must_use]
+    pub fn from_fn(f: impl FnMut(Environment) -> T) -> Self {
+        Self(Environment::ALL.map(f))
+    }
+}
+
+impl<T> Index<Environment> for PerEnvironment<T> {
+    type Output = T;
+
+    fn index(&self, env: Environment) -> &T {
+        &self.0[env.index()]
+    }
+}
+
+impl<T> IndexMut<Environment> for PerEnvironment<T> {
+    fn index_mut(&mut self, env: Environment) -> &mut T {
+        &mut self.0[env.index()]
+    }
+}
+
+/// The settings of every environment's run.
+pub type RunConfigs = PerEnvironment<RunConfig>;
+
+impl RunConfigs {
+    /// Every environment's defaults ([`RunConfig::default_for`]).
+    #[must_use]
+    pub fn defaults() -> Self {
+        Self::from_fn(RunConfig::default_for)
+    }
+
+    /// Keeps `config` as its environment's settings.
+    pub fn set(&mut self, config: RunConfig) {
+        let env = config.env();
+        self[env] = config;
+    }
+
+    /// The first settings that are a `C`.
+    #[must_use]
+    pub fn get<C: AgentConfig>(&self) -> Option<&C> {
+        self.0.iter().find_map(RunConfig::get)
+    }
+}
+
+/// One environment the sandbox can choose: an agent's environment and one of its
+/// Gymnasium ids.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Choice {
+    /// The agent's environment.
+    pub env: Environment,
+    /// The Gymnasium id (`CartPole-v0`).
+    pub id: &'static str,
+}
+
 impl RunConfig {
     /// The Gymnasium id of the run's environment (`CartPole-v0` where the config says so).
     #[must_use]
@@ -245,6 +355,134 @@ impl RunConfig {
     #[must_use]
     pub fn first_snapshot(&self, seed: u64) -> Snapshot {
         self.visit(FirstSnapshot(seed))
+    }
+
+    /// The ids of this run's knobs ([`AgentConfig::KNOBS`]), in display order.
+    #[must_use]
+    pub fn knob_ids(&self) -> Vec<&'static str> {
+        self.visit(KnobIds)
+    }
+
+    /// The ids of every agent's knobs, in display order: the first agent's, then each
+    /// other's not yet listed (the sandbox's rows).
+    #[must_use]
+    pub fn all_knob_ids() -> Vec<&'static str> {
+        let mut ids: Vec<&'static str> = Vec::new();
+        for env in Environment::ALL {
+            for id in Self::default_for(env).knob_ids() {
+                if !ids.contains(&id) {
+                    ids.push(id);
+                }
+            }
+        }
+        ids
+    }
+
+    /// The environments whose agents have the knob `id`.
+    #[must_use]
+    pub fn environments_with(id: &str) -> Vec<Environment> {
+        Environment::ALL
+            .into_iter()
+            .filter(|&env| Self::default_for(env).knob(id).is_some())
+            .collect()
+    }
+
+    /// The knob `id` of this run, read; `None` when its agent has no such knob.
+    #[must_use]
+    pub fn knob(&self, id: &str) -> Option<KnobValue> {
+        self.visit(ReadKnob(id))
+    }
+
+    /// Changes the setting `id` one notch up or down, within its range; `false` (nothing
+    /// changed) when the agent has no such setting, or it is the seed or the environment.
+    pub fn nudge(&mut self, id: &str, up: bool) -> bool {
+        self.visit_mut(Nudge(id, up))
+    }
+
+    /// Every environment a run can play, in the sandbox's cycle order: each agent's
+    /// Gymnasium ids ([`AgentConfig::ENV_IDS`]), agent after agent (CartPole-v1,
+    /// CartPole-v0, Pendulum-v1).
+    #[must_use]
+    pub fn choices() -> Vec<Choice> {
+        Environment::ALL
+            .into_iter()
+            .flat_map(|env| {
+                Self::default_for(env)
+                    .visit(EnvIds)
+                    .iter()
+                    .map(move |&id| Choice { env, id })
+            })
+            .collect()
+    }
+
+    /// This run's place among [`RunConfig::choices`].
+    #[must_use]
+    pub fn choice(&self) -> Choice {
+        Choice {
+            env: self.env(),
+            id: self.env_id(),
+        }
+    }
+
+    /// Plays `id`, one of the agent's Gymnasium ids; `false` (nothing changed) for another.
+    pub fn set_env_id(&mut self, id: &str) -> bool {
+        self.visit_mut(SetEnvId(id))
+    }
+}
+
+struct KnobIds;
+
+impl RunVisitor for KnobIds {
+    type Output = Vec<&'static str>;
+
+    fn visit<C: AgentConfig>(self, _: &C) -> Vec<&'static str> {
+        C::KNOBS.iter().map(|k| k.id).collect()
+    }
+}
+
+struct ReadKnob<'a>(&'a str);
+
+impl RunVisitor for ReadKnob<'_> {
+    type Output = Option<KnobValue>;
+
+    fn visit<C: AgentConfig>(self, config: &C) -> Option<KnobValue> {
+        knobs::find::<C>(self.0).map(|k| k.kind.read(config))
+    }
+}
+
+struct Nudge<'a>(&'a str, bool);
+
+impl RunVisitorMut for Nudge<'_> {
+    type Output = bool;
+
+    fn visit_mut<C: AgentConfig>(self, config: &mut C) -> bool {
+        match knobs::find::<C>(self.0).map(|k| &k.kind) {
+            Some(knobs::KnobKind::Value { nudge, .. }) => {
+                nudge(config, self.1);
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
+struct EnvIds;
+
+impl RunVisitor for EnvIds {
+    type Output = &'static [&'static str];
+
+    fn visit<C: AgentConfig>(self, _: &C) -> &'static [&'static str] {
+        C::ENV_IDS
+    }
+}
+
+struct SetEnvId<'a>(&'a str);
+
+impl RunVisitorMut for SetEnvId<'_> {
+    type Output = bool;
+
+    fn visit_mut<C: AgentConfig>(self, config: &mut C) -> bool {
+        config.set_env_id(self.0)
     }
 }
 
@@ -333,5 +571,48 @@ mod tests {
         ));
         assert_eq!(bad.num_episodes(), 500);
         Ok(())
+    }
+
+    #[test]
+    fn knobs_and_choices_come_from_the_agents() {
+        let ids: Vec<&str> = RunConfig::choices().iter().map(|c| c.id).collect();
+        assert_eq!(ids, ["CartPole-v1", "CartPole-v0", "Pendulum-v1"]);
+        for choice in RunConfig::choices() {
+            let mut config = RunConfig::default_for(choice.env);
+            assert!(config.set_env_id(choice.id));
+            assert_eq!(config.choice(), choice);
+        }
+        assert_eq!(RunConfig::all_knob_ids().len(), 15);
+        for env in Environment::ALL {
+            assert_eq!(
+                env.index(),
+                Environment::ALL
+                    .iter()
+                    .position(|&e| e == env)
+                    .unwrap_or(99)
+            );
+            let config = RunConfig::default_for(env);
+            let ids = config.knob_ids();
+            for (i, id) in ids.iter().enumerate() {
+                assert!(!ids[..i].contains(id), "{id} twice");
+            }
+            assert_eq!(config.knob("seed"), Some(KnobValue::Seed));
+            assert_eq!(config.knob("env"), Some(KnobValue::Environment));
+        }
+        assert_eq!(
+            RunConfig::environments_with("no_clip"),
+            [Environment::CartPole]
+        );
+        let mut pendulum = RunConfig::default_for(Environment::Pendulum);
+        assert!(!pendulum.nudge("no_clip", true) && !pendulum.nudge("seed", true));
+        assert!(pendulum.nudge("gamma", true));
+        assert_eq!(
+            pendulum.knob("gamma"),
+            Some(KnobValue::Value("0.91".into()))
+        );
+        let mut configs = RunConfigs::defaults();
+        configs.set(pendulum.clone());
+        assert_eq!(configs[Environment::Pendulum], pendulum);
+        assert_eq!(configs.get::<PpoConfig>(), Some(&PpoConfig::default()));
     }
 }

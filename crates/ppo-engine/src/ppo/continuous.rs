@@ -58,6 +58,7 @@ use std::path::Path;
 use crate::env::Pendulum;
 use crate::ppo::PpoError;
 use crate::ppo::checkpoint::CheckpointKind;
+use crate::ppo::knobs::{self, Knob};
 use crate::ppo::model::NamedWeights;
 use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent, Replayed};
 
@@ -126,6 +127,61 @@ impl AgentConfig for PpoContinuousConfig {
     /// Pendulum's rewards are at most 0.
     fn max_return(&self) -> f64 {
         0.0
+    }
+
+    /// The discrete PPO's five numbers, steps and ranges, the seed, and the epochs; the
+    /// discrete PPO's switches do not apply.
+    const KNOBS: &'static [Knob<Self>] = &[
+        Knob::value(
+            "eps",
+            |c| c.eps.to_string(),
+            |c, up| {
+                c.eps = knobs::step(c.eps, 0.05, 0.05, 0.95, up);
+            },
+        ),
+        Knob::value(
+            "gamma",
+            |c| c.gamma.to_string(),
+            |c, up| {
+                c.gamma = knobs::step(c.gamma, 0.01, 0.5, 1.0, up);
+            },
+        ),
+        Knob::value(
+            "lmbda",
+            |c| c.lmbda.to_string(),
+            |c, up| {
+                c.lmbda = knobs::step(c.lmbda, 0.05, 0.0, 1.0, up);
+            },
+        ),
+        Knob::value(
+            "actor_lr",
+            |c| knobs::show_rate(c.actor_lr),
+            |c, up| {
+                c.actor_lr = knobs::double_or_halve(c.actor_lr, up);
+            },
+        ),
+        Knob::value(
+            "critic_lr",
+            |c| knobs::show_rate(c.critic_lr),
+            |c, up| {
+                c.critic_lr = knobs::double_or_halve(c.critic_lr, up);
+            },
+        ),
+        Knob::SEED,
+        Knob::ENV,
+        Knob::value(
+            "epochs",
+            |c| c.epochs.to_string(),
+            |c, up| {
+                c.epochs = knobs::climb(c.epochs, &knobs::EPOCHS, up);
+            },
+        ),
+    ];
+
+    const ENV_IDS: &'static [&'static str] = &[crate::env::pendulum::ENV_ID];
+
+    fn set_env_id(&mut self, id: &str) -> bool {
+        id == crate::env::pendulum::ENV_ID
     }
 }
 

@@ -20,6 +20,7 @@ use std::path::Path;
 use crate::env::CartPole;
 use crate::ppo::PpoError;
 use crate::ppo::checkpoint::CheckpointKind;
+use crate::ppo::knobs::{self, Knob};
 use crate::ppo::model::NamedWeights;
 use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent, Replayed};
 
@@ -74,6 +75,109 @@ impl AgentConfig for PpoConfig {
 
     fn max_return(&self) -> f64 {
         f64::from(self.env_id.max_episode_steps())
+    }
+
+    /// The seed's five numbers, the seed, the CleanRL-style switches and the algorithm:
+    /// the three switches with a value toggle between off and the value their source uses
+    /// (an entropy bonus of 0.01, CleanRL's gradient clip of 0.5, Spinning Up's target KL
+    /// of 0.01).
+    const KNOBS: &'static [Knob<Self>] = &[
+        Knob::value(
+            "eps",
+            |c| c.eps.to_string(),
+            |c, up| {
+                c.eps = knobs::step(c.eps, 0.05, 0.05, 0.95, up);
+            },
+        ),
+        Knob::value(
+            "gamma",
+            |c| c.gamma.to_string(),
+            |c, up| {
+                c.gamma = knobs::step(c.gamma, 0.01, 0.5, 1.0, up);
+            },
+        ),
+        Knob::value(
+            "lmbda",
+            |c| c.lmbda.to_string(),
+            |c, up| {
+                c.lmbda = knobs::step(c.lmbda, 0.05, 0.0, 1.0, up);
+            },
+        ),
+        Knob::value(
+            "actor_lr",
+            |c| knobs::show_rate(c.actor_lr),
+            |c, up| {
+                c.actor_lr = knobs::double_or_halve(c.actor_lr, up);
+            },
+        ),
+        Knob::value(
+            "critic_lr",
+            |c| knobs::show_rate(c.critic_lr),
+            |c, up| {
+                c.critic_lr = knobs::double_or_halve(c.critic_lr, up);
+            },
+        ),
+        Knob::SEED,
+        Knob::value(
+            "bootstrap_on_truncation",
+            |c| c.bootstrap_on_truncation.to_string(),
+            |c, _| c.bootstrap_on_truncation = !c.bootstrap_on_truncation,
+        ),
+        Knob::value(
+            "normalize_advantage",
+            |c| c.normalize_advantage.to_string(),
+            |c, _| c.normalize_advantage = !c.normalize_advantage,
+        ),
+        Knob::ENV,
+        Knob::value(
+            "entropy_coef",
+            |c| c.entropy_coef.to_string(),
+            |c, _| {
+                c.entropy_coef = knobs::toggle_amount(c.entropy_coef, 0.01);
+            },
+        ),
+        Knob::value(
+            "max_grad_norm",
+            |c| knobs::show_option(c.max_grad_norm),
+            |c, _| {
+                c.max_grad_norm = knobs::toggle_option(c.max_grad_norm, 0.5);
+            },
+        ),
+        Knob::value(
+            "target_kl",
+            |c| knobs::show_option(c.target_kl),
+            |c, _| {
+                c.target_kl = knobs::toggle_option(c.target_kl, 0.01);
+            },
+        ),
+        Knob::value(
+            "epochs",
+            |c| c.epochs.to_string(),
+            |c, up| {
+                c.epochs = knobs::climb(c.epochs, &knobs::EPOCHS, up);
+            },
+        ),
+        Knob::value(
+            "no_clip",
+            |c| c.no_clip.to_string(),
+            |c, _| c.no_clip = !c.no_clip,
+        ),
+        Knob::value(
+            "algorithm",
+            |c| c.algorithm.as_str().into(),
+            |c, _| {
+                c.algorithm = match c.algorithm {
+                    Algorithm::Ppo => Algorithm::Reinforce,
+                    Algorithm::Reinforce => Algorithm::Ppo,
+                };
+            },
+        ),
+    ];
+
+    const ENV_IDS: &'static [&'static str] = &["CartPole-v1", "CartPole-v0"];
+
+    fn set_env_id(&mut self, id: &str) -> bool {
+        id.parse().map(|id| self.env_id = id).is_ok()
     }
 }
 

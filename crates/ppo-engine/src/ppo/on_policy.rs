@@ -37,6 +37,7 @@ use serde::Serialize;
 
 use super::PpoError;
 use super::checkpoint::CheckpointKind;
+use super::knobs::Knob;
 use super::model::NamedWeights;
 use crate::env::{CartPole, EnvError, Pendulum};
 
@@ -188,6 +189,17 @@ pub trait AgentConfig: Clone + Debug + PartialEq + Send + Sync + Serialize + 'st
     /// The highest return an episode can have, for a plot's scale (CartPole's time limit,
     /// Pendulum's 0).
     fn max_return(&self) -> f64;
+
+    /// The settings a learner can change in the sandbox, in the order it shows them, with
+    /// where the run's seed and environment go ([`Knob::SEED`], [`Knob::ENV`]).
+    const KNOBS: &'static [Knob<Self>];
+
+    /// The Gymnasium ids a run of this agent can play, in the sandbox's order
+    /// (`CartPole-v1`, `CartPole-v0`).
+    const ENV_IDS: &'static [&'static str];
+
+    /// Plays `id`, one of [`AgentConfig::ENV_IDS`]; `false` (nothing changed) for another.
+    fn set_env_id(&mut self, id: &str) -> bool;
 }
 
 /// An on-policy agent: the seed's `take_action` and `update`, with the environment it

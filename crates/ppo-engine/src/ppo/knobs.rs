@@ -1,0 +1,195 @@
+//! The settings of a run a learner can change, one notch at a time: [`Knob`].
+//!
+//! Each [`AgentConfig`] lists its knobs ([`AgentConfig::KNOBS`]) in the order the sandbox
+//! shows them: the agent's own settings, each with how its value is shown and how `+`/`−`
+//! changes it (steps, ladders and ranges), and where the run's seed and environment go.
+//! [`RunConfig`](crate::run::RunConfig) reaches them without naming the agent
+//! ([`RunConfig::knob`](crate::run::RunConfig::knob),
+//! [`RunConfig::nudge`](crate::run::RunConfig::nudge)), so the sandbox is written once.
+//!
+//! ```
+//! use ppo_engine::ppo::{AgentConfig, PpoConfig};
+//! use ppo_engine::ppo::knobs::KnobKind;
+//!
+//! let mut config = PpoConfig::default();
+//! let eps = PpoConfig::KNOBS.iter().find(|k| k.id == "eps").map(|k| &k.kind);
+//! let Some(KnobKind::Value { show, nudge }) = eps else {
+//!     unreachable!("the seed's PPO has an ε knob")
+//! };
+//! nudge(&mut config, true);
+//! assert_eq!(show(&config), "0.25"); // the seed's 0.2, one step of 0.05 up
+//! ```
+
+use super::AgentConfig;
+use crate::i18n::t;
+
+/// One editable setting of a run of an agent whose settings are `C`.
+pub struct Knob<C> {
+    /// The setting's name, as in the configuration (and the `--flag` of `ppo-tutor train`).
+    pub id: &'static str,
+    /// What it edits.
+    pub kind: KnobKind<C>,
+}
+
+/// What a [`Knob`] edits.
+pub enum KnobKind<C> {
+    /// A field of the agent's configuration.
+    Value {
+        /// The value as the sandbox shows it.
+        show: fn(&C) -> String,
+        /// Changes it one notch up (`true`) or down, within its valid range.
+        nudge: fn(&mut C, bool),
+    },
+    /// The run's seed, kept beside the configuration.
+    Seed,
+    /// The run's environment, chosen among
+    /// [`RunConfig::choices`](crate::run::RunConfig::choices).
+    Environment,
+}
+
+impl<C> Knob<C> {
+    /// Where the run's seed goes among the agent's knobs.
+    pub const SEED: Self = Self {
+        id: "seed",
+        kind: KnobKind::Seed,
+    };
+
+    /// Where the run's environment goes among the agent's knobs.
+    pub const ENV: Self = Self {
+        id: "env",
+        kind: KnobKind::Environment,
+    };
+
+    /// A field of the configuration called `id`, shown by `show` and changed by `nudge`.
+    #[must_use]
+    pub const fn value(id: &'static str, show: fn(&C) -> String, nudge: fn(&mut C, bool)) -> Self {
+        Self {
+            id,
+            kind: KnobKind::Value { show, nudge },
+        }
+    }
+}
+
+impl<C> std::fmt::Debug for Knob<C> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let kind = match self.kind {
+            KnobKind::Value { .. } => "Value",
+            KnobKind::Seed => "Seed",
+            KnobKind::Environment => "Environment",
+        };
+        f.debug_struct("Knob")
+            .field("id", &self.id)
+            .field("kind", &kind)
+            .finish()
+    }
+}
+
+/// A knob of a run, read without the agent's type: what
+/// [`RunConfig::knob`](crate::run::RunConfig::knob) returns.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum KnobValue {
+    /// A setting of the agent, as the sandbox shows it.
+    Value(String),
+    /// The run's seed (kept outside the configuration).
+    Seed,
+    /// The run's environment (the configuration's Gymnasium id).
+    Environment,
+}
+
+impl<C> KnobKind<C> {
+    /// What the knob reads on `config`.
+    pub fn read(&self, config: &C) -> KnobValue {
+        match self {
+            Self::Value { show, .. } => KnobValue::Value(show(config)),
+            Self::Seed => KnobValue::Seed,
+            Self::Environment => KnobValue::Environment,
+        }
+    }
+}
+
+/// The knob of `C` called `id`, if it has one.
+#[must_use]
+pub fn find<C: AgentConfig>(id: &str) -> Option<&'static Knob<C>> {
+    C::KNOBS.iter().find(|k| k.id == id)
+}
+
+/// `v` one step of `by` up or down, kept in `[lo, hi]` and rounded to three decimals (ε,
+/// γ, λ).
+#[must_use]
+pub fn step(v: f64, by: f64, lo: f64, hi: f64, up: bool) -> f64 {
+    let moved = (v + if up { by } else { -by }).clamp(lo, hi);
+    (moved * 1000.0).round() / 1000.0
+}
+
+/// `v` doubled or halved, kept in `[1e-6, 1]` (the learning rates).
+#[must_use]
+pub fn double_or_halve(v: f64, up: bool) -> f64 {
+    (if up { v * 2.0 } else { v / 2.0 }).clamp(1e-6, 1.0)
+}
+
+/// The epochs' ladder: 1, 2, 3, 5, 10 (the seed), 20 or 40.
+pub const EPOCHS: [usize; 7] = [1, 2, 3, 5, 10, 20, 40];
+
+/// The rung of `ladder` after `v` (or before it, for `up == false`), staying on the
+/// ladder's ends; a value above every rung counts as the fifth.
+#[must_use]
+pub fn climb(v: usize, ladder: &[usize], up: bool) -> usize {
+    let at = ladder.iter().position(|&e| e >= v).unwrap_or(4);
+    let to = if up {
+        (at + 1).min(ladder.len().saturating_sub(1))
+    } else {
+        at.saturating_sub(1)
+    };
+    ladder.get(to).copied().unwrap_or(v)
+}
+
+/// A switch between off (`0`) and `on`, the value its source uses.
+#[must_use]
+pub fn toggle_amount(v: f64, on: f64) -> f64 {
+    if v > 0.0 { 0.0 } else { on }
+}
+
+/// A switch between off (`None`) and `Some(on)`, the value its source uses.
+#[must_use]
+pub fn toggle_option(v: Option<f64>, on: f64) -> Option<f64> {
+    if v.is_some() { None } else { Some(on) }
+}
+
+/// An optional value as the sandbox shows it: the number, or "off" in the current language.
+#[must_use]
+pub fn show_option(v: Option<f64>) -> String {
+    v.map_or_else(|| t("off", "关").into(), |v| v.to_string())
+}
+
+/// A learning rate as the sandbox shows it (`3.00e-4`).
+#[must_use]
+pub fn show_rate(v: f64) -> String {
+    format!("{v:.2e}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn steps_and_ladders_stay_in_range() {
+        assert_eq!(step(0.2, 0.05, 0.05, 0.95, true), 0.25);
+        assert_eq!(step(0.05, 0.05, 0.05, 0.95, false), 0.05);
+        assert_eq!(double_or_halve(1e-6, false), 1e-6);
+        assert_eq!(climb(10, &EPOCHS, true), 20);
+        assert_eq!(climb(40, &EPOCHS, true), 40);
+        assert_eq!(climb(1, &EPOCHS, false), 1);
+        assert_eq!(
+            climb(4, &EPOCHS, false),
+            3,
+            "off the ladder: from the next rung"
+        );
+        assert_eq!(
+            climb(99, &EPOCHS, true),
+            20,
+            "above the ladder: from the fifth"
+        );
+        assert_eq!(toggle_amount(0.0, 0.01), 0.01);
+        assert_eq!(toggle_option(Some(0.5), 0.5), None);
+    }
+}
