@@ -455,14 +455,16 @@ fn title_markdown(lesson: &Lesson) -> String {
     tr!(
         "# Lesson {n}: {title}\n\n{summary}\n\nThis notebook mirrors lesson {n} of the terminal app \
          (`cargo run --release`), on the [evcxr](https://github.com/evcxr/evcxr) Rust \
-         kernel. Every number below comes from {engine} of the `ppo-tutor` crate. The \
-         first cell compiles the crate: the very first time, with candle, in a few \
-         minutes; in later kernels, once evcxr's cache (`:cache`) holds candle, in under \
-         a minute. After that each cell takes a second or two.",
+         kernel. Every number below comes from {engine} of the `ppo-engine` crate. The \
+         first cell compiles it (and `ppo-grade` in a lesson with exercises): the very \
+         first time, with candle, in several minutes; in later kernels, once evcxr's cache \
+         (`:cache`) holds candle, in about a minute. After that each cell takes a second or \
+         two.",
         "# 第 {n} 课：{title}\n\n{summary}\n\n本笔记本对应终端应用（`cargo run --release`）的第 {n} 课，\
          运行在 [evcxr](https://github.com/evcxr/evcxr) Rust 内核上。下面的每个数都来自 \
-         `ppo-tutor` 库中{engine_zh}。第一个单元格会编译这个库：第一次连同 candle 一起编译，需要几分钟；\
-         之后的内核里，evcxr 的缓存（`:cache`）已存有 candle，不到一分钟即可完成。此后每个单元格只需一两秒。",
+         `ppo-engine` 库中{engine_zh}。第一个单元格会编译这个库（有练习的课还有 `ppo-grade`）：\
+         第一次连同 candle 一起编译，需要几分钟；之后的内核里，evcxr 的缓存（`:cache`）已存有 candle，\
+         约需一分钟。此后每个单元格只需一两秒。",
         n = lesson.order,
         title = lesson.title,
         summary = lesson.summary,
