@@ -225,21 +225,10 @@ impl OnPolicyAgent for Agent {
     }
 
     fn replay(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError> {
-        Ok(replay::parse_replay(text, file)?
-            .iter()
-            .map(|case| {
-                let out = replay::replay_case(case)?;
-                Ok(Replayed {
-                    transitions: case.batch.len(),
-                    losses: out
-                        .epochs
-                        .iter()
-                        .map(|e| (e.actor_loss, e.critic_loss))
-                        .collect(),
-                    output: serde_json::to_string(&out)
-                        .map_err(|e| PpoError::NonFinite(format!("the replay's output: {e}")))?,
-                })
-            })
-            .collect())
+        let cases = replay::parse_replay(text, file)?;
+        Ok(Replayed::all(&cases, replay::replay_case, |case, out| {
+            let losses = out.epochs.iter().map(|e| (e.actor_loss, e.critic_loss));
+            (case.batch.len(), losses.collect())
+        }))
     }
 }

@@ -290,6 +290,31 @@ pub struct Replayed {
     pub output: String,
 }
 
+impl Replayed {
+    /// Replays `cases` with `replay`; `summary` gives a case's transitions and each epoch's
+    /// `(actor_loss, critic_loss)` from the case and its output.
+    pub(crate) fn all<C, O: Serialize>(
+        cases: &[C],
+        replay: impl Fn(&C) -> Result<O, PpoError>,
+        summary: impl Fn(&C, &O) -> (usize, Vec<(f32, f32)>),
+    ) -> Vec<Result<Self, PpoError>> {
+        cases
+            .iter()
+            .map(|case| {
+                let out = replay(case)?;
+                let (transitions, losses) = summary(case, &out);
+                let output = serde_json::to_string(&out)
+                    .map_err(|e| PpoError::NonFinite(format!("the replay's output: {e}")))?;
+                Ok(Self {
+                    transitions,
+                    losses,
+                    output,
+                })
+            })
+            .collect()
+    }
+}
+
 /// The observation type of agent `A`.
 pub type Obs<A> = <<A as OnPolicyAgent>::Env as Environment>::Obs;
 /// The action type of agent `A`.

@@ -23,7 +23,7 @@ use super::params::parameter_shapes;
 use super::{PpoContinuousConfig, STATE_DIM};
 use crate::ppo::PpoError;
 use crate::ppo::model::NamedWeights;
-use crate::ppo::replay::{Reader, nested};
+use crate::ppo::replay_file::{Reader, nested};
 
 /// One case to replay.
 #[derive(Debug, Clone)]
@@ -86,21 +86,8 @@ pub fn parse_continuous_replay(
     text: &str,
     file: &str,
 ) -> Result<Vec<ContinuousReplayCase>, PpoError> {
-    let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
-        file: file.into(),
-        reason: format!("not valid JSON ({e})"),
-    })?;
     let r = Reader { file };
-    let cases = r.array(
-        r.key(&root, "", "cases", "a list of cases")?,
-        "cases",
-        "a list of cases",
-    )?;
-    cases
-        .iter()
-        .enumerate()
-        .map(|(i, case)| parse_case(&r, case, &format!("cases[{i}]")))
-        .collect()
+    r.cases(text, |case, path| parse_case(&r, case, path))
 }
 
 /// Runs one case: the update from `weights_before` with fresh Adam state.

@@ -24,7 +24,8 @@ use serde_json::{Map, Value};
 use super::checkpoint::parameter_shapes;
 use super::{Agent, PpoConfig, Transitions};
 use crate::ppo::PpoError;
-use crate::ppo::model::{NamedWeights, WeightTensor};
+use crate::ppo::model::NamedWeights;
+use crate::ppo::replay_file::{Reader, nested};
 
 /// One case to replay.
 #[derive(Debug, Clone)]
@@ -76,21 +77,8 @@ pub struct ReplayEpoch {
 /// [`PpoError::WrongShape`] naming the key path (like `cases[0].batch.states`) and the
 /// expected shape.
 pub fn parse_replay(text: &str, file: &str) -> Result<Vec<ReplayCase>, PpoError> {
-    let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
-        file: file.into(),
-        reason: format!("not valid JSON ({e})"),
-    })?;
     let r = Reader { file };
-    let cases = r.array(
-        r.key(&root, "", "cases", "a list of cases")?,
-        "cases",
-        "a list of cases",
-    )?;
-    cases
-        .iter()
-        .enumerate()
-        .map(|(i, case)| r.case(case, &format!("cases[{i}]")))
-        .collect()
+    r.cases(text, |case, path| r.case(case, path))
 }
 
 /// Runs one case: the update from `weights_before` with fresh Adam state.
@@ -126,97 +114,7 @@ pub fn replay_case(case: &ReplayCase) -> Result<ReplayOutput, PpoError> {
     })
 }
 
-/// A weight as nested JSON lists: `(out, in)` rows for a matrix, a flat list for a bias.
-pub(crate) fn nested(w: &WeightTensor) -> Value {
-    let num = |x: &f32| Value::from(f64::from(*x));
-    match w.shape.as_slice() {
-        [_, cols] if *cols > 0 => Value::Array(
-            w.data
-                .chunks(*cols)
-                .map(|row| Value::Array(row.iter().map(num).collect()))
-                .collect(),
-        ),
-        _ => Value::Array(w.data.iter().map(num).collect()),
-    }
-}
-
-/// Reads JSON values, naming the key path and expected shape in every error.
-pub(crate) struct Reader<'a> {
-    /// The file's name, for error messages.
-    pub(crate) file: &'a str,
-}
-
 impl Reader<'_> {
-    fn missing(&self, key: String, expected: &str) -> PpoError {
-        PpoError::MissingKey {
-            file: self.file.into(),
-            key,
-            expected: expected.into(),
-        }
-    }
-
-    pub(crate) fn wrong(&self, key: &str, expected: &str, got: &Value) -> PpoError {
-        let got = match got {
-            Value::Array(a) => format!("a list of {} entries", a.len()),
-            Value::Object(_) => "an object".into(),
-            Value::String(_) => "a string".into(),
-            Value::Null => "null".into(),
-            other => format!("{other}"),
-        };
-        PpoError::WrongShape {
-            file: self.file.into(),
-            key: key.into(),
-            expected: expected.into(),
-            got,
-        }
-    }
-
-    pub(crate) fn key<'v>(
-        &self,
-        v: &'v Value,
-        path: &str,
-        key: &str,
-        expected: &str,
-    ) -> Result<&'v Value, PpoError> {
-        let full = if path.is_empty() {
-            key.to_string()
-        } else {
-            format!("{path}.{key}")
-        };
-        v.get(key).ok_or_else(|| self.missing(full, expected))
-    }
-
-    pub(crate) fn array<'v>(
-        &self,
-        v: &'v Value,
-        path: &str,
-        expected: &str,
-    ) -> Result<&'v Vec<Value>, PpoError> {
-        v.as_array().ok_or_else(|| self.wrong(path, expected, v))
-    }
-
-    pub(crate) fn number(&self, v: &Value, path: &str, expected: &str) -> Result<f64, PpoError> {
-        v.as_f64().ok_or_else(|| self.wrong(path, expected, v))
-    }
-
-    /// A list of `len` numbers (`len` None: any length).
-    pub(crate) fn floats(
-        &self,
-        v: &Value,
-        path: &str,
-        len: Option<usize>,
-        expected: &str,
-    ) -> Result<Vec<f32>, PpoError> {
-        let a = self.array(v, path, expected)?;
-        if len.is_some_and(|n| n != a.len()) {
-            return Err(self.wrong(path, expected, v));
-        }
-        a.iter()
-            .enumerate()
-            .map(|(i, x)| Ok(self.number(x, &format!("{path}[{i}]"), "a number")? as f32))
-            .collect()
-    }
-
     fn case(&self, case: &Value, path: &str) -> Result<ReplayCase, PpoError> {
         let config = self.hyper(
             self.key(case, path, "hyper", HYPER)?,
@@ -272,42 +170,6 @@ impl Reader<'_> {
 
     fn weights(&self, w: &Value, path: &str, hidden_dim: usize) -> Result<NamedWeights, PpoError> {
         self.named_tensors(w, path, parameter_shapes(hidden_dim))
-    }
-
-    /// The tensors `shapes` names, each as nested lists of its shape (`(out, in)` rows).
-    pub(crate) fn named_tensors(
-        &self,
-        w: &Value,
-        path: &str,
-        shapes: impl IntoIterator<Item = (&'static str, Vec<usize>)>,
-    ) -> Result<NamedWeights, PpoError> {
-        let mut out = NamedWeights::new();
-        for (name, shape) in shapes {
-            let key = format!("{path}.{name}");
-            let expected = format!("a list of shape {shape:?}");
-            let v = self.key(w, path, name, &expected)?;
-            let data = match shape.as_slice() {
-                [rows, cols] => {
-                    let rows_v = self.array(v, &key, &expected)?;
-                    if rows_v.len() != *rows {
-                        return Err(self.wrong(&key, &expected, v));
-                    }
-                    let mut data = Vec::with_capacity(rows * cols);
-                    for (r, row) in rows_v.iter().enumerate() {
-                        data.extend(self.floats(
-                            row,
-                            &format!("{key}[{r}]"),
-                            Some(*cols),
-                            &expected,
-                        )?);
-                    }
-                    data
-                }
-                _ => self.floats(v, &key, Some(shape.iter().product()), &expected)?,
-            };
-            out.insert(name.to_string(), WeightTensor { shape, data });
-        }
-        Ok(out)
     }
 
     fn batch(&self, b: &Value, path: &str) -> Result<Transitions, PpoError> {
