@@ -71,20 +71,22 @@ const LANG_VAR: &str = "PPO_TUTOR_NOTEBOOK_LANG";
 /// the dependencies) has run (set by [`relaunch`]).
 const READY_VAR: &str = "PPO_TUTOR_NOTEBOOK_READY";
 
-/// Runs this test again as two drivers side by side, one per language, each with its own
-/// evcxr work folder in the target folder (`tmp/evcxr`, the one `ppo-tutor dev notebooks`
-/// uses, for English; `tmp/evcxr-zh` for Chinese): a kernel changes the process's current
-/// folder and evcxr builds every cell in its work folder, so the two cannot share either.
-/// On 2 cores this takes about half the time of one language after the other.
+/// Runs this test again as two drivers side by side, one per language. Each language's
+/// notebooks have their own evcxr work folder (`notebooks/evcxr.toml` and
+/// `notebooks/zh/evcxr.toml` name them: `target/evcxr/en`, `target/evcxr/zh`, which
+/// `ppo-tutor dev notebooks` and a user's Jupyter kernels use too): a kernel changes the
+/// process's current folder and evcxr builds every cell in its work folder, so the two
+/// cannot share either. On 2 cores this takes about half the time of one language after
+/// the other.
 ///
-/// They share evcxr's cache of compiled dependencies (`tmp/evcxr-cache`), as a user's
-/// kernels share `~/.cache/evcxr`, and the Chinese driver starts once the English one's
-/// first notebook cell has built them (the file [`READY_VAR`] names appears), so candle is
-/// compiled once, not twice at the same time on the same cores. The crate itself (a local
-/// crate, which evcxr never caches) is still built in each folder.
+/// They share evcxr's cache of compiled dependencies (`target/evcxr/cache`, see
+/// [`kernel::relaunch`]), as a user's kernels share `~/.cache/evcxr`, and the Chinese driver
+/// starts once the English one's first notebook cell has built them (the file
+/// [`READY_VAR`] names appears), so candle is compiled once, not twice at the same time on
+/// the same cores. Each work folder keeps its build between kernels and between runs, so
+/// the engine is built once per folder after a change, not once per notebook.
 fn relaunch() -> ExitCode {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
-    let cache = tmp.join("evcxr-cache");
     let ready = tmp.join("evcxr-deps-ready");
     if let Err(e) = std::fs::remove_file(&ready)
         && e.kind() != std::io::ErrorKind::NotFound
@@ -92,7 +94,7 @@ fn relaunch() -> ExitCode {
         eprintln!("notebooks: removing {}: {e}", ready.display());
         return ExitCode::FAILURE;
     }
-    let (Some(cache_s), Some(ready_s)) = (cache.to_str(), ready.to_str()) else {
+    let Some(ready_s) = ready.to_str() else {
         eprintln!(
             "notebooks: the target folder's path {} is not UTF-8",
             tmp.display()
@@ -100,19 +102,15 @@ fn relaunch() -> ExitCode {
         return ExitCode::FAILURE;
     };
     let mut drivers: Vec<(&str, std::process::Child)> = Vec::new();
-    for (lang, dir) in [("en", "evcxr"), ("zh", "evcxr-zh")] {
+    for lang in ["en", "zh"] {
         if let Some((_, first)) = drivers.first_mut() {
             // Wait for the English driver's first cell (or its end, if it stopped early).
             while !ready.exists() && matches!(first.try_wait(), Ok(None)) {
                 std::thread::sleep(std::time::Duration::from_millis(500));
             }
         }
-        let envs = [
-            (LANG_VAR, lang),
-            ("XDG_CACHE_HOME", cache_s),
-            (READY_VAR, ready_s),
-        ];
-        match kernel::spawn_driver(&root(), &tmp.join(dir), &envs) {
+        let envs = [(LANG_VAR, lang), (READY_VAR, ready_s)];
+        match kernel::spawn_driver(&root(), &envs) {
             Ok(child) => drivers.push((lang, child)),
             Err(e) => {
                 eprintln!("notebooks: {e}");

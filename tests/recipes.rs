@@ -227,3 +227,53 @@ fn no_saved_notebook_repeats_an_output() -> TestResult {
     );
     Ok(())
 }
+
+/// Each notebook folder names evcxr's work folder (`evcxr.toml`), so a fresh kernel reuses
+/// the last kernel's build of the engine instead of rebuilding it: a folder inside this
+/// repository's ignored `target/`, one per language (the notebook test runs the two
+/// languages side by side, and two kernels building in one folder at once would overwrite
+/// each other's cells).
+#[test]
+fn each_notebook_folder_builds_in_its_own_folder_under_target() -> TestResult {
+    let target = std::fs::canonicalize(root())?.join("target");
+    let mut seen = Vec::new();
+    for dir in [
+        root().join("notebooks"),
+        root().join("notebooks").join("zh"),
+    ] {
+        let work = build::work_folder(&dir)?;
+        let mut resolved = std::path::PathBuf::new();
+        for part in std::fs::canonicalize(&dir)?
+            .join(work.strip_prefix(&dir)?)
+            .components()
+        {
+            match part {
+                std::path::Component::ParentDir => {
+                    resolved.pop();
+                }
+                std::path::Component::CurDir => {}
+                other => resolved.push(other),
+            }
+        }
+        assert!(
+            resolved.starts_with(&target) && resolved != target,
+            "{}/evcxr.toml: tmpdir resolves to {}, not a folder inside {}",
+            dir.display(),
+            resolved.display(),
+            target.display()
+        );
+        assert!(
+            !seen.contains(&resolved),
+            "{}/evcxr.toml: tmpdir {} is another notebook folder's",
+            dir.display(),
+            resolved.display()
+        );
+        seen.push(resolved);
+    }
+    let ignored = std::fs::read_to_string(root().join(".gitignore"))?;
+    assert!(
+        ignored.lines().any(|l| l.trim() == "/target"),
+        ".gitignore must ignore /target, where the notebooks' kernels build"
+    );
+    Ok(())
+}

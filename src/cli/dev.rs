@@ -132,7 +132,7 @@ fn notebooks(args: &NotebooksArgs) -> anyhow::Result<ExitCode> {
 /// The notebook runner, built with the `notebook-runner` feature.
 #[cfg(feature = "notebook-runner")]
 mod runner {
-    use std::path::{Path, PathBuf};
+    use std::path::Path;
     use std::process::ExitCode;
     use std::time::Instant;
 
@@ -146,16 +146,6 @@ mod runner {
 
     use super::ROOT;
 
-    /// evcxr's work folder: `tmp/evcxr` in the target folder holding this binary
-    /// (`target/debug/ppo-tutor`), the folder `tests/notebooks.rs` uses, so the kernel's
-    /// build of ppo-tutor and candle is shared.
-    fn evcxr_tmp(root: &Path) -> PathBuf {
-        std::env::current_exe()
-            .ok()
-            .and_then(|exe| Some(exe.parent()?.parent()?.join("tmp").join("evcxr")))
-            .unwrap_or_else(|| root.join("target").join("tmp").join("evcxr"))
-    }
-
     pub(super) fn notebooks(args: &NotebooksArgs) -> anyhow::Result<ExitCode> {
         let root = Path::new(ROOT);
         if !root.join("notebooks").join("src").is_dir() {
@@ -165,7 +155,7 @@ mod runner {
             );
         }
         if !kernel::is_driver() {
-            let status = kernel::relaunch(root, &evcxr_tmp(root))?;
+            let status = kernel::relaunch(root)?;
             if status.code().is_none() {
                 // Killed: the driver could not say why.
                 bail!("the notebook driver stopped: {status}");

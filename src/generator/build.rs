@@ -178,6 +178,17 @@ pub enum BuildError {
         /// The recipe.
         file: String,
     },
+    /// A notebook folder's `evcxr.toml` does not name evcxr's work folder.
+    #[error(
+        "{file}: {why}; it must hold `[evcxr]` with `tmpdir = \"...\"`, the folder (relative \
+         to this one) where evcxr builds the notebooks' cells"
+    )]
+    WorkFolder {
+        /// The file.
+        file: String,
+        /// What is wrong with it.
+        why: String,
+    },
     /// An exercise the grading registry does not have.
     #[error(
         "{file}: the lesson's exercise `{name}` is not in the registry; add it to \
@@ -201,6 +212,36 @@ pub enum BuildError {
         /// The exercise.
         name: String,
     },
+}
+
+/// Where evcxr builds a notebook folder's cells: the `tmpdir` of `dir/evcxr.toml`
+/// (`notebooks/evcxr.toml`, `notebooks/zh/evcxr.toml`), resolved against `dir` as evcxr
+/// resolves it against the kernel's working folder. A fixed work folder lets every kernel of
+/// that folder reuse the previous kernel's build (cargo finds `ppo-engine` unchanged and
+/// skips it), so a fresh kernel's first cell takes seconds, not the engine's whole build.
+///
+/// # Errors
+/// [`BuildError::Read`] if the file cannot be read, [`BuildError::WorkFolder`] if it has no
+/// `[evcxr] tmpdir` string.
+pub fn work_folder(dir: &Path) -> Result<std::path::PathBuf, BuildError> {
+    let file = dir.join("evcxr.toml");
+    let text = std::fs::read_to_string(&file).map_err(|source| BuildError::Read {
+        path: file.display().to_string(),
+        source,
+    })?;
+    let bad = |why: String| BuildError::WorkFolder {
+        file: file.display().to_string(),
+        why,
+    };
+    let value: toml::Table = text
+        .parse()
+        .map_err(|e: toml::de::Error| bad(e.to_string()))?;
+    let tmpdir = value
+        .get("evcxr")
+        .and_then(|e| e.get("tmpdir"))
+        .and_then(toml::Value::as_str)
+        .ok_or_else(|| bad("no `tmpdir` string under `[evcxr]`".into()))?;
+    Ok(dir.join(tmpdir))
 }
 
 /// The folder name of a lesson, `NN-slug`: its notebook is `notebooks/NN-slug.ipynb`, its

@@ -6,11 +6,11 @@
 //!
 //! - evcxr re-executes the current binary as its runtime: [`runtime_hook`] must be the first
 //!   call in that binary's `main` (`ppo-tutor` with the feature, `tests/notebooks.rs`);
-//! - evcxr reads its work folder from `EVCXR_TMPDIR`, and `:dep ppo-engine = { path = "../crates/ppo-engine" }`
-//!   resolves against the working directory: [`relaunch`] re-runs the binary as a *driver*
-//!   with both set (`notebooks/` as Jupyter would use), candle on one thread (faster for
-//!   these small networks), and this crate's `Cargo.lock` so the kernel builds the same
-//!   dependency versions. The driver ([`is_driver`]) starts a [`Kernel`] per notebook.
+//! - evcxr reads its work folder from `evcxr.toml` in the working directory, and
+//!   `:dep ppo-engine = { path = "../crates/ppo-engine" }` resolves against that directory:
+//!   [`relaunch`] re-runs the binary as a *driver* in `notebooks/` (as Jupyter would run
+//!   it), candle on one thread (faster for these small networks), with this workspace's
+//!   `Cargo.lock` in the work folders so the kernels build the same dependency versions. The driver ([`is_driver`]) starts a [`Kernel`] per notebook.
 //!
 //! A panic, a failed `assert!` or a `?` error in a cell is not an error to evcxr (the
 //! Jupyter kernel replies "ok" and prints to stderr): [`Kernel::run`] fails on anything
@@ -86,23 +86,29 @@ pub fn is_driver() -> bool {
     std::env::var_os(DRIVER_VAR).is_some()
 }
 
-/// Re-runs the current binary, with its arguments, as the driver: `EVCXR_TMPDIR=tmp`
-/// (created, with `root/Cargo.lock` copied in once), working directory `root/notebooks`,
-/// `RAYON_NUM_THREADS=1`, and no `CARGO_TARGET_DIR` (evcxr finds its build under
-/// `tmp/target`; a target folder set for this project's build must not redirect it).
+/// Re-runs the current binary, with its arguments, as the driver: working directory
+/// `root/notebooks`, `RAYON_NUM_THREADS=1`, and no `CARGO_TARGET_DIR` (evcxr finds its build
+/// under its work folder's `target`; a target folder set for this project's build must not
+/// redirect it).
+///
+/// evcxr builds in the work folder that each notebook folder's `evcxr.toml` names
+/// ([`work_folder`](super::build::work_folder): `target/evcxr/en` and `target/evcxr/zh`, the
+/// folders a user's Jupyter kernels use too), so every kernel reuses the last one's build.
+/// The driver copies `root/Cargo.lock` into each, so the kernels build the same dependency
+/// versions as the workspace.
 ///
 /// The notebooks turn on evcxr's cache of compiled dependencies (`:cache`), which lives in
-/// the user's cache folder. The driver keeps its own, `tmp/cache` (`XDG_CACHE_HOME`), so that
-/// cache and build folder always come from the same builds (a build folder left by older
-/// runs, filled up from a cache written by other builds, failed here: the cached candle and
-/// serde did not load, "can't find crate"), and the user's own kernels stay out of the
-/// tests' way. [`spawn_driver`]'s `envs` may name another (`tests/notebooks.rs` gives its
-/// two drivers, both with fresh or matching build folders, one shared cache).
+/// the user's cache folder. The driver keeps its own beside the work folders
+/// (`target/evcxr/cache`, through `XDG_CACHE_HOME`), so that the cache and the build folders
+/// always come from the same builds (a build folder left by older runs, filled up from a
+/// cache written by other builds, failed here: the cached candle and serde did not load,
+/// "can't find crate"), and the user's own kernels stay out of the tests' way.
 ///
 /// # Errors
-/// [`KernelError::Io`] when `tmp` cannot be created or the driver cannot start.
-pub fn relaunch(root: &Path, tmp: &Path) -> Result<ExitStatus, KernelError> {
-    spawn_driver(root, tmp, &[])?
+/// [`KernelError::Io`] when a work folder cannot be prepared or the driver cannot start,
+/// [`KernelError::Start`] when an `evcxr.toml` does not name a work folder.
+pub fn relaunch(root: &Path) -> Result<ExitStatus, KernelError> {
+    spawn_driver(root, &[])?
         .wait()
         .map_err(|source| KernelError::Io {
             what: "waiting for the notebook driver".into(),
@@ -112,30 +118,37 @@ pub fn relaunch(root: &Path, tmp: &Path) -> Result<ExitStatus, KernelError> {
 
 /// Starts this binary again as a driver, as [`relaunch`] does, with the extra environment
 /// `envs`, and returns at once: `tests/notebooks.rs` runs one driver per language side by
-/// side, each with its own work folder `tmp`.
+/// side (the two languages' notebooks have their own work folders).
 ///
 /// # Errors
 /// As [`relaunch`].
 pub fn spawn_driver(
     root: &Path,
-    tmp: &Path,
     envs: &[(&str, &str)],
 ) -> Result<std::process::Child, KernelError> {
     let io = |what: String| move |source| KernelError::Io { what, source };
-    std::fs::create_dir_all(tmp).map_err(io(format!("creating {}", tmp.display())))?;
-    // Pin the kernel's dependency versions to ours (cargo keeps a lock file's versions).
-    let lock = tmp.join("Cargo.lock");
-    if !lock.exists() {
-        std::fs::copy(root.join("Cargo.lock"), &lock)
-            .map_err(io(format!("copying Cargo.lock to {}", lock.display())))?;
+    let ours = std::fs::read(root.join("Cargo.lock"))
+        .map_err(io(format!("reading {}", root.join("Cargo.lock").display())))?;
+    let mut cache = None;
+    for dir in [root.join("notebooks"), root.join("notebooks").join("zh")] {
+        let work =
+            super::build::work_folder(&dir).map_err(|e| KernelError::Start(e.to_string()))?;
+        std::fs::create_dir_all(&work).map_err(io(format!("creating {}", work.display())))?;
+        let lock = work.join("Cargo.lock");
+        if std::fs::read(&lock).ok().as_deref() != Some(ours.as_slice()) {
+            std::fs::write(&lock, &ours)
+                .map_err(io(format!("copying Cargo.lock to {}", lock.display())))?;
+        }
+        cache.get_or_insert_with(|| work.with_file_name("cache"));
     }
+    let cache = cache.unwrap_or_else(|| root.join("target").join("evcxr").join("cache"));
     let exe = std::env::current_exe().map_err(io("finding the current binary".into()))?;
     Command::new(&exe)
         .args(std::env::args_os().skip(1))
         .env(DRIVER_VAR, "1")
-        .env("EVCXR_TMPDIR", tmp)
         .env("RAYON_NUM_THREADS", "1")
-        .env("XDG_CACHE_HOME", tmp.join("cache"))
+        .env("XDG_CACHE_HOME", cache)
+        .env_remove("EVCXR_TMPDIR")
         .env_remove("CARGO_TARGET_DIR")
         .env_remove("CARGO_BUILD_TARGET_DIR")
         .envs(envs.iter().copied())
