@@ -200,6 +200,55 @@ fn min_picks_surr2_only_where_the_advantage_favours_the_move() -> TestResult {
     Ok(())
 }
 
+/// The learner's `approx_kl` with the ratio upside down, from the wrong-answer catalogue.
+#[allow(clippy::all, clippy::pedantic)]
+mod inverted_ratio {
+    include!("wrong_answers/approx_kl/inverted_ratio.rs");
+}
+
+/// Lesson 12's hint for an upside-down ratio: over actions from π_old, the mean of
+/// (1/r − 1) + log r is χ²(π_old ‖ π_θ) − KL(π_old ‖ π_θ), the catalogue's answer computed
+/// row by row and weighted by π_old. It is close to the KL divergence for a small move and
+/// neither direction's KL divergence for a large one.
+#[test]
+fn the_inverted_ratio_estimates_chi_squared_minus_kl() -> TestResult {
+    // The mean under π_old of the answer on one row, for (π_old, π_θ) over two actions.
+    let expected = |old: &[f64], new: &[f64]| -> f64 {
+        old.iter()
+            .zip(new)
+            .map(|(&p, &q)| {
+                let row = inverted_ratio::approx_kl(&[p.ln() as f32], &[q.ln() as f32]);
+                p * f64::from(row)
+            })
+            .sum()
+    };
+    let kl = |p: &[f64], q: &[f64]| -> f64 { p.iter().zip(q).map(|(a, b)| a * (a / b).ln()).sum() };
+    let chi2 = |p: &[f64], q: &[f64]| -> f64 {
+        p.iter().zip(q).map(|(a, b)| a * a / b).sum::<f64>() - 1.0
+    };
+    let (old, far) = ([0.95, 0.05], [0.5, 0.5]);
+    let e = expected(&old, &far);
+    assert!(
+        (e - (chi2(&old, &far) - kl(&old, &far))).abs() < 1e-5,
+        "{e}"
+    );
+    for direction in [kl(&old, &far), kl(&far, &old)] {
+        assert!(
+            (e - direction).abs() > 0.2 * direction,
+            "{e} vs KL {direction}"
+        );
+    }
+    let (even, near) = ([0.5, 0.5], [0.48, 0.52]);
+    let (e, k) = (expected(&even, &near), kl(&even, &near));
+    assert!((e - k).abs() < 0.01 * k, "a small move: {e} vs KL {k}");
+    says(
+        include_str!("../lessons/12-clip-lab/exercise.toml"),
+        "lessons/12-clip-lab/exercise.toml",
+        "Reversed, each row is (1/r − 1) + log r, and its mean over actions from π_old estimates χ²(π_old ‖ π_θ) − KL(π_old ‖ π_θ): close to the KL divergence for small moves, but not the KL divergence in either direction.",
+    );
+    Ok(())
+}
+
 /// The seed's settings over seeds 0–4, 500 episodes each, trained once for every test that
 /// needs them.
 fn default_runs() -> Result<&'static [SeedRun], String> {
