@@ -842,6 +842,66 @@ fn the_pendulum_lesson_states_where_the_return_curve_starts() -> TestResult {
     Ok(())
 }
 
+/// Lesson 17 and its quiz: where the motor can hold the rod still, found with the
+/// environment's own physics. From rest at θ (0 is upright), full torque against gravity
+/// holds the rod where the next θ̇ does not follow gravity: within asin(0.4) of upright and of
+/// hanging, and nowhere between.
+#[test]
+fn the_pendulum_lesson_states_where_the_motor_can_hold_the_rod() -> TestResult {
+    use ppo_tutor::env::pendulum::{DEFAULT_GRAVITY, DT, MAX_TORQUE, physics};
+    let accel = |theta: f64, torque: f64| physics([theta, 0.0], torque, DEFAULT_GRAVITY).0[1] / DT;
+    let (motor, gravity) = (
+        accel(0.0, MAX_TORQUE),
+        accel(std::f64::consts::FRAC_PI_2, 0.0),
+    );
+    let held = |degrees: f64| {
+        let theta = degrees.to_radians();
+        let pull = accel(theta, 0.0).signum();
+        accel(theta, -pull * MAX_TORQUE) * pull <= 0.0
+    };
+    // Hundredths of a degree from upright (0) to hanging (180).
+    let grid: Vec<f64> = (0..=18_000).map(|i| f64::from(i) / 100.0).collect();
+    let near_up = grid
+        .iter()
+        .take_while(|&&d| held(d))
+        .last()
+        .copied()
+        .ok_or("not held upright")?;
+    let near_down = grid
+        .iter()
+        .rev()
+        .take_while(|&&d| held(d))
+        .last()
+        .copied()
+        .ok_or("not held hanging")?;
+    assert!(
+        grid.iter()
+            .all(|&d| held(d) == (d <= near_up || d >= near_down)),
+        "held only near upright and near hanging"
+    );
+    assert!(
+        (near_up - (180.0 - near_down)).abs() < 0.02,
+        "{near_up} and {near_down}"
+    );
+    let (ratio, angle) = (motor / gravity, near_up);
+    let file = "lessons/17-pendulum/lesson.md";
+    says(
+        PENDULUM,
+        file,
+        &format!(
+            "only where {gravity:.0}·|sin θ| < {motor:.0}: within asin({ratio:.1}) ≈ {angle:.1}° of upright, or of hanging down"
+        ),
+    );
+    says(
+        include_str!("../lessons/17-pendulum/quiz.toml"),
+        "lessons/17-pendulum/quiz.toml",
+        &format!(
+            "the motor can hold the rod still only within about {angle:.1}° of upright or of hanging, never in between"
+        ),
+    );
+    Ok(())
+}
+
 /// The book's full run (2000 episodes) on seeds 0 and 1: the trained policy map brakes near
 /// the top, restores a quarter turn away, pumps hanging down, is mostly saturated, and its
 /// σ has shrunk.
