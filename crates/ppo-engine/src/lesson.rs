@@ -16,6 +16,7 @@
 //! - [`live`]: the live training [`Session`] and the [`Snapshot`] of named values it keeps
 //!   up to date, episode by episode, for every face.
 //! - [`progress`]: where the learner is, saved atomically.
+//! - [`reveal`]: the code each exercise gives away, hidden until it is passed.
 
 pub mod anchor;
 pub mod details;
@@ -25,6 +26,7 @@ pub mod live;
 pub mod loader;
 pub mod progress;
 pub mod quiz;
+pub mod reveal;
 
 pub use crate::run::{Environment, RunConfig};
 pub use live::{Mark, PolicyMap, Session, Snapshot, TensorView};

@@ -116,6 +116,12 @@ pub struct ExerciseText {
     /// Further hints the exercise's grader gives in situations of its own, by key.
     #[serde(default)]
     pub other: BTreeMap<String, String>,
+    /// The code anchors (often nested in a bigger one) that compute what the exercise asks:
+    /// every face hides them until the learner has passed it ([`super::reveal`]). Declared
+    /// in `exercise.toml` only, `[]` when no code shown in the course computes it; the
+    /// Chinese twin takes it from there.
+    #[serde(default)]
+    pub reveals: Option<Vec<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -135,6 +141,38 @@ pub fn parse_exercises(dir: &str, text: &str) -> Result<Vec<ExerciseText>, Lesso
             dir: dir.into(),
             reason: e.message().to_string(),
         })
+}
+
+/// Checks that every exercise of an English `exercise.toml` declares what it `reveals`, and
+/// that each name there is a code anchor.
+///
+/// # Errors
+/// [`LessonError::ExerciseFile`] naming the exercise and the fix.
+pub fn check_reveals(dir: &str, texts: &[ExerciseText]) -> Result<(), LessonError> {
+    let bad = |reason: String| {
+        Err(LessonError::ExerciseFile {
+            dir: dir.into(),
+            reason,
+        })
+    };
+    for t in texts {
+        let Some(reveals) = &t.reveals else {
+            return bad(format!(
+                "exercise `{}` has no `reveals`: list the code anchors that compute what it \
+                 asks (wrap the lines in a nested `// ANCHOR:` if they sit in a bigger one), \
+                 or write `reveals = []` when no code the course shows computes it",
+                t.name
+            ));
+        };
+        if let Some(unknown) = reveals.iter().find(|a| anchor::find(a).is_none()) {
+            return bad(format!(
+                "exercise `{}` reveals '{unknown}', which is not a code anchor (mark it in the \
+                 engine's source with `// ANCHOR: {unknown}` and `// ANCHOR_END: {unknown}`)",
+                t.name
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Every embedded `exercise.toml`, as `(lesson folder, exercises)` in course order, in the
@@ -158,11 +196,15 @@ pub fn embedded_exercises_in(lang: Lang) -> Result<Vec<(String, Vec<ExerciseText
         let file = |f: &str| d.get_file(d.path().join(f)).and_then(|f| f.contents_utf8());
         if let Some(text) = file("exercise.toml") {
             let english = parse_exercises(name, text)?;
+            check_reveals(name, &english)?;
             let texts = match (lang, file("exercise.zh.toml")) {
                 (Lang::Zh, Some(zh)) => {
-                    let chinese = parse_exercises(name, zh)
+                    let mut chinese = parse_exercises(name, zh)
                         .map_err(|e| translation(name, "exercise.zh.toml", e.to_string()))?;
                     same_exercises(name, &english, &chinese)?;
+                    for (z, e) in chinese.iter_mut().zip(&english) {
+                        z.reveals.clone_from(&e.reveals);
+                    }
                     chinese
                 }
                 _ => english,
@@ -195,6 +237,12 @@ fn same_exercises(dir: &str, en: &[ExerciseText], zh: &[ExerciseText]) -> Result
         ));
     }
     for (e, z) in en.iter().zip(zh) {
+        if z.reveals.is_some() {
+            return bad(format!(
+                "{}: `reveals` is structure, declared in exercise.toml only; remove it here",
+                e.name
+            ));
+        }
         if e.hints.len() != z.hints.len() {
             return bad(format!(
                 "{}: {} hints, but exercise.toml has {}",

@@ -25,6 +25,7 @@
 /// `advantage_t = td_delta_t + γλ · advantage_{t+1}`, backwards over the episode, in f32.
 #[must_use]
 pub fn compute_advantage(gamma: f64, lmbda: f64, td_delta: &[f32]) -> Vec<f32> {
+    // ANCHOR: gae_recursion
     let coef = (gamma * lmbda) as f32; // numpy casts the Python float γλ to float32
     let mut advantage = vec![0.0_f32; td_delta.len()];
     let mut adv = 0.0_f32;
@@ -33,6 +34,7 @@ pub fn compute_advantage(gamma: f64, lmbda: f64, td_delta: &[f32]) -> Vec<f32> {
         *out = adv;
     }
     advantage
+    // ANCHOR_END: gae_recursion
 }
 // ANCHOR_END: compute_advantage
 
@@ -45,6 +47,7 @@ pub fn normalize_advantage(advantage: &[f32]) -> Vec<f32> {
     if n < 2 {
         return advantage.to_vec();
     }
+    // ANCHOR: normalize_advantage_formula
     let mean = advantage.iter().sum::<f32>() / n as f32;
     let var = advantage
         .iter()
@@ -56,6 +59,7 @@ pub fn normalize_advantage(advantage: &[f32]) -> Vec<f32> {
         .iter()
         .map(|a| (a - mean) / (std + 1e-8))
         .collect()
+    // ANCHOR_END: normalize_advantage_formula
 }
 // ANCHOR_END: advantage_norm_switch
 

@@ -28,6 +28,7 @@ use super::PpoError;
 /// # Errors
 /// [`PpoError::InvalidWindow`] for an even window or a series shorter than `window - 1`.
 pub fn moving_average(a: &[f64], window: usize) -> Result<Vec<f64>, PpoError> {
+    // ANCHOR: moving_average_body
     let n = a.len();
     if window.is_multiple_of(2) || n + 1 < window {
         return Err(PpoError::InvalidWindow { window, len: n });
@@ -60,6 +61,7 @@ pub fn moving_average(a: &[f64], window: usize) -> Result<Vec<f64>, PpoError> {
         .collect();
     end.reverse();
     Ok(begin.chain(middle).chain(end).collect())
+    // ANCHOR_END: moving_average_body
 }
 // ANCHOR_END: moving_average
 

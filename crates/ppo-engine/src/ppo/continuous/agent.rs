@@ -391,9 +391,13 @@ impl PpoContinuous {
         // ANCHOR_END: scaled_rewards
         // ANCHOR: td_target_continuous
         let next_values = self.critic.forward(&next_states)?.detach();
+        // ANCHOR: td_target_continuous_formula
         let td_target = (&scaled_rewards + ((&next_values * cfg.gamma)? * (1.0 - &dones)?)?)?;
+        // ANCHOR_END: td_target_continuous_formula
         let values = self.critic.forward(&states)?.detach();
+        // ANCHOR: td_delta_continuous_formula
         let td_delta = (&td_target - &values)?;
+        // ANCHOR_END: td_delta_continuous_formula
         // ANCHOR_END: td_target_continuous
         let td_delta_vec = to_vec(&td_delta)?;
         let advantage_vec = compute_advantage(cfg.gamma, cfg.lmbda, &td_delta_vec);
@@ -446,13 +450,19 @@ impl PpoContinuous {
         // ANCHOR: epoch_continuous
         let (mu, std) = self.actor.forward(b.states)?;
         let log_probs = log_prob(b.actions, &mu, &std)?;
+        // ANCHOR: ratio_continuous
         let ratio = (&log_probs - b.old_log_probs)?.exp()?;
+        // ANCHOR_END: ratio_continuous
+        // ANCHOR: actor_loss_continuous
         let surr1 = (&ratio * b.advantage)?;
         let surr2 = (ratio.clamp(1.0 - eps, 1.0 + eps)? * b.advantage)?;
         let actor_loss = surr1.minimum(&surr2)?.neg()?.mean_all()?;
+        // ANCHOR_END: actor_loss_continuous
+        // ANCHOR: critic_loss_continuous
         let critic_loss = (self.critic.forward(b.states)? - b.td_target)?
             .sqr()?
             .mean_all()?;
+        // ANCHOR_END: critic_loss_continuous
         // ANCHOR_END: epoch_continuous
         let record = ContinuousEpochTrace {
             log_probs: to_vec(&log_probs)?,

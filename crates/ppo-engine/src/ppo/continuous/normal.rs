@@ -35,10 +35,12 @@ pub(crate) const LOG_SQRT_2PI: f64 = 0.918_938_533_204_672_7;
 /// # Errors
 /// When the shapes differ or the tensors are not f32.
 pub fn log_prob(value: &Tensor, mu: &Tensor, std: &Tensor) -> candle_core::Result<Tensor> {
+    // ANCHOR: log_prob_formula
     let var = std.sqr()?;
     let squared_error = (value - mu)?.sqr()?;
     let scaled = squared_error.neg()?.div(&(var * 2.0)?)?;
     (scaled - std.log()?)? - LOG_SQRT_2PI
+    // ANCHOR_END: log_prob_formula
 }
 // ANCHOR_END: log_prob
 

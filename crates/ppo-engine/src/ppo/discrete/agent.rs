@@ -333,6 +333,7 @@ impl Agent {
                 if p > best.1 { (a, p) } else { best }
             });
         best.0
+        // ANCHOR: categorical_sample
     }
 
     /// Every parameter by PyTorch name, as plain data.
@@ -342,6 +343,7 @@ impl Agent {
     pub fn weights(&self) -> Result<NamedWeights, PpoError> {
         let mut out = NamedWeights::new();
         let layers = [
+        // ANCHOR_END: categorical_sample
             ("actor.fc1", &self.actor.fc1),
             ("actor.fc2", &self.actor.fc2),
             ("critic.fc1", &self.critic.fc1),
@@ -467,11 +469,15 @@ impl Agent {
             column(lambda_return.clone())? // fit V(s_t) to the Monte-Carlo return
         } else {
             td_target.detach() // the seed: the one-step TD target
+        // ANCHOR: td_target_formula
         };
+        // ANCHOR_END: td_target_formula
         // ANCHOR_END: reinforce_targets
         if cfg.normalize_advantage {
             advantage_vec = normalize_advantage(&advantage_vec);
+        // ANCHOR: td_delta_formula
         }
+        // ANCHOR_END: td_delta_formula
         let advantage = column(advantage_vec.clone())?;
         // ANCHOR: old_log_probs
         let old_log_probs = self
@@ -563,7 +569,8 @@ impl Agent {
         // ANCHOR: actor_loss
         let objective = match (self.config.algorithm, self.config.no_clip) {
             (Algorithm::Ppo, false) => surr1.minimum(&surr2)?, // the seed
-            (Algorithm::Ppo, true) => surr1.clone(),           // no clip: ratio · Â
+            // ANCHOR_END: clipped_objective
+            (Algorithm::Ppo, true) => surr1.clone(), // no clip: ratio · Â
             (Algorithm::Reinforce, _) => (&log_probs * b.advantage)?, // log π · Â
         };
         let mut actor_loss = objective.neg()?.mean_all()?;
@@ -682,11 +689,14 @@ struct EpochInputs<'a> {
     states: &'a Tensor,
     actions: &'a Tensor,
     advantage: &'a Tensor,
+            // ANCHOR: clipped_objective
     old_log_probs: &'a Tensor,
     old_log_probs_vec: &'a [f32],
     /// What the critic is fitted to: the TD target (PPO) or the return (REINFORCE).
     critic_target: &'a Tensor,
+        // ANCHOR: actor_loss_mean
     /// A learner's losses in place of the built-in ones ([`Agent::update_with`]).
+        // ANCHOR_END: actor_loss_mean
     losses: Option<&'a Losses<'a>>,
 }
 

@@ -89,9 +89,13 @@ pub fn surrogate_gradients(
     let advantage = Tensor::from_vec(advantage.to_vec(), (n, 1), dev)?;
 
     // ANCHOR: surrogate_gradient
+    // ANCHOR: gradient_log_probs
     let log_probs = actor.forward(&states)?.gather(&actions, 1)?.log()?;
+    // ANCHOR_END: gradient_log_probs
     let old_log_probs = log_probs.detach(); // θ_old = θ: every ratio is exactly 1
+    // ANCHOR: gradient_ratio
     let ratio = (&log_probs - &old_log_probs)?.exp()?;
+    // ANCHOR_END: gradient_ratio
     let surrogate = (&ratio * &advantage)?.mean_all()?; // PPO, first epoch, unclipped
     let policy_gradient = (&log_probs * &advantage)?.mean_all()?; // REINFORCE with baseline
     // surrogate.backward() and policy_gradient.backward(): one GradStore each, compared
