@@ -73,13 +73,13 @@ const READY_VAR: &str = "PPO_TUTOR_NOTEBOOK_READY";
 
 /// Runs this test again as two drivers side by side, one per language. Each language's
 /// notebooks have their own evcxr work folder (`notebooks/evcxr.toml` and
-/// `notebooks/zh/evcxr.toml` name them: `target/evcxr/en`, `target/evcxr/zh`, which
+/// `notebooks/zh/evcxr.toml` name them: `notebooks/.evcxr`, `notebooks/zh/.evcxr`, which
 /// `ppo-tutor dev notebooks` and a user's Jupyter kernels use too): a kernel changes the
 /// process's current folder and evcxr builds every cell in its work folder, so the two
 /// cannot share either. On 2 cores this takes about half the time of one language after
 /// the other.
 ///
-/// They share evcxr's cache of compiled dependencies (`target/evcxr/cache`, see
+/// They share evcxr's cache of compiled dependencies (`target/evcxr-cache`, see
 /// [`kernel::relaunch`]), as a user's kernels share `~/.cache/evcxr`, and the Chinese driver
 /// starts once the English one's first notebook cell has built them (the file
 /// [`READY_VAR`] names appears), so candle is compiled once, not twice at the same time on

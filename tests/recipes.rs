@@ -229,51 +229,55 @@ fn no_saved_notebook_repeats_an_output() -> TestResult {
 }
 
 /// Each notebook folder names evcxr's work folder (`evcxr.toml`), so a fresh kernel reuses
-/// the last kernel's build of the engine instead of rebuilding it: a folder inside this
-/// repository's ignored `target/`, one per language (the notebook test runs the two
-/// languages side by side, and two kernels building in one folder at once would overwrite
-/// each other's cells).
+/// the last kernel's build of the engine instead of rebuilding it: a hidden folder inside
+/// the notebook folder, one per language (the notebook test runs the two languages side by
+/// side, and two kernels building in one folder at once would overwrite each other's
+/// cells), ignored by git and outside the workspace. The path has no `..`: evcxr takes
+/// the work folder's path as written, and its cache (`:cache`) recognises a compiled
+/// dependency from another folder only when that path is the one cargo reports.
 #[test]
-fn each_notebook_folder_builds_in_its_own_folder_under_target() -> TestResult {
-    let target = std::fs::canonicalize(root())?.join("target");
+fn each_notebook_folder_builds_in_its_own_hidden_folder() -> TestResult {
     let mut seen = Vec::new();
     for dir in [
         root().join("notebooks"),
         root().join("notebooks").join("zh"),
     ] {
         let work = build::work_folder(&dir)?;
-        let mut resolved = std::path::PathBuf::new();
-        for part in std::fs::canonicalize(&dir)?
-            .join(work.strip_prefix(&dir)?)
-            .components()
-        {
-            match part {
-                std::path::Component::ParentDir => {
-                    resolved.pop();
-                }
-                std::path::Component::CurDir => {}
-                other => resolved.push(other),
-            }
-        }
+        let inside = work.strip_prefix(&dir)?;
+        let parts: Vec<_> = inside.components().collect();
         assert!(
-            resolved.starts_with(&target) && resolved != target,
-            "{}/evcxr.toml: tmpdir resolves to {}, not a folder inside {}",
+            parts.len() == 1
+                && matches!(parts[0], std::path::Component::Normal(p)
+                    if p.to_str().is_some_and(|p| p.starts_with('.'))),
+            "{}/evcxr.toml: tmpdir {} must be one hidden folder inside this folder",
             dir.display(),
-            resolved.display(),
-            target.display()
+            inside.display()
         );
+        let abs = std::fs::canonicalize(&dir)?.join(inside);
         assert!(
-            !seen.contains(&resolved),
+            !seen.contains(&abs),
             "{}/evcxr.toml: tmpdir {} is another notebook folder's",
             dir.display(),
-            resolved.display()
+            abs.display()
         );
-        seen.push(resolved);
+        seen.push(abs);
+        let name = inside.display().to_string();
+        let ignored = std::fs::read_to_string(root().join(".gitignore"))?;
+        assert!(
+            ignored.lines().any(|l| l.trim() == format!("{name}/")),
+            ".gitignore must ignore {name}/, evcxr's work folder"
+        );
     }
-    let ignored = std::fs::read_to_string(root().join(".gitignore"))?;
+    let manifest: toml::Table = std::fs::read_to_string(root().join("Cargo.toml"))?.parse()?;
+    let excluded = manifest
+        .get("workspace")
+        .and_then(|w| w.get("exclude"))
+        .and_then(toml::Value::as_array)
+        .is_some_and(|e| e.iter().any(|v| v.as_str() == Some("notebooks")));
     assert!(
-        ignored.lines().any(|l| l.trim() == "/target"),
-        ".gitignore must ignore /target, where the notebooks' kernels build"
+        excluded,
+        "Cargo.toml: [workspace] exclude must list \"notebooks\", or cargo refuses to build \
+         evcxr's work crate inside the workspace"
     );
     Ok(())
 }

@@ -215,8 +215,8 @@ pub enum BuildError {
 }
 
 /// Where evcxr builds a notebook folder's cells: the `tmpdir` of `dir/evcxr.toml`
-/// (`notebooks/evcxr.toml`, `notebooks/zh/evcxr.toml`), resolved against `dir` as evcxr
-/// resolves it against the kernel's working folder. A fixed work folder lets every kernel of
+/// (`notebooks/evcxr.toml`, `notebooks/zh/evcxr.toml`: `.evcxr` in each), resolved against
+/// `dir` as evcxr resolves it against the kernel's working folder. A fixed work folder lets every kernel of
 /// that folder reuse the previous kernel's build (cargo finds `ppo-engine` unchanged and
 /// skips it), so a fresh kernel's first cell takes seconds, not the engine's whole build.
 ///

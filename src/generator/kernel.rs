@@ -92,14 +92,14 @@ pub fn is_driver() -> bool {
 /// redirect it).
 ///
 /// evcxr builds in the work folder that each notebook folder's `evcxr.toml` names
-/// ([`work_folder`](super::build::work_folder): `target/evcxr/en` and `target/evcxr/zh`, the
-/// folders a user's Jupyter kernels use too), so every kernel reuses the last one's build.
+/// ([`work_folder`](super::build::work_folder): `notebooks/.evcxr` and `notebooks/zh/.evcxr`,
+/// the folders a user's Jupyter kernels use too), so every kernel reuses the last one's build.
 /// The driver copies `root/Cargo.lock` into each, so the kernels build the same dependency
 /// versions as the workspace.
 ///
 /// The notebooks turn on evcxr's cache of compiled dependencies (`:cache`), which lives in
-/// the user's cache folder. The driver keeps its own beside the work folders
-/// (`target/evcxr/cache`, through `XDG_CACHE_HOME`), so that the cache and the build folders
+/// the user's cache folder. The driver keeps its own (`target/evcxr-cache`, through
+/// `XDG_CACHE_HOME`), so that the cache and the build folders
 /// always come from the same builds (a build folder left by older runs, filled up from a
 /// cache written by other builds, failed here: the cached candle and serde did not load,
 /// "can't find crate"), and the user's own kernels stay out of the tests' way.
@@ -129,7 +129,6 @@ pub fn spawn_driver(
     let io = |what: String| move |source| KernelError::Io { what, source };
     let ours = std::fs::read(root.join("Cargo.lock"))
         .map_err(io(format!("reading {}", root.join("Cargo.lock").display())))?;
-    let mut cache = None;
     for dir in [root.join("notebooks"), root.join("notebooks").join("zh")] {
         let work =
             super::build::work_folder(&dir).map_err(|e| KernelError::Start(e.to_string()))?;
@@ -139,9 +138,8 @@ pub fn spawn_driver(
             std::fs::write(&lock, &ours)
                 .map_err(io(format!("copying Cargo.lock to {}", lock.display())))?;
         }
-        cache.get_or_insert_with(|| work.with_file_name("cache"));
     }
-    let cache = cache.unwrap_or_else(|| root.join("target").join("evcxr").join("cache"));
+    let cache = root.join("target").join("evcxr-cache");
     let exe = std::env::current_exe().map_err(io("finding the current binary".into()))?;
     Command::new(&exe)
         .args(std::env::args_os().skip(1))
