@@ -472,11 +472,12 @@ fn lab_runs() -> Result<Vec<LabResult>, String> {
         .collect()
 }
 
-/// The first episode of each seed with a return of 500 (the run's length if none).
+/// The number of each seed's first episode with a return of 500, counting from 1 as lesson
+/// 13 and the tutor's episode counter do (one past the run's length if none).
 fn first_500(arm: &ArmResult) -> Vec<usize> {
     arm.returns
         .iter()
-        .map(|r| r.iter().position(|&x| x >= 500.0).unwrap_or(r.len()))
+        .map(|r| 1 + r.iter().position(|&x| x >= 500.0).unwrap_or(r.len()))
         .collect()
 }
 
@@ -749,6 +750,23 @@ fn the_surrogate_gradient_is_the_policy_gradient_at_theta_old() -> TestResult {
 
 const CONTINUOUS: &str = include_str!("../lessons/16-continuous-actions/lesson.md");
 const PENDULUM: &str = include_str!("../lessons/17-pendulum/lesson.md");
+
+/// Lesson 16: how much of the last step's wrong TD error GAE carries ten steps back with the
+/// book's Pendulum settings, (γλ)¹⁰.
+#[test]
+fn the_continuous_lesson_states_how_fast_the_truncation_error_fades() -> TestResult {
+    let config = ppo_tutor::ppo::PpoContinuousConfig::default();
+    let per_step = config.gamma * config.lmbda;
+    says(
+        CONTINUOUS,
+        "lessons/16-continuous-actions/lesson.md",
+        &format!(
+            "with weight (γλ)^k = {per_step:.2}^k, so ten steps earlier {per_step:.2}¹⁰ ≈ {:.2} of it is left",
+            per_step.powi(10)
+        ),
+    );
+    Ok(())
+}
 
 fn pendulum_session(seed: u64) -> Result<ppo_tutor::lesson::Session, Box<dyn std::error::Error>> {
     Ok(ppo_tutor::lesson::Session::new(
