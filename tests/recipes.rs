@@ -281,3 +281,366 @@ fn each_notebook_folder_builds_in_its_own_hidden_folder() -> TestResult {
     );
     Ok(())
 }
+
+// ---------------------------------------------------------------------------------------
+// No answer on screen before the learner earns it (issue 27, section 1): the code each
+// exercise gives away (its `reveals` anchors in `exercise.toml`, and its reference solution)
+// shows in no code pane before the exercise is passed, and in no notebook cell before the
+// exercise's cells; after a pass, it shows.
+
+use ppo_tutor::i18n::Lang;
+use ppo_tutor::lesson::{anchor, reveal};
+
+/// A line of code as the spoiler check compares it: no comment after `//`, no whitespace.
+fn normalised(line: &str) -> String {
+    let code = line.split("//").next().unwrap_or("");
+    code.chars().filter(|c| !c.is_whitespace()).collect()
+}
+
+/// A block of code as the spoiler check compares it: each line [`normalised`], joined.
+fn normalised_block(text: &str) -> String {
+    text.lines().map(normalised).collect()
+}
+
+/// Whether a normalised line says enough to give something away: it computes something
+/// (an operator, or a call such as `exp`, `clamp` or `gather`) and is not short. Lines such
+/// as `}`, `.collect()`, `.zip(values)` or `let mut total = 0.0_f32;` say nothing of the
+/// answer.
+fn telling(line: &str) -> bool {
+    const CALLS: [&str; 10] = [
+        "exp",
+        "ln(",
+        "log",
+        "clamp",
+        "min",
+        "max",
+        "gather",
+        "sqrt",
+        "cumulative",
+        "abs",
+    ];
+    line.chars().count() >= 18
+        && (line.contains(['+', '-', '*', '/', '<', '>']) || CALLS.iter().any(|c| line.contains(c)))
+}
+
+/// The body of `fn name` in the Rust source `text`: the lines after its signature up to
+/// the closing brace at the start of a line.
+fn fn_body(text: &str, name: &str) -> Vec<String> {
+    let sig = format!("fn {name}(");
+    text.lines()
+        .skip_while(|l| !l.contains(&sig))
+        .skip_while(|l| !l.trim_end().ends_with('{'))
+        .skip(1)
+        .take_while(|l| !l.starts_with('}'))
+        .map(str::to_string)
+        .collect()
+}
+
+/// What exercise `name` gives away: the normalised telling lines of the anchors it declares
+/// in `exercise.toml` and of the body of its reference solution, and each declared anchor
+/// whole (normalised as one block).
+struct Answer {
+    lines: Vec<String>,
+    blocks: Vec<String>,
+}
+
+fn answer_lines(name: &str) -> Result<Answer, Box<dyn std::error::Error>> {
+    let (_, regions) = reveal::exercises()
+        .iter()
+        .find(|(g, _)| g.exercise == name)
+        .ok_or_else(|| format!("{name}: not in any exercise.toml"))?;
+    let mut lines: Vec<String> = Vec::new();
+    let mut blocks = Vec::new();
+    for region in regions {
+        let (_, code) = anchor::find(region).ok_or_else(|| format!("no anchor {region}"))?;
+        lines.extend(code.lines().map(normalised));
+        blocks.push(normalised_block(&code));
+    }
+    let meta = ppo_tutor::grade::find(name)?.meta();
+    let file = format!("lessons/{}/{}", meta.lesson, meta.solution);
+    let solution = std::fs::read_to_string(root().join(&file))?;
+    let body = fn_body(&solution, name);
+    if body.is_empty() {
+        return Err(format!("{file}: no `fn {name}(`").into());
+    }
+    lines.extend(body.iter().map(|l| normalised(l)));
+    lines.retain(|l| telling(l));
+    lines.sort();
+    lines.dedup();
+    blocks.sort();
+    blocks.dedup();
+    Ok(Answer { lines, blocks })
+}
+
+/// How `text` gives away `answer`: each line equal to one of its lines once normalised, or
+/// holding a long one (a line of the answer inside a longer line); and each declared anchor
+/// found whole.
+fn spoiled(text: &str, answer: &Answer) -> Vec<String> {
+    let mut hits = Vec::new();
+    for line in text.lines() {
+        let n = normalised(line);
+        if let Some(a) = answer
+            .lines
+            .iter()
+            .find(|a| n == **a || (a.chars().count() >= 24 && n.contains(a.as_str())))
+        {
+            hits.push(format!("{} (the answer's `{a}`)", line.trim()));
+        }
+    }
+    let whole = normalised_block(text);
+    for block in &answer.blocks {
+        if whole.contains(block.as_str()) {
+            hits.push(format!("the whole of `{block}`"));
+        }
+    }
+    hits
+}
+
+/// Every exercise of the course, in course order, with its lesson's order.
+fn exercises_in_order() -> Vec<(String, u32)> {
+    reveal::exercises()
+        .iter()
+        .map(|(g, _)| (g.exercise.clone(), g.lesson))
+        .collect()
+}
+
+/// Each code pane and each `ppo-tutor show` of a step, in both languages, for a learner who
+/// has passed the exercises for which `passed` holds: `(where, text)`.
+fn app_panes(
+    passed: &dyn Fn(&str) -> bool,
+) -> Result<Vec<(String, String)>, Box<dyn std::error::Error>> {
+    let mut panes = Vec::new();
+    for lang in Lang::ALL {
+        let _lang = lang.scoped();
+        let course = Course::embedded()?;
+        for (i, lesson) in course.lessons.iter().enumerate() {
+            for k in 0..lesson.steps.len() {
+                let at = format!("{} {} step {}", lang.code(), build::folder(lesson), k + 1);
+                let pane = ppo_tutor::tui::ui::code_pane_text(lesson, k, passed);
+                panes.push((format!("{at}, code pane"), pane));
+                let shown = ppo_tutor::cli::lessons::render_step(
+                    &course,
+                    i,
+                    k,
+                    &ppo_tutor::lesson::Snapshot::default(),
+                    passed,
+                );
+                panes.push((format!("{at}, ppo-tutor show"), shown));
+            }
+        }
+    }
+    Ok(panes)
+}
+
+/// The code of each exercise shows in no code pane of the app (and no `ppo-tutor show`)
+/// while it is not passed: with an empty progress file, every step of the course in both
+/// languages, each exercise's declared code and reference solution, line by line.
+#[test]
+fn no_step_of_the_app_shows_an_answer_before_its_pass() -> TestResult {
+    let panes = app_panes(&|_| false)?;
+    let mut problems = Vec::new();
+    for (name, _) in exercises_in_order() {
+        let answers = answer_lines(&name)?;
+        for (at, text) in &panes {
+            for hit in spoiled(text, &answers) {
+                problems.push(format!("{at}: shows `{name}`'s answer: {hit}"));
+            }
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "{}\n(wrap the lines in a nested anchor and list it under `reveals` in the \
+         exercise's exercise.toml)",
+        problems.join("\n")
+    );
+    Ok(())
+}
+
+/// The check above can fail: without the gate (every anchor shown whole), it finds the
+/// answer of every exercise that declares code in some step of the course.
+#[test]
+fn the_app_spoiler_check_finds_every_declared_answer_when_nothing_is_hidden() -> TestResult {
+    let course = Course::embedded_in(Lang::En)?;
+    let whole: Vec<String> = course
+        .lessons
+        .iter()
+        .flat_map(|l| &l.steps)
+        .filter_map(|s| anchor::find(&s.code).map(|(_, code)| code))
+        .collect();
+    for (gate, regions) in reveal::exercises() {
+        if regions.is_empty() {
+            continue;
+        }
+        let answers = answer_lines(&gate.exercise)?;
+        assert!(
+            whole.iter().any(|code| !spoiled(code, &answers).is_empty()),
+            "{}: no step shows its declared code {regions:?} even ungated",
+            gate.exercise
+        );
+    }
+    Ok(())
+}
+
+/// After a pass the crate's version shows: with every exercise passed no pane holds a note,
+/// every declared region's code is in some step's pane, and each step of the exercise's
+/// lesson that shows it points to the learner's own file.
+#[test]
+fn after_a_pass_the_crate_s_version_shows() -> TestResult {
+    let all = exercises_in_order();
+    let passed = |e: &str| all.iter().any(|(n, _)| n == e);
+    let panes = app_panes(&passed)?;
+    for (at, text) in &panes {
+        assert!(
+            !text.contains("to see the crate's version") && !text.contains("本库的写法"),
+            "{at}: a note with every exercise passed:\n{text}"
+        );
+    }
+    let joined: String = panes.iter().map(|(_, t)| normalised_block(t)).collect();
+    for (gate, regions) in reveal::exercises() {
+        for region in regions {
+            let (_, code) = anchor::find(region).ok_or("no anchor")?;
+            assert!(
+                joined.contains(&normalised_block(&code)),
+                "{}: `{region}` shows in no step after the pass",
+                gate.exercise
+            );
+        }
+    }
+    // One exercise at a time: passing `td_target` alone opens its line and names the file.
+    let _en = Lang::En.scoped();
+    let course = Course::embedded()?;
+    let lesson = course.get("td-target").ok_or("no td-target")?;
+    let k = lesson
+        .steps
+        .iter()
+        .position(|s| s.code == "td_target")
+        .ok_or("no td_target step")?;
+    let before = ppo_tutor::tui::ui::code_pane_text(lesson, k, &|_| false);
+    let after = ppo_tutor::tui::ui::code_pane_text(lesson, k, &|e| e == "td_target");
+    assert!(
+        before.contains("solve exercise `td_target` (lesson 7)"),
+        "{before}"
+    );
+    assert!(!before.contains("let td_target ="), "{before}");
+    assert!(after.contains("let td_target ="), "{after}");
+    assert!(
+        after.contains("// your td_target: lessons/07-td-target/exercise.rs"),
+        "{after}"
+    );
+    Ok(())
+}
+
+/// The cells of `lesson`'s notebook (current language), split where its exercise begins:
+/// before it, and from it on (empty without an exercise).
+fn notebook_halves(
+    lesson: &ppo_tutor::lesson::Lesson,
+) -> Result<(Vec<build::Cell>, Vec<build::Cell>), Box<dyn std::error::Error>> {
+    let cells = build::notebook_cells(&root(), lesson)?;
+    let exercise = build::exercise_code_cells(&root(), lesson)?;
+    let Some(first) = exercise.first() else {
+        return Ok((cells, Vec::new()));
+    };
+    let at = cells
+        .iter()
+        .position(|c| matches!(c, build::Cell::Code(code) if code == first))
+        .ok_or("the exercise's starter is not in the notebook")?;
+    // The exercise's own markdown (its title and hints) comes just before the starter.
+    let at = at.saturating_sub(1);
+    let after = cells[at..].to_vec();
+    let mut before = cells;
+    before.truncate(at);
+    Ok((before, after))
+}
+
+fn cell_text(cell: &build::Cell) -> &str {
+    match cell {
+        build::Cell::Markdown(t) | build::Cell::Code(t) => t,
+    }
+}
+
+/// No notebook cell, markdown or code, before a lesson's exercise shows that exercise's
+/// answer, and no cell of an earlier lesson's notebook shows it at all; in both languages.
+#[test]
+fn no_notebook_cell_shows_an_answer_before_its_exercise() -> TestResult {
+    let exercises = exercises_in_order();
+    let mut problems = Vec::new();
+    for lang in Lang::ALL {
+        let _lang = lang.scoped();
+        let course = Course::embedded()?;
+        for lesson in &course.lessons {
+            let (before, after) = notebook_halves(lesson)?;
+            let file = build::notebook_file(&build::folder(lesson));
+            for (name, order) in &exercises {
+                let cells: Vec<&build::Cell> = match (*order).cmp(&lesson.order) {
+                    std::cmp::Ordering::Less => continue,
+                    std::cmp::Ordering::Equal => before.iter().collect(),
+                    std::cmp::Ordering::Greater => before.iter().chain(&after).collect(),
+                };
+                let answers = answer_lines(name)?;
+                for (i, cell) in cells.into_iter().enumerate() {
+                    for hit in spoiled(cell_text(cell), &answers) {
+                        problems.push(format!("{file}, cell {i}: shows `{name}`'s answer: {hit}"));
+                    }
+                }
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    Ok(())
+}
+
+/// After its exercise's grading cells, a notebook shows the crate's version: every region
+/// its exercises declare that no later exercise also declares, in both languages.
+#[test]
+fn a_notebook_shows_the_crate_s_version_after_the_exercise() -> TestResult {
+    for lang in Lang::ALL {
+        let _lang = lang.scoped();
+        let course = Course::embedded()?;
+        for lesson in &course.lessons {
+            let Some(ex) = &lesson.exercise else { continue };
+            let (_, after) = notebook_halves(lesson)?;
+            let file = build::notebook_file(&build::folder(lesson));
+            let last_grade = after
+                .iter()
+                .rposition(
+                    |c| matches!(c, build::Cell::Code(code) if code.starts_with("ppo_grade::")),
+                )
+                .ok_or("no grading cell")?;
+            let shown: String = after[last_grade..]
+                .iter()
+                .filter(|c| matches!(c, build::Cell::Markdown(_)))
+                .map(|c| normalised_block(cell_text(c)))
+                .collect();
+            for (gate, regions) in reveal::exercises() {
+                if !ex.names().contains(&gate.exercise.as_str()) {
+                    continue;
+                }
+                for region in regions {
+                    if reveal::gates_of(region)
+                        .iter()
+                        .any(|g| g.lesson > lesson.order)
+                    {
+                        continue;
+                    }
+                    // A region that no step of the course up to here shows needs no reveal.
+                    let seen = course
+                        .lessons
+                        .iter()
+                        .filter(|l| l.order <= lesson.order)
+                        .flat_map(|l| &l.steps)
+                        .any(|s| s.code == *region || anchor::nested(&s.code).contains(region));
+                    if !seen {
+                        continue;
+                    }
+                    let (_, code) = anchor::find(region).ok_or("no anchor")?;
+                    assert!(
+                        shown.contains(&normalised_block(&code)),
+                        "{file}: `{region}` ({}) does not show after the grading cells",
+                        gate.exercise
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
+}

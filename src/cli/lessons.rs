@@ -9,7 +9,7 @@ use anyhow::Context;
 use clap::Args;
 
 use crate::i18n::t;
-use crate::lesson::{Course, RunConfig, Session, Snapshot, anchor};
+use crate::lesson::{Course, Progress, RunConfig, Session, Snapshot, reveal};
 use crate::tr;
 
 /// Arguments of `ppo-tutor show`.
@@ -43,9 +43,16 @@ pub fn list() -> anyhow::Result<ExitCode> {
 /// The columns `show` wraps a step's text to (as the lessons' sources are wrapped).
 const PLAIN_WIDTH: u16 = 100;
 
-/// Renders one step as plain text with its live values.
+/// Renders one step as plain text with its live values; the code an exercise asks for is a
+/// note until `passed` holds for it ([`crate::lesson::reveal`]).
 #[must_use]
-pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snapshot) -> String {
+pub fn render_step(
+    course: &Course,
+    lesson: usize,
+    step: usize,
+    snapshot: &Snapshot,
+    passed: &dyn Fn(&str) -> bool,
+) -> String {
     let mut out = String::new();
     let Some(l) = course.lessons.get(lesson) else {
         return out;
@@ -78,14 +85,26 @@ pub fn render_step(course: &Course, lesson: usize, step: usize, snapshot: &Snaps
             s.python
         );
     }
-    if let Some((path, code)) = (!s.code.is_empty())
-        .then(|| anchor::find(&s.code))
+    if let Some(listing) = (!s.code.is_empty())
+        .then(|| reveal::listing(&s.code, passed))
         .flatten()
     {
-        let _ = writeln!(
-            out,
-            "## ppo-engine (crates/ppo-engine/src/{path})\n{code}\n"
-        );
+        let (path, code) = (&listing.path, listing.text());
+        let _ = writeln!(out, "## ppo-engine (crates/ppo-engine/src/{path})");
+        for gate in listing.shown.iter().filter(|g| g.lesson == l.order) {
+            if let Ok(ex) = crate::grade::find(&gate.exercise) {
+                let (name, folder, file) = (&gate.exercise, &gate.folder, ex.meta().starter);
+                let _ = writeln!(
+                    out,
+                    "{}",
+                    tr!(
+                        "// your {name}: lessons/{folder}/{file}",
+                        "// 你写的 {name}：lessons/{folder}/{file}"
+                    )
+                );
+            }
+        }
+        let _ = writeln!(out, "{code}\n");
     }
     for name in &s.show {
         match snapshot.tensor(name) {
@@ -168,9 +187,20 @@ pub fn show(args: &ShowArgs) -> anyhow::Result<ExitCode> {
     // PPOContinuous.
     let run = RunConfig::default_for(course.lessons[index].env);
     let snapshot = Session::run(run, args.seed, args.episodes.max(1))?;
+    // The app's progress file says which exercises are passed (only read: a missing or
+    // corrupt file counts as none passed).
+    let progress: Progress = std::fs::read_to_string(Progress::default_path())
+        .ok()
+        .and_then(|text| serde_json::from_str(&text).ok())
+        .unwrap_or_default();
+    let passed = |e: &str| progress.exercises_done.contains(e);
     let mut out = std::io::stdout();
     for step in range {
-        write!(out, "{}", render_step(&course, index, step, &snapshot))?;
+        write!(
+            out,
+            "{}",
+            render_step(&course, index, step, &snapshot, &passed)
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -196,7 +226,7 @@ mod tests {
         let lesson = course.index_of("cartpole").ok_or("no cartpole lesson")?;
         let steps = course.lessons[lesson].steps.len();
         let text: String = (0..steps)
-            .map(|k| render_step(&course, lesson, k, &Snapshot::default()))
+            .map(|k| render_step(&course, lesson, k, &Snapshot::default(), &|_| false))
             .collect();
         assert!(!text.contains("**") && !text.contains("|---"), "{text}");
         assert!(text.contains("\nCartPole-v1  500 steps   475\n"), "{text}");

@@ -370,6 +370,8 @@ pub fn cells_from_recipe(
                     cells.extend(show_cells(lesson, k, &mut shown));
                 }
                 cells.extend(exercise_cells(lesson, file, root)?);
+                let course = course_in_current_language();
+                cells.extend(course.and_then(|c| reveal_cell(&c, lesson)));
                 exercise_done = true;
             }
         }
@@ -392,6 +394,12 @@ pub fn cells_from_recipe(
     }
     cells.extend(quiz_cells(lesson));
     Ok(cells)
+}
+
+/// The embedded course in the current language, for what a notebook shows of other
+/// lessons (`None` if it does not load, which the content check reports).
+fn course_in_current_language() -> Option<Course> {
+    Course::embedded().ok()
 }
 
 /// The lesson's quiz, last: a heading, then for each question its text (a markdown cell)
@@ -534,16 +542,11 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
             step.python.trim()
         );
     }
-    if let Some((path, code)) = (!step.code.is_empty())
-        .then(|| crate::lesson::anchor::find(&step.code))
+    if let Some(listing) = (!step.code.is_empty())
+        .then(|| crate::lesson::reveal::listing(&step.code, &passed_before(lesson)))
         .flatten()
     {
-        let _ = write!(
-            md,
-            "\n**ppo-engine (`crates/ppo-engine/src/{path}`){}**\n\n```rust\n{}\n```\n",
-            t(":", "："),
-            code.trim_end()
-        );
+        md.push_str(&listing_markdown(&listing));
     }
     md
 }
@@ -575,6 +578,103 @@ fn rebinds_snapshot(code: &str) -> bool {
 
 /// The cells that show step `k`'s live values and views, less those `shown` already holds
 /// (which it then records); none when the step shows nothing new.
+/// What a notebook counts as passed before its own exercise: the exercises of earlier
+/// lessons (a notebook has no progress file; the course is read in order). Code that an
+/// exercise of this lesson or a later one asks for is a note ([`crate::lesson::reveal`]).
+fn passed_before(lesson: &Lesson) -> impl Fn(&str) -> bool + use<> {
+    let order = lesson.order;
+    move |e: &str| crate::lesson::reveal::gate(e).is_some_and(|g| g.lesson < order)
+}
+
+/// An anchor's code as a notebook shows it: a bold line naming the file, then the code.
+fn listing_markdown(listing: &crate::lesson::reveal::Listing) -> String {
+    format!(
+        "\n**ppo-engine (`crates/ppo-engine/src/{}`){}**\n\n```rust\n{}\n```\n",
+        listing.path,
+        t(":", "："),
+        listing.text().trim_end()
+    )
+}
+
+/// The cell after the exercise's grading cells: the crate's version of what the lesson's
+/// exercises ask, which the steps above showed as notes. Each anchor a step of this lesson
+/// or an earlier one shows with a region of these exercises is listed once, with every
+/// region of this lesson's and earlier lessons' exercises shown; a region that a later
+/// exercise also asks for stays a note, and the cell says which. `None` when the lesson's
+/// exercises give away no code the course shows.
+#[must_use]
+pub fn reveal_cell(course: &Course, lesson: &Lesson) -> Option<Cell> {
+    use crate::lesson::reveal::{self, Gate};
+    let ex = lesson.exercise.as_ref()?;
+    let order = lesson.order;
+    let after = |e: &str| reveal::gate(e).is_some_and(|g| g.lesson <= order);
+    let regions: Vec<&String> = reveal::exercises()
+        .iter()
+        .filter(|(g, _)| ex.names().contains(&g.exercise.as_str()))
+        .flat_map(|(_, r)| r)
+        .collect();
+    // The anchors the steps so far showed, once each: this lesson's first, then the earlier
+    // lessons' in course order.
+    let mut anchors: Vec<&str> = Vec::new();
+    let earlier = course.lessons.iter().filter(|l| l.order < order);
+    for l in std::iter::once(lesson).chain(earlier) {
+        for step in &l.steps {
+            if !step.code.is_empty() && !anchors.contains(&step.code.as_str()) {
+                anchors.push(&step.code);
+            }
+        }
+    }
+    let mut listings = String::new();
+    let mut still: Vec<Gate> = Vec::new();
+    for anchor in anchors {
+        let inside: Vec<String> = std::iter::once(anchor.to_string())
+            .chain(crate::lesson::anchor::nested(anchor))
+            .collect();
+        if !regions.iter().any(|r| inside.contains(r)) {
+            continue;
+        }
+        let Some(listing) = reveal::listing(anchor, &after) else {
+            continue;
+        };
+        for g in listing.hidden() {
+            if !still.contains(g) {
+                still.push(g.clone());
+            }
+        }
+        if listing.shown.iter().any(|g| g.lesson == order) {
+            listings.push_str(&listing_markdown(&listing));
+        }
+    }
+    if listings.is_empty() && still.is_empty() {
+        return None;
+    }
+    still.sort_by_key(|g| g.lesson);
+    let note = reveal::note(&still);
+    let mut md = t("### The crate's version\n\n", "### 本库的写法\n\n").to_string();
+    if listings.is_empty() {
+        md.push_str(&tr!(
+            "The code the steps above showed as notes is also what a later exercise asks for: \
+             {note}.\n",
+            "上面各节用一行说明代替的代码，也是后面练习要写的：{note}。\n"
+        ));
+        return Some(Cell::Markdown(md));
+    }
+    md.push_str(t(
+        "Once the grading cells above pass, compare your code with what ppo-engine runs: the \
+         steps above showed these lines as notes.\n",
+        "上面的评分单元格通过之后，把你的代码与 ppo-engine 实际运行的代码对照：上面各节只用一行\
+         说明代替了这些代码。\n",
+    ));
+    md.push_str(&listings);
+    if !still.is_empty() {
+        md.push_str(&tr!(
+            "\nThe rest is also what a later exercise asks for: {note}.\n",
+            "\n其余部分也是后面练习要写的：{note}。\n"
+        ));
+    }
+    Some(Cell::Markdown(md))
+}
+
 fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
     let step = &lesson.steps[k];
     let mut fresh = |key: String| shown.insert(key);

@@ -410,14 +410,15 @@ pub fn write_all(root: &Path) -> anyhow::Result<Vec<String>> {
 
 /// Rewrites the markdown cells of every committed notebook (both languages) from the
 /// lessons, keeping each code cell and every output as they are: for a change of a lesson's
-/// text or of the code an anchor quotes, without executing anything. Returns the notebook
-/// files it changed.
+/// text or of the code an anchor quotes, without executing anything. Markdown cells may
+/// come and go (a new cell after an exercise, say); the code cells must be the recipe's, in
+/// order. Returns the notebook files it changed.
 ///
 /// # Errors
 /// When a notebook's code cells differ from the ones its recipe makes (their outputs would
 /// be stale: run `dev notebooks` instead), or a file cannot be read or written.
 pub fn write_markdown(root: &Path) -> anyhow::Result<Vec<String>> {
-    use anyhow::{Context as _, ensure};
+    use anyhow::Context as _;
     let mut changed = Vec::new();
     for lang in Lang::ALL {
         let _lang = lang.scoped();
@@ -430,29 +431,11 @@ pub fn write_markdown(root: &Path) -> anyhow::Result<Vec<String>> {
             let text = std::fs::read_to_string(&path).with_context(|| format!("reading {name}"))?;
             let mut nb: serde_json::Value =
                 serde_json::from_str(&text).with_context(|| format!("parsing {name}"))?;
-            let saved = nb["cells"]
-                .as_array_mut()
-                .map_or(&mut [][..], Vec::as_mut_slice);
+            let saved = nb["cells"].as_array().cloned().unwrap_or_default();
             let fix = format!("run `{}` {folder}", super::build::REGENERATE);
-            ensure!(
-                saved.len() == cells.len(),
-                "{name} has {} cells, its lesson and recipe make {}: {fix}",
-                saved.len(),
-                cells.len()
+            nb["cells"] = serde_json::Value::Array(
+                with_markdown(&saved, &cells).map_err(|e| anyhow::anyhow!("{name}{e}: {fix}"))?,
             );
-            for (i, (cell, made)) in saved.iter_mut().zip(&cells).enumerate() {
-                match made {
-                    super::build::Cell::Markdown(md) => {
-                        ensure!(cell["cell_type"] == "markdown", "{name}, cell {i}: {fix}");
-                        cell["source"] = super::ipynb::source_lines(md.trim_end());
-                    }
-                    super::build::Cell::Code(code) => ensure!(
-                        cell["cell_type"] == "code"
-                            && super::ipynb::joined(&cell["source"]) == *code,
-                        "{name}, code cell {i} differs from its recipe (its outputs would be stale): {fix}"
-                    ),
-                }
-            }
             let new = super::ipynb::to_text(&nb)?;
             if new != text {
                 std::fs::write(&path, new).with_context(|| format!("writing {name}"))?;
@@ -463,12 +446,74 @@ pub fn write_markdown(root: &Path) -> anyhow::Result<Vec<String>> {
     Ok(changed)
 }
 
+/// The saved cells `saved` of a notebook with their markdown made `cells`' own: each saved
+/// code cell (with its outputs) is kept where `cells` has the same code, the markdown cells
+/// between them are `cells`' ones. An error (`", code cell N ..."`) when the code cells
+/// differ.
+fn with_markdown(
+    saved: &[serde_json::Value],
+    cells: &[Cell],
+) -> Result<Vec<serde_json::Value>, String> {
+    let saved_code: Vec<&serde_json::Value> =
+        saved.iter().filter(|c| c["cell_type"] == "code").collect();
+    let mut code = saved_code.iter();
+    let mut out = Vec::with_capacity(cells.len());
+    for (i, made) in cells.iter().enumerate() {
+        match made {
+            Cell::Markdown(md) => out.push(serde_json::json!({
+                "cell_type": "markdown",
+                "metadata": {},
+                "source": super::ipynb::source_lines(md.trim_end()),
+            })),
+            Cell::Code(source) => match code.next() {
+                Some(cell) if super::ipynb::joined(&cell["source"]) == *source => {
+                    out.push((*cell).clone());
+                }
+                _ => {
+                    return Err(format!(
+                        ", cell {i}: the code cells differ from the recipe's (their outputs \
+                         would be stale)"
+                    ));
+                }
+            },
+        }
+    }
+    if code.next().is_some() {
+        return Err(", more code cells than the recipe makes".to_string());
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::split_tail;
+    use super::{Cell, split_tail, with_markdown};
 
     fn tail(code: &str) -> Option<String> {
         split_tail(code).1
+    }
+
+    /// `dev notebook-markdown` adds and drops markdown cells, keeps each code cell with its
+    /// outputs, and refuses code that is not the recipe's.
+    #[test]
+    fn markdown_cells_come_and_go_around_the_saved_code() {
+        let code = |src: &str, out: &str| serde_json::json!({"cell_type": "code", "source": [src], "outputs": [out]});
+        let md = |src: &str| serde_json::json!({"cell_type": "markdown", "source": [src]});
+        let saved = [md("old"), code("a", "1"), md("gone"), code("b", "2")];
+        let cells = [
+            Cell::Markdown("new".into()),
+            Cell::Code("a".into()),
+            Cell::Code("b".into()),
+            Cell::Markdown("added".into()),
+        ];
+        let out = with_markdown(&saved, &cells).unwrap_or_default();
+        let kinds: Vec<&str> = out.iter().filter_map(|c| c["cell_type"].as_str()).collect();
+        assert_eq!(kinds, ["markdown", "code", "code", "markdown"]);
+        assert_eq!(out[1], saved[1]);
+        assert_eq!(out[2], saved[3]);
+        assert_eq!(out[3]["source"], serde_json::json!(["added"]));
+        let other = [Cell::Code("a".into()), Cell::Code("c".into())];
+        assert!(with_markdown(&saved, &other).is_err());
+        assert!(with_markdown(&saved, &[Cell::Code("a".into())]).is_err());
     }
 
     #[test]

@@ -124,10 +124,17 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let [left, right] =
         Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(area);
     app.explanation.render(&app.ctx(), theme, left, buf);
-    let env = app
-        .current_lesson()
-        .map_or_else(Default::default, |l| l.env);
-    let mut code = code_lines(step, env, theme, usize::from(right.width.saturating_sub(2)));
+    let lesson = app.current_lesson();
+    let env = lesson.map_or_else(Default::default, |l| l.env);
+    let order = lesson.map_or(0, |l| l.order);
+    let passed = |e: &str| app.progress.exercises_done.contains(e);
+    let mut code = code_lines(
+        step,
+        (env, order),
+        &passed,
+        theme,
+        usize::from(right.width.saturating_sub(2)),
+    );
     let code_height = (code.len() as u16 + 2).min(right.height / 3).max(5);
     let [code_area, live] =
         Layout::vertical([Constraint::Length(code_height), Constraint::Min(0)]).areas(right);
@@ -148,10 +155,14 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
 }
 
 /// The step's code for a pane `columns` wide: a line too long for it is cut with a dim
-/// `…` in its last column, so that it shows it goes on (issue 25, section 2).
+/// `…` in its last column, so that it shows it goes on (issue 25, section 2). Code an
+/// exercise asks for is a dim note until `passed` holds for it (issue 27, section 1,
+/// [`crate::lesson::reveal`]); once shown, a line points to the learner's own file for each
+/// exercise of the step's lesson (`order`) it shows.
 fn code_lines(
     step: &crate::lesson::Step,
-    env: crate::lesson::Environment,
+    (env, order): (crate::lesson::Environment, u32),
+    passed: &dyn Fn(&str) -> bool,
     theme: Theme,
     columns: usize,
 ) -> Vec<Line<'static>> {
@@ -169,15 +180,35 @@ fn code_lines(
                 .map(|l| Line::styled(l.to_string(), theme.python())),
         );
     }
-    if let Some((path, code)) = (!step.code.is_empty())
-        .then(|| crate::lesson::anchor::find(&step.code))
+    if let Some(listing) = (!step.code.is_empty())
+        .then(|| crate::lesson::reveal::listing(&step.code, passed))
         .flatten()
     {
+        let path = &listing.path;
         lines.push(Line::styled(format!("// ppo-engine: {path}"), theme.dim()));
-        lines.extend(
-            code.lines()
-                .map(|l| Line::styled(l.to_string(), theme.code())),
-        );
+        for gate in listing.shown.iter().filter(|g| g.lesson == order) {
+            if let Ok(ex) = crate::grade::find(&gate.exercise) {
+                let (name, file) = (&gate.exercise, ex.meta().starter);
+                let folder = &gate.folder;
+                lines.push(Line::styled(
+                    tr!(
+                        "// your {name}: lessons/{folder}/{file}",
+                        "// 你写的 {name}：lessons/{folder}/{file}"
+                    ),
+                    theme.dim(),
+                ));
+            }
+        }
+        for row in &listing.rows {
+            match row {
+                crate::lesson::reveal::Row::Code(code) => {
+                    lines.push(Line::styled(code.clone(), theme.code()));
+                }
+                crate::lesson::reveal::Row::Hidden { indent, by } => {
+                    lines.extend(note_lines(*indent, by, theme, columns));
+                }
+            }
+        }
     }
     if lines.is_empty() {
         lines.push(Line::styled(
@@ -188,6 +219,52 @@ fn code_lines(
     lines
         .into_iter()
         .map(|l| text::cut(l, columns, Span::styled("…", theme.dim())))
+        .collect()
+}
+
+/// The text of `lesson`'s step `step`'s code pane, as the app draws it for a learner who has
+/// passed the exercises for which `passed` holds, in a pane wide enough for every line:
+/// what a test reads to check that no answer shows before its exercise is passed.
+#[must_use]
+pub fn code_pane_text(
+    lesson: &crate::lesson::Lesson,
+    step: usize,
+    passed: &dyn Fn(&str) -> bool,
+) -> String {
+    let Some(s) = lesson.steps.get(step) else {
+        return String::new();
+    };
+    let theme = Theme { color: false };
+    code_lines(s, (lesson.env, lesson.order), passed, theme, usize::MAX)
+        .iter()
+        .map(|l| {
+            l.spans
+                .iter()
+                .map(|s| s.content.as_ref())
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// A hidden region's note ([`crate::lesson::reveal::note`]) as dim comment lines at
+/// `indent`, wrapped to `columns`.
+fn note_lines(
+    indent: usize,
+    by: &[crate::lesson::reveal::Gate],
+    theme: Theme,
+    columns: usize,
+) -> Vec<Line<'static>> {
+    let prefix = format!("{}// ", " ".repeat(indent));
+    let room = columns.saturating_sub(text::width(&prefix)).max(12);
+    let note = crate::lesson::reveal::note(by);
+    let wrapped = text::wrap([Line::raw(note)], u16::try_from(room).unwrap_or(u16::MAX));
+    wrapped
+        .into_iter()
+        .map(|l| {
+            let words: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
+            Line::styled(format!("{prefix}{}", words.trim_end()), theme.dim())
+        })
         .collect()
 }
 
