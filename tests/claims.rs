@@ -200,6 +200,34 @@ fn min_picks_surr2_only_where_the_advantage_favours_the_move() -> TestResult {
     Ok(())
 }
 
+/// Lesson 8 quotes the λ-return's horizon 1/(1 − γλ) for the seed's settings twice, with one
+/// value; lesson 10 says a row below the band was made at least ε less likely.
+#[test]
+fn the_gae_and_clipping_lessons_quote_their_settings_one_way() -> TestResult {
+    let config = PpoConfig::default();
+    let gae = flat(include_str!("../lessons/08-gae/lesson.md"));
+    let horizon = format!(
+        "1/(1 − γλ) ≈ {:.1} steps",
+        1.0 / (1.0 - config.gamma * config.lmbda)
+    );
+    let quoted = gae.matches("1/(1 − γλ) ≈").count();
+    assert_eq!(quoted, 2, "lesson 8 quotes the horizon twice");
+    assert_eq!(
+        gae.matches(&horizon).count(),
+        quoted,
+        "lessons/08-gae/lesson.md should write every 1/(1 − γλ) as {horizon:?}"
+    );
+    says(
+        include_str!("../lessons/10-clipping/lesson.md"),
+        "lessons/10-clipping/lesson.md",
+        &format!(
+            "has been made at least {:.0}% less likely already",
+            100.0 * config.eps
+        ),
+    );
+    Ok(())
+}
+
 /// The learner's `approx_kl` with the ratio upside down, from the wrong-answer catalogue.
 #[allow(clippy::all, clippy::pedantic)]
 mod inverted_ratio {
