@@ -551,33 +551,6 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
     md
 }
 
-/// The comment that opens a cell of a step's live values.
-pub const LIVE_VALUES: &str = "// This step's live values, from the training run `snap`:";
-
-/// [`LIVE_VALUES`] in the current language.
-#[must_use]
-pub fn live_values_comment() -> &'static str {
-    t(LIVE_VALUES, "// 本节的实时数值，来自训练运行 `snap`：")
-}
-
-/// What a notebook has shown of its snapshot `snap` so far: live values by name, views
-/// (`plot`, `cartpole`, `clip_chart`) by name, experiments as `lab:NAME`.
-type Shown = std::collections::BTreeSet<String>;
-
-/// Whether a recipe cell binds `snap` anew (`let snap` or `let mut snap`): what the
-/// notebook showed of the old snapshot says nothing about the new one.
-fn rebinds_snapshot(code: &str) -> bool {
-    code.lines().any(|l| {
-        let l = l.trim_start();
-        ["let snap", "let mut snap"].iter().any(|p| {
-            l.strip_prefix(p)
-                .is_some_and(|rest| rest.starts_with([' ', ':', '=']))
-        })
-    })
-}
-
-/// The cells that show step `k`'s live values and views, less those `shown` already holds
-/// (which it then records); none when the step shows nothing new.
 /// What a notebook counts as passed before its own exercise: the exercises of earlier
 /// lessons (a notebook has no progress file; the course is read in order). Code that an
 /// exercise of this lesson or a later one asks for is a note ([`crate::lesson::reveal`]).
@@ -675,6 +648,33 @@ pub fn reveal_cell(course: &Course, lesson: &Lesson) -> Option<Cell> {
     Some(Cell::Markdown(md))
 }
 
+/// The comment that opens a cell of a step's live values.
+pub const LIVE_VALUES: &str = "// This step's live values, from the training run `snap`:";
+
+/// [`LIVE_VALUES`] in the current language.
+#[must_use]
+pub fn live_values_comment() -> &'static str {
+    t(LIVE_VALUES, "// 本节的实时数值，来自训练运行 `snap`：")
+}
+
+/// What a notebook has shown of its snapshot `snap` so far: live values by name, views
+/// (`plot`, `cartpole`, `clip_chart`) by name, experiments as `lab:NAME`.
+type Shown = std::collections::BTreeSet<String>;
+
+/// Whether a recipe cell binds `snap` anew (`let snap` or `let mut snap`): what the
+/// notebook showed of the old snapshot says nothing about the new one.
+fn rebinds_snapshot(code: &str) -> bool {
+    code.lines().any(|l| {
+        let l = l.trim_start();
+        ["let snap", "let mut snap"].iter().any(|p| {
+            l.strip_prefix(p)
+                .is_some_and(|rest| rest.starts_with([' ', ':', '=']))
+        })
+    })
+}
+
+/// The cells that show step `k`'s live values and views, less those `shown` already holds
+/// (which it then records); none when the step shows nothing new.
 fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
     let step = &lesson.steps[k];
     let mut fresh = |key: String| shown.insert(key);

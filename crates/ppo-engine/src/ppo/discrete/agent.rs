@@ -310,6 +310,7 @@ impl Agent {
                 "action probabilities {probs:?}"
             )));
         }
+        // ANCHOR: categorical_sample
         let u = self.rng.next_f64() * probs.iter().map(|&p| f64::from(p)).sum::<f64>();
         let mut cumulative = 0.0;
         for (action, &p) in probs.iter().enumerate() {
@@ -319,6 +320,7 @@ impl Agent {
             }
         }
         Ok(probs.len() - 1)
+        // ANCHOR_END: categorical_sample
     }
     // ANCHOR_END: take_action
 
@@ -333,7 +335,6 @@ impl Agent {
                 if p > best.1 { (a, p) } else { best }
             });
         best.0
-        // ANCHOR: categorical_sample
     }
 
     /// Every parameter by PyTorch name, as plain data.
@@ -343,7 +344,6 @@ impl Agent {
     pub fn weights(&self) -> Result<NamedWeights, PpoError> {
         let mut out = NamedWeights::new();
         let layers = [
-        // ANCHOR_END: categorical_sample
             ("actor.fc1", &self.actor.fc1),
             ("actor.fc2", &self.actor.fc2),
             ("critic.fc1", &self.critic.fc1),
@@ -446,11 +446,15 @@ impl Agent {
 
         // ANCHOR: td_target
         let next_values = self.critic.forward(&next_states)?.detach();
+        // ANCHOR: td_target_formula
         let td_target = (&rewards + ((&next_values * cfg.gamma)? * (1.0 - &dones)?)?)?;
+        // ANCHOR_END: td_target_formula
         // ANCHOR_END: td_target
         // ANCHOR: td_delta
         let values = self.critic.forward(&states)?.detach();
+        // ANCHOR: td_delta_formula
         let td_delta = (&td_target - &values)?;
+        // ANCHOR_END: td_delta_formula
         // ANCHOR_END: td_delta
         let td_delta_vec = to_vec(&td_delta)?;
         let values_vec = to_vec(&values)?;
@@ -469,15 +473,11 @@ impl Agent {
             column(lambda_return.clone())? // fit V(s_t) to the Monte-Carlo return
         } else {
             td_target.detach() // the seed: the one-step TD target
-        // ANCHOR: td_target_formula
         };
-        // ANCHOR_END: td_target_formula
         // ANCHOR_END: reinforce_targets
         if cfg.normalize_advantage {
             advantage_vec = normalize_advantage(&advantage_vec);
-        // ANCHOR: td_delta_formula
         }
-        // ANCHOR_END: td_delta_formula
         let advantage = column(advantage_vec.clone())?;
         // ANCHOR: old_log_probs
         let old_log_probs = self
@@ -568,12 +568,15 @@ impl Agent {
         let entropy = (&probs * log_probs_all)?.sum(1)?.neg()?.mean_all()?;
         // ANCHOR: actor_loss
         let objective = match (self.config.algorithm, self.config.no_clip) {
+            // ANCHOR: clipped_objective
             (Algorithm::Ppo, false) => surr1.minimum(&surr2)?, // the seed
             // ANCHOR_END: clipped_objective
             (Algorithm::Ppo, true) => surr1.clone(), // no clip: ratio · Â
             (Algorithm::Reinforce, _) => (&log_probs * b.advantage)?, // log π · Â
         };
+        // ANCHOR: actor_loss_mean
         let mut actor_loss = objective.neg()?.mean_all()?;
+        // ANCHOR_END: actor_loss_mean
         if self.config.entropy_coef > 0.0 {
             actor_loss = (actor_loss - (&entropy * self.config.entropy_coef)?)?;
         }
@@ -689,14 +692,11 @@ struct EpochInputs<'a> {
     states: &'a Tensor,
     actions: &'a Tensor,
     advantage: &'a Tensor,
-            // ANCHOR: clipped_objective
     old_log_probs: &'a Tensor,
     old_log_probs_vec: &'a [f32],
     /// What the critic is fitted to: the TD target (PPO) or the return (REINFORCE).
     critic_target: &'a Tensor,
-        // ANCHOR: actor_loss_mean
     /// A learner's losses in place of the built-in ones ([`Agent::update_with`]).
-        // ANCHOR_END: actor_loss_mean
     losses: Option<&'a Losses<'a>>,
 }
 
