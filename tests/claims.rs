@@ -228,6 +228,44 @@ fn the_gae_and_clipping_lessons_quote_their_settings_one_way() -> TestResult {
     Ok(())
 }
 
+/// Lesson 3's `sample_action` spec (the starter's doc comment) states what the reference does
+/// at its edges: no action of probability 0 while `u` is below the sum, and the last action,
+/// whatever its probability, when rounding leaves the sum below `u`.
+#[test]
+fn the_sample_action_spec_states_what_the_reference_does() -> TestResult {
+    use ppo_tutor::grade::solutions::episode_loop::sample_action;
+    assert_eq!(
+        sample_action(&[0.0, 1.0], 0.0),
+        1,
+        "u on a zero-width piece"
+    );
+    assert_eq!(
+        sample_action(&[0.5, 0.0, 0.5], 0.5),
+        2,
+        "u on a zero-width piece"
+    );
+    let short = [0.6_f32, 0.399_99, 0.0];
+    let u = 0.999_995_f32;
+    assert!(short.iter().sum::<f32>() < u);
+    assert_eq!(
+        sample_action(&short, u),
+        2,
+        "past the sum: the last action, of probability 0"
+    );
+    let doc: Vec<&str> = include_str!("../lessons/03-episode-loop/exercise.rs")
+        .lines()
+        .filter_map(|line| line.trim_start().strip_prefix("///"))
+        .collect();
+    let doc = doc.join(" ");
+    for claim in [
+        "while `u` is below the probabilities' sum, an action of probability 0 is never returned",
+        "return the last action, whatever its probability",
+    ] {
+        says(&doc, "lessons/03-episode-loop/exercise.rs", claim);
+    }
+    Ok(())
+}
+
 /// The learner's `approx_kl` with the ratio upside down, from the wrong-answer catalogue.
 #[allow(clippy::all, clippy::pedantic)]
 mod inverted_ratio {

@@ -74,9 +74,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///
         /// Return an index into `probs`. Which action a given `u` picks must match the seed: the
         /// smallest values of `u` go to action 0, the next ones to action 1, and so on in index
-        /// order, each action getting a share `probs[i]` of `[0, 1)`. Two edge cases matter: an action
-        /// of probability 0 is never returned, not even when `u` lands exactly on its boundary; and if
-        /// rounding leaves the probabilities summing to a hair less than `u`, return the last action.
+        /// order, each action getting a share `probs[i]` of `[0, 1)`. Two edge cases matter: while `u`
+        /// is below the probabilities' sum, an action of probability 0 is never returned, not even when
+        /// `u` lands exactly on its boundary; and if rounding leaves that sum a hair less than `u`, no
+        /// piece is left for `u`: return the last action, whatever its probability.
         ///
         /// Taught in lesson 3 (episode-loop), step 2 "take_action: sampling, not choosing the best".
         pub fn sample_action(probs: &[f32], u: f32) -> usize {
