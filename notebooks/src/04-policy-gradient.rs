@@ -16,17 +16,9 @@ let log_p: f32 = trace.old_log_probs.iter().sum();
 println!("{} actions taken; Σ_t log π(a_t|s_t) = {log_p:.3}", trace.actions.len());
 
 // %% step: The log-derivative trick: REINFORCE
-// check: return_to_go after 30 episodes
-// G_t = r_t + γ·G_{t+1}, from the last step back (0 after a done).
-fn return_to_go(rewards: &[f32], dones: &[bool], gamma: f64) -> Vec<f64> {
-    let mut g = vec![0.0; rewards.len()];
-    let mut next = 0.0;
-    for t in (0..rewards.len()).rev() {
-        next = f64::from(rewards[t]) + gamma * if dones[t] { 0.0 } else { next };
-        g[t] = next;
-    }
-    g
-}
+// G_t = r_t + γ·G_{t+1}, from the last step back (0 after a done), as the library computes
+// it: running that backward loop yourself is lesson 8's exercise.
+use ppo_engine::lesson::live::values::return_to_go;
 let g: Vec<f64> = return_to_go(&trace.rewards, &trace.dones, config.gamma);
 let g32: Vec<f32> = g.iter().map(|&x| x as f32).collect();
 TensorView::column("return_to_go", &g32)

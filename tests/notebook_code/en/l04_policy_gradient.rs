@@ -26,17 +26,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // This step's live values, from the training run `snap`:
     nb.show((&Shown(&(snap.show(&["probs", "actions", "rewards"])))).outputs());
     nb.cell(7);
-    // check: return_to_go after 30 episodes
-    // G_t = r_t + γ·G_{t+1}, from the last step back (0 after a done).
-    fn return_to_go(rewards: &[f32], dones: &[bool], gamma: f64) -> Vec<f64> {
-        let mut g = vec![0.0; rewards.len()];
-        let mut next = 0.0;
-        for t in (0..rewards.len()).rev() {
-            next = f64::from(rewards[t]) + gamma * if dones[t] { 0.0 } else { next };
-            g[t] = next;
-        }
-        g
-    }
+    // G_t = r_t + γ·G_{t+1}, from the last step back (0 after a done), as the library computes
+    // it: running that backward loop yourself is lesson 8's exercise.
+    use ppo_engine::lesson::live::values::return_to_go;
     let g: Vec<f64> = return_to_go(&trace.rewards, &trace.dones, config.gamma);
     let g32: Vec<f32> = g.iter().map(|&x| x as f32).collect();
     nb.show((&Shown(&(TensorView::column("return_to_go", &g32)))).outputs());

@@ -120,7 +120,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(19);
         nb.show((&Shown(&(ppo_grade::in_process::zero_gradient_rows(zero_gradient_rows)))).outputs());
     }
-    nb.cell(20);
+    nb.cell(21);
     // Back to "Taking the minimum", now that your functions pass: min picks surr2 only where
     // surr2 < surr1, where the ratio left the band in the direction its advantage favours. Where
     // it left the band the other way, surr1 < surr2 and min keeps surr1.
@@ -128,17 +128,17 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let kept_surr1 = last.surr1.iter().zip(&last.surr2).filter(|(a, b)| a < b).count();
     println!("min(surr1, surr2) picked surr2 on {picked_surr2} of {} rows", last.surr1.len());
     println!("on {kept_surr1} other rows the ratio left the band against its advantage: min kept surr1");
-    nb.cell(22);
+    nb.cell(23);
     use ppo_engine::lesson::quiz;
-    nb.cell(24);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::answer("clipping", 1, '?')))).outputs());
-    nb.cell(26);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("clipping", 2, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("clipping", 3, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(31);
     nb.show((&Shown(&(quiz::answer("clipping", 4, '?')))).outputs());
-    nb.cell(32);
+    nb.cell(33);
     nb.show((&Shown(&(quiz::predict("clipping", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

@@ -133,21 +133,21 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(19);
         nb.show((&Shown(&(ppo_grade::in_process::ppo_losses(ppo_losses)))).outputs());
     }
-    nb.cell(20);
+    nb.cell(21);
     // Back to "The critic loss", now that `critic_loss` passes: in the first epoch
     // V(s_t) − y_t = −δ_t, so the critic loss is the mean squared TD error.
     let mse = trace.td_delta.iter().map(|d| d * d).sum::<f32>() / n;
     println!("epoch 1 critic loss {:.6}, mean(td_delta²) {:.6}", first.critic_loss, mse);
     assert!((first.critic_loss - mse).abs() < 1e-4 * (1.0 + mse));
-    nb.cell(22);
+    nb.cell(23);
     use ppo_engine::lesson::quiz;
-    nb.cell(24);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::predict("losses", 1, "?", &snap)))).outputs());
-    nb.cell(26);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("losses", 2, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("losses", 3, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(31);
     nb.show((&Shown(&(quiz::answer("losses", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

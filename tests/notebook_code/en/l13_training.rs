@@ -69,7 +69,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(16);
         nb.show((&Shown(&(ppo_grade::in_process::moving_average(moving_average)))).outputs());
     }
-    nb.cell(17);
+    nb.cell(18);
     // Back to "The middle", now that `moving_average` passes: rl_utils' prefix sums,
     // (cumsum[w:] − cumsum[:-w]) / w, centred, against the library's moving average.
     let w = 9;
@@ -83,15 +83,15 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         assert!((middle[i] - snap.moving_average[i + centre]).abs() < 1e-9);
     }
     println!("{} middle values match the library's moving average", middle.len());
-    nb.cell(19);
+    nb.cell(20);
     use ppo_engine::lesson::quiz;
-    nb.cell(21);
+    nb.cell(22);
     nb.show((&Shown(&(quiz::answer("training", 1, '?')))).outputs());
-    nb.cell(23);
+    nb.cell(24);
     nb.show((&Shown(&(quiz::answer("training", 2, '?')))).outputs());
-    nb.cell(25);
+    nb.cell(26);
     nb.show((&Shown(&(quiz::answer("training", 3, '?')))).outputs());
-    nb.cell(27);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::answer("training", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

@@ -86,15 +86,15 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(16);
         nb.show((&Shown(&(ppo_grade::in_process::td_delta(td_delta)))).outputs());
     }
-    nb.cell(18);
+    nb.cell(19);
     use ppo_engine::lesson::quiz;
-    nb.cell(20);
+    nb.cell(21);
     nb.show((&Shown(&(quiz::predict("td-target", 1, "?", &snap)))).outputs());
-    nb.cell(22);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::answer("td-target", 2, '?')))).outputs());
-    nb.cell(24);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::answer("td-target", 3, '?')))).outputs());
-    nb.cell(26);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("td-target", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

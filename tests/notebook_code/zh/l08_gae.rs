@@ -83,17 +83,17 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(18);
         nb.show((&Shown(&(ppo_grade::in_process::compute_advantage(compute_advantage)))).outputs());
     }
-    nb.cell(20);
+    nb.cell(21);
     use ppo_engine::lesson::quiz;
-    nb.cell(22);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::answer("gae", 1, '?')))).outputs());
-    nb.cell(24);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::answer("gae", 2, '?')))).outputs());
-    nb.cell(26);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("gae", 3, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("gae", 4, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(31);
     nb.show((&Shown(&(quiz::predict("gae", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

@@ -98,15 +98,15 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(18);
         nb.show((&Shown(&(ppo_grade::in_process::log_prob_of_actions(log_prob_of_actions)))).outputs());
     }
-    nb.cell(20);
+    nb.cell(21);
     use ppo_engine::lesson::quiz;
-    nb.cell(22);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::predict("ratio", 1, "?", &snap)))).outputs());
-    nb.cell(24);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::predict("ratio", 2, "?", &snap)))).outputs());
-    nb.cell(26);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("ratio", 3, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("ratio", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

@@ -113,7 +113,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(19);
         nb.show((&Shown(&(ppo_grade::in_process::zero_gradient_rows(zero_gradient_rows)))).outputs());
     }
-    nb.cell(20);
+    nb.cell(21);
     // 你的函数通过测试了，现在回到“取最小值”一节：只有在 surr2 < surr1 的地方 min 才选 surr2，
     // 也就是比率朝着其优势值所偏好的方向离开区间的地方。比率朝另一个方向离开区间时，
     // surr1 < surr2，min 保留 surr1。
@@ -121,17 +121,17 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let kept_surr1 = last.surr1.iter().zip(&last.surr2).filter(|(a, b)| a < b).count();
     println!("min(surr1, surr2) 在 {picked_surr2} 行上选了 surr2（共 {} 行）", last.surr1.len());
     println!("另有 {kept_surr1} 行的比率逆着优势值的方向离开了区间：min 保留了 surr1");
-    nb.cell(22);
+    nb.cell(23);
     use ppo_engine::lesson::quiz;
-    nb.cell(24);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::answer("clipping", 1, '?')))).outputs());
-    nb.cell(26);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("clipping", 2, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("clipping", 3, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(31);
     nb.show((&Shown(&(quiz::answer("clipping", 4, '?')))).outputs());
-    nb.cell(32);
+    nb.cell(33);
     nb.show((&Shown(&(quiz::predict("clipping", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

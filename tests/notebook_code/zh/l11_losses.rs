@@ -129,21 +129,21 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(19);
         nb.show((&Shown(&(ppo_grade::in_process::ppo_losses(ppo_losses)))).outputs());
     }
-    nb.cell(20);
+    nb.cell(21);
     // `critic_loss` 通过测试了，现在回到“价值网络的损失”一节：第一轮中
     // V(s_t) − y_t = −δ_t，所以价值网络的损失就是 TD 误差平方的均值。
     let mse = trace.td_delta.iter().map(|d| d * d).sum::<f32>() / n;
     println!("第 1 轮价值网络损失 {:.6}，mean(td_delta²) {:.6}", first.critic_loss, mse);
     assert!((first.critic_loss - mse).abs() < 1e-4 * (1.0 + mse));
-    nb.cell(22);
+    nb.cell(23);
     use ppo_engine::lesson::quiz;
-    nb.cell(24);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::predict("losses", 1, "?", &snap)))).outputs());
-    nb.cell(26);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("losses", 2, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("losses", 3, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(31);
     nb.show((&Shown(&(quiz::answer("losses", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

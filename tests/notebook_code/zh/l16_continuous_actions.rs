@@ -92,15 +92,15 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(21);
         nb.show((&Shown(&(ppo_grade::in_process::gaussian_log_prob(gaussian_log_prob)))).outputs());
     }
-    nb.cell(23);
+    nb.cell(24);
     use ppo_engine::lesson::quiz;
-    nb.cell(25);
+    nb.cell(26);
     nb.show((&Shown(&(quiz::answer("continuous-actions", 1, '?')))).outputs());
-    nb.cell(27);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::answer("continuous-actions", 2, '?')))).outputs());
-    nb.cell(29);
+    nb.cell(30);
     nb.show((&Shown(&(quiz::predict("continuous-actions", 3, "?", &snap)))).outputs());
-    nb.cell(31);
+    nb.cell(32);
     nb.show((&Shown(&(quiz::predict("continuous-actions", 4, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
