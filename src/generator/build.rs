@@ -48,6 +48,11 @@ pub const REGENERATE: &str = "cargo run --features notebook-runner -- dev notebo
 /// evcxr never caches a local crate, so edits to it are always rebuilt.
 pub const DEP_CELL: &str = ":cache 4000\n:dep ppo-engine = { path = \"../crates/ppo-engine\" }";
 
+/// The first cell's last line: the kernel takes its folder's evcxr work folder
+/// (`notebooks/evcxr.toml`) for its lifetime, and warns if another live kernel has it (two
+/// kernels compiling in one work folder at once overwrite each other's cells).
+pub const CLAIM_LINE: &str = "ppo_engine::notebook::claim_work_folder();";
+
 /// The grading crate, which a lesson with exercises adds to its first cell: its cells grade
 /// the exercises in place (`ppo_grade::in_process`).
 pub const GRADE_DEP: &str = ":dep ppo-grade = { path = \"../crates/ppo-grade\" }";
@@ -64,6 +69,7 @@ pub fn dep_cell(lesson: &Lesson) -> String {
     if lesson.exercise.is_some() {
         cell = format!("{cell}\n{GRADE_DEP}");
     }
+    cell = format!("{cell}\n{CLAIM_LINE}");
     match Lang::current() {
         Lang::En => cell,
         Lang::Zh => format!(
@@ -506,14 +512,17 @@ fn title_markdown(lesson: &Lesson) -> String {
          (`cargo run --release`), on the [evcxr](https://github.com/evcxr/evcxr) Rust \
          kernel. Every number below comes from {engine} of the `ppo-engine` crate. The \
          first cell compiles it (and `ppo-grade` in a lesson with exercises): the very \
-         first time, with candle, in several minutes; in later kernels, once evcxr's cache \
-         (`:cache`) holds candle, in about a minute. After that each cell takes a second or \
-         two.",
+         first time, with candle, in several minutes. Kernels keep that build in `.evcxr` \
+         beside the notebooks (`evcxr.toml`), so in a later kernel the first cell takes about \
+         ten seconds, or about a minute after the crate has changed. After that each cell \
+         takes a second or two. Run one notebook at a time: kernels of one folder share its \
+         build.",
         "# 第 {n} 课：{title}\n\n{summary}\n\n本笔记本对应终端应用（`cargo run --release`）的第 {n} 课，\
          运行在 [evcxr](https://github.com/evcxr/evcxr) Rust 内核上。下面的每个数都来自 \
          `ppo-engine` 库中{engine_zh}。第一个单元格会编译这个库（有练习的课还有 `ppo-grade`）：\
-         第一次连同 candle 一起编译，需要几分钟；之后的内核里，evcxr 的缓存（`:cache`）已存有 candle，\
-         约需一分钟。此后每个单元格只需一两秒。",
+         第一次连同 candle 一起编译，需要几分钟。内核把编译结果留在笔记本旁边的 `.evcxr` 文件夹里\
+         （见 `evcxr.toml`），所以之后新开的内核，第一个单元格只需十秒左右；库的代码改动过，则约需一分钟。\
+         此后每个单元格只需一两秒。请一次只运行一个笔记本：同一文件夹的内核共用这份编译结果。",
         n = lesson.order,
         title = lesson.title,
         summary = lesson.summary,

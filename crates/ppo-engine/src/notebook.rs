@@ -22,6 +22,9 @@
 
 use std::fmt::Write as _;
 
+mod work_folder;
+pub use work_folder::{Claim, claim_in, claim_work_folder};
+
 use crate::lesson::{Mark, RunConfig, Session, Snapshot, TensorView};
 use crate::plot::{PlotError, return_plot_svg};
 use crate::ppo::lab::{Experiment, LabResult};
