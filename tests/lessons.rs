@@ -576,3 +576,54 @@ fn no_quiz_asks_about_what_a_later_lesson_teaches() -> TestResult {
     assert!(early.is_empty(), "{early:#?}");
     Ok(())
 }
+
+/// Every exercise declares what it reveals (issue 27, section 1), in exercise.toml only: the
+/// loader refuses a missing `reveals`, a name that is not a code anchor, and a Chinese twin
+/// that declares it.
+#[test]
+fn an_exercise_must_declare_what_it_reveals_with_real_anchors() -> TestResult {
+    use ppo_tutor::lesson::loader::{check_reveals, parse_exercises};
+    let error = |text: &str| {
+        parse_exercises("07-x", text)
+            .and_then(|t| check_reveals("07-x", &t))
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    };
+    let missing = error("[[exercise]]\nname = \"f\"\nfallback = \"look again\"\n");
+    assert!(
+        missing.contains("lessons/07-x/exercise.toml") && missing.contains("no `reveals`"),
+        "{missing}"
+    );
+    let unknown =
+        error("[[exercise]]\nname = \"f\"\nreveals = [\"no_such_anchor\"]\nfallback = \"a\"\n");
+    assert!(
+        unknown.contains("'no_such_anchor', which is not a code anchor"),
+        "{unknown}"
+    );
+    assert_eq!(
+        error("[[exercise]]\nname = \"f\"\nreveals = [\"td_target_formula\"]\nfallback = \"a\"\n"),
+        ""
+    );
+    assert_eq!(
+        error("[[exercise]]\nname = \"f\"\nreveals = []\nfallback = \"a\"\n"),
+        ""
+    );
+    // Every exercise of the course declares it, and the Chinese course shares the English
+    // declaration.
+    for lang in [ppo_tutor::i18n::Lang::En, ppo_tutor::i18n::Lang::Zh] {
+        for (dir, texts) in ppo_tutor::lesson::loader::embedded_exercises_in(lang)? {
+            for t in texts {
+                assert!(t.reveals.is_some(), "{dir}: {} declares no reveals", t.name);
+            }
+        }
+    }
+    for dir in ppo_tutor::lesson::files::lesson_dirs() {
+        let zh = ppo_tutor::lesson::files::embedded_file(&format!("{dir}/exercise.zh.toml"));
+        assert!(
+            !zh.is_some_and(|t| t.contains("\nreveals")),
+            "{dir}/exercise.zh.toml declares reveals"
+        );
+    }
+    Ok(())
+}
