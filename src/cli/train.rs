@@ -83,6 +83,10 @@ pub struct TrainArgs {
     /// Epochs per update [default: 10].
     #[arg(long)]
     pub epochs: Option<usize>,
+    /// The critic's steps per update, when they should differ from the actor's --epochs
+    /// (the clip lab's epochs experiment) [default: as many as the actor's; CartPole only].
+    #[arg(long)]
+    pub critic_epochs: Option<usize>,
     /// Hidden width of both networks [default: 128].
     #[arg(long)]
     pub hidden_dim: Option<usize>,
@@ -144,6 +148,7 @@ impl TrainArgs {
             gamma: self.gamma.unwrap_or(seed.gamma),
             lmbda: self.lmbda.unwrap_or(seed.lmbda),
             epochs: self.epochs.unwrap_or(seed.epochs),
+            critic_epochs: self.critic_epochs,
             eps: self.eps.unwrap_or(seed.eps),
             num_episodes: self.episodes.unwrap_or(seed.num_episodes),
             env_id,

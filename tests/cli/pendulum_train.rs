@@ -263,6 +263,7 @@ fn cartpole_only_flags_are_refused_on_pendulum() -> TestResult {
         &["--max-grad-norm", "0.5"],
         &["--target-kl", "0.02"],
         &["--no-clip"],
+        &["--critic-epochs", "1"],
         &["--algorithm", "reinforce"],
     ] {
         let mut args = vec!["train", "--env", "Pendulum-v1"];

@@ -362,8 +362,8 @@ fn lab_runs_an_experiment_over_seeds_and_refuses_an_unknown_one() -> TestResult 
     Ok(())
 }
 
-/// `--algorithm reinforce` takes one step per episode, `--no-clip` keeps ten, and both are
-/// recorded in the run's configuration.
+/// `--algorithm reinforce` takes one step per episode, `--no-clip` keeps ten, `--critic-epochs`
+/// sets the critic's apart from the actor's, and each is recorded in the run's configuration.
 #[test]
 fn train_switches_to_reinforce_or_drops_the_clip() -> TestResult {
     let dir = tempfile::tempdir()?;
@@ -374,6 +374,11 @@ fn train_switches_to_reinforce_or_drops_the_clip() -> TestResult {
             Value::from("reinforce"),
         ),
         (&["--no-clip"][..], "no_clip", Value::from(true)),
+        (
+            &["--critic-epochs", "1"][..],
+            "critic_epochs",
+            Value::from(1),
+        ),
     ] {
         let json = dir.path().join(format!("{key}.json"));
         let mut args = vec!["train", "--episodes", "4", "-q", "--json", path(&json)?];

@@ -114,7 +114,7 @@ pub fn run_config(args: &TrainArgs) -> Result<RunConfig, String> {
 
 /// Refuses each switch of the CartPole agent that the book's continuous update lacks.
 fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
-    let given: [(bool, &str, &str); 7] = [
+    let given: [(bool, &str, &str); 8] = [
         (
             args.bootstrap_truncation,
             "--bootstrap-truncation",
@@ -155,6 +155,14 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
             t(
                 "the book's PPOContinuous update always runs all its epochs",
                 "书中的 PPOContinuous 更新总是跑完所有轮",
+            ),
+        ),
+        (
+            args.critic_epochs.is_some(),
+            "--critic-epochs",
+            t(
+                "the book's PPOContinuous update steps both networks once per epoch",
+                "书中的 PPOContinuous 更新每一轮都让两个网络各走一步",
             ),
         ),
         (

@@ -517,7 +517,10 @@ impl Agent {
             critic_target: &critic_target,
             losses,
         };
-        let epochs = if reinforce { 1 } else { self.config.epochs };
+        // Both networks step `epochs` times (the seed); with `critic_epochs` set, the network
+        // with more steps takes its extra ones after these, alone.
+        let (actor_epochs, critic_epochs) = self.config.epochs_of_each();
+        let epochs = actor_epochs.min(critic_epochs);
         // ANCHOR: epochs
         for k in 0..epochs {
             match self.epoch(&batch)? {
@@ -532,13 +535,73 @@ impl Agent {
             }
         }
         // ANCHOR_END: epochs
+        let alone = if actor_epochs > critic_epochs {
+            Network::Actor
+        } else {
+            Network::Critic
+        };
+        let extra = if trace.early_stop.is_none() {
+            epochs..actor_epochs.max(critic_epochs)
+        } else {
+            0..0
+        };
+        for k in extra {
+            match self.epoch_of(&batch, alone)? {
+                Epoch::Stepped(epoch) => trace.epochs.push(epoch),
+                Epoch::Stopped { approx_kl } => {
+                    trace.early_stop = Some(EarlyStop {
+                        epoch: k + 1,
+                        approx_kl,
+                    });
+                    break;
+                }
+            }
+        }
         self.acting = ActorSnapshot::of(&self.actor)?;
         Ok(trace)
+    }
+
+    /// One pass over the batch that steps only `network`: the other one has taken all its
+    /// epochs (`critic_epochs` differs from the actor's). The actor and the critic share no
+    /// weights and each epoch's inputs are fixed before the first, so taking the extra steps
+    /// after the shared ones gives the same networks as interleaving them.
+    fn epoch_of(&mut self, b: &EpochInputs<'_>, network: Network) -> Result<Epoch, PpoError> {
+        let (record, actor_loss, critic_loss) = match self.epoch_losses(b)? {
+            EpochLosses::Stopped { approx_kl } => return Ok(Epoch::Stopped { approx_kl }),
+            EpochLosses::Computed(c) => (c.record, c.actor_loss, c.critic_loss),
+        };
+        let max_norm = self.config.max_grad_norm;
+        match network {
+            Network::Actor => self
+                .actor_optimizer
+                .step(&actor_loss.backward()?, max_norm)?,
+            Network::Critic => self
+                .critic_optimizer
+                .step(&critic_loss.backward()?, max_norm)?,
+        }
+        Ok(Epoch::Stepped(record))
     }
 
     /// One pass over the batch: both losses, then one Adam step of each network; or, with
     /// `target_kl`, no step when the policy has already moved too far.
     fn epoch(&mut self, b: &EpochInputs<'_>) -> Result<Epoch, PpoError> {
+        let (record, actor_loss, critic_loss) = match self.epoch_losses(b)? {
+            EpochLosses::Stopped { approx_kl } => return Ok(Epoch::Stopped { approx_kl }),
+            EpochLosses::Computed(c) => (c.record, c.actor_loss, c.critic_loss),
+        };
+        // ANCHOR: backprop
+        let max_norm = self.config.max_grad_norm;
+        self.actor_optimizer
+            .step(&actor_loss.backward()?, max_norm)?;
+        self.critic_optimizer
+            .step(&critic_loss.backward()?, max_norm)?;
+        // ANCHOR_END: backprop
+        Ok(Epoch::Stepped(record))
+    }
+
+    /// One epoch's losses and record, before any step; `Stopped` when `target_kl` ends the
+    /// update here.
+    fn epoch_losses(&self, b: &EpochInputs<'_>) -> Result<EpochLosses, PpoError> {
         let eps = self.config.eps;
         let probs = self.actor.forward(b.states)?;
         let log_probs = probs.gather(b.actions, 1)?.log()?;
@@ -557,7 +620,7 @@ impl Agent {
         if let Some(target) = self.config.target_kl
             && f64::from(approx_kl) > 1.5 * target
         {
-            return Ok(Epoch::Stopped { approx_kl });
+            return Ok(EpochLosses::Stopped { approx_kl });
         }
         // ANCHOR: surrogate
         let surr1 = (&ratio * b.advantage)?;
@@ -635,16 +698,37 @@ impl Agent {
                 return Err(PpoError::NonFinite(format!("{name} ({value})")));
             }
         }
-
-        // ANCHOR: backprop
-        let max_norm = self.config.max_grad_norm;
-        self.actor_optimizer
-            .step(&actor_loss.backward()?, max_norm)?;
-        self.critic_optimizer
-            .step(&critic_loss.backward()?, max_norm)?;
-        // ANCHOR_END: backprop
-        Ok(Epoch::Stepped(record))
+        Ok(EpochLosses::Computed(Computed {
+            record,
+            actor_loss,
+            critic_loss,
+        }))
     }
+}
+
+/// Which network an epoch steps alone ([`Agent::epoch_of`]).
+#[derive(Debug, Clone, Copy)]
+enum Network {
+    Actor,
+    Critic,
+}
+
+/// An epoch's losses, computed before any step.
+enum EpochLosses {
+    /// The two losses to differentiate, and the epoch's record.
+    Computed(Computed),
+    /// `target_kl`: the policy had moved too far, so no step (the update ends).
+    Stopped {
+        /// The `approx_kl` that was too large.
+        approx_kl: f32,
+    },
+}
+
+/// [`EpochLosses::Computed`]'s contents.
+struct Computed {
+    record: EpochTrace,
+    actor_loss: Tensor,
+    critic_loss: Tensor,
 }
 
 /// What one epoch did.

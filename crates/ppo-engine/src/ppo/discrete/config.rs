@@ -27,6 +27,12 @@ pub struct PpoConfig {
     pub lmbda: f64,
     /// Passes over each episode's batch per update; seed: 10.
     pub epochs: usize,
+    /// The critic's Adam steps per update, when they differ from the actor's; `None` (the
+    /// seed) steps the critic as often as the actor (`epochs`, or once for REINFORCE). The
+    /// clip lab's epochs experiment sets it to change one network's epochs and not the
+    /// other's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub critic_epochs: Option<usize>,
     /// Clip range ε of the surrogate: the ratio is clamped to `[1-ε, 1+ε]`; seed: 0.2.
     pub eps: f64,
     /// Episodes to train for (one update per episode); seed: 500.
@@ -92,6 +98,7 @@ impl Default for PpoConfig {
             gamma: 0.98,
             lmbda: 0.95,
             epochs: 10,
+            critic_epochs: None,
             eps: 0.2,
             num_episodes: 500,
             env_id: EnvId::CartPoleV1,
@@ -108,6 +115,17 @@ impl Default for PpoConfig {
 // ANCHOR_END: hyper
 
 impl PpoConfig {
+    /// How many Adam steps each update gives the actor and the critic: `epochs` each (the
+    /// seed), one each for REINFORCE, and `critic_epochs` for the critic when it is set.
+    #[must_use]
+    pub fn epochs_of_each(&self) -> (usize, usize) {
+        let actor = match self.algorithm {
+            Algorithm::Ppo => self.epochs,
+            Algorithm::Reinforce => 1,
+        };
+        (actor, self.critic_epochs.unwrap_or(actor))
+    }
+
     /// Checks every field's range.
     ///
     /// # Errors
@@ -121,6 +139,16 @@ impl PpoConfig {
                 crate::i18n::t(
                     "a finite number >= 0 (0 turns the bonus off)",
                     "大于等于 0 的有限数（0 表示关闭熵奖励）",
+                ),
+            ));
+        }
+        if self.critic_epochs == Some(0) {
+            return Err(invalid(
+                "critic_epochs",
+                0,
+                crate::i18n::t(
+                    "at least 1 (leave it unset to follow epochs)",
+                    "至少为 1（不设置则与 epochs 相同）",
                 ),
             ));
         }
@@ -168,7 +196,7 @@ mod tests {
     #[test]
     fn out_of_range_fields_are_named() {
         type Case = (fn(&mut PpoConfig), &'static str);
-        let cases: [Case; 8] = [
+        let cases: [Case; 9] = [
             (|c| c.eps = 0.0, "eps"),
             (|c| c.eps = 1.0, "eps"),
             (|c| c.gamma = 0.0, "gamma"),
@@ -177,6 +205,7 @@ mod tests {
             (|c| c.critic_lr = -1.0, "critic_lr"),
             (|c| c.num_episodes = 0, "num_episodes"),
             (|c| c.gamma = f64::NAN, "gamma"),
+            (|c| c.critic_epochs = Some(0), "critic_epochs"),
         ];
         for (set, name) in cases {
             let mut c = PpoConfig::default();
@@ -193,5 +222,28 @@ mod tests {
             ..PpoConfig::default()
         };
         assert!(c.validate().is_ok(), "gamma = 1 is allowed");
+    }
+
+    #[test]
+    fn the_critic_follows_the_actor_unless_told_otherwise() {
+        let seed = PpoConfig::default();
+        assert_eq!(seed.epochs_of_each(), (10, 10));
+        let apart = PpoConfig {
+            epochs: 1,
+            critic_epochs: Some(10),
+            ..seed.clone()
+        };
+        assert_eq!(apart.epochs_of_each(), (1, 10));
+        let reinforce = PpoConfig {
+            algorithm: Algorithm::Reinforce,
+            ..seed.clone()
+        };
+        assert_eq!(reinforce.epochs_of_each(), (1, 1));
+        // The seed's configuration serialises as before (no `critic_epochs` key), so saved
+        // configurations and their hashes are unchanged.
+        let json = serde_json::to_value(&seed).unwrap_or_default();
+        assert!(json.get("critic_epochs").is_none(), "{json}");
+        let back: PpoConfig = serde_json::from_value(json).unwrap_or_default();
+        assert_eq!(back, seed);
     }
 }

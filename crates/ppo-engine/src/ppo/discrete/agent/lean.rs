@@ -281,7 +281,10 @@ fn epochs(
     let eps = cfg.eps;
     let (lo, hi) = ((1.0 - eps) as f32, (1.0 + eps) as f32);
     let mut critic_out = values; // V(s) with the current critic
-    for k in 0..cfg.epochs {
+    // with `critic_epochs` set, one network stops stepping before the other (the order of
+    // the two networks' steps does not matter: they share nothing)
+    let (actor_epochs, critic_epochs) = cfg.epochs_of_each();
+    for k in 0..actor_epochs.max(critic_epochs) {
         if k > 0 {
             pass = kernels.actor_forward(
                 actor,
@@ -363,13 +366,18 @@ fn epochs(
         }
         trace.epochs.push(record);
 
-        let grads = kernels.actor_backward(actor, &batch.states, &ws.actor_hidden, &grad_logits);
-        actor.step(&mut agent.actor_optimizer, grads, cfg.max_grad_norm)?;
-        let grads =
-            kernels
-                .critic()
-                .backward(critic, &batch.states, &ws.critic_hidden, &grad_values);
-        critic.step(&mut agent.critic_optimizer, grads, cfg.max_grad_norm)?;
+        if k < actor_epochs {
+            let grads =
+                kernels.actor_backward(actor, &batch.states, &ws.actor_hidden, &grad_logits);
+            actor.step(&mut agent.actor_optimizer, grads, cfg.max_grad_norm)?;
+        }
+        if k < critic_epochs {
+            let grads =
+                kernels
+                    .critic()
+                    .backward(critic, &batch.states, &ws.critic_hidden, &grad_values);
+            critic.step(&mut agent.critic_optimizer, grads, cfg.max_grad_norm)?;
+        }
     }
     Ok(trace)
 }
@@ -677,6 +685,46 @@ mod tests {
         Ok(())
     }
 
+    /// `critic_epochs`: after its own epochs a network stops moving while the other one
+    /// goes on, on both paths. (The actor's ratios stay put once it has stopped; the critic's
+    /// loss stays put once it has.)
+    #[test]
+    fn each_network_takes_its_own_number_of_epochs() -> Result<(), PpoError> {
+        let mut rng = NumpyRng::from_seed(5);
+        let batch = walk(40, &mut rng);
+        for forced in [None, Some(UpdatePath::Candle)] {
+            let config = PpoConfig {
+                epochs: 1,
+                critic_epochs: Some(10),
+                ..PpoConfig::default()
+            };
+            let trace = Agent::new(&config, 3)?.run_update_as(&batch, None, forced)?;
+            assert_eq!(trace.epochs.len(), 10, "{forced:?}");
+            assert!(
+                trace.epochs[2..]
+                    .iter()
+                    .all(|e| e.ratio == trace.epochs[1].ratio)
+            );
+            assert_ne!(
+                trace.epochs[1].ratio, trace.epochs[0].ratio,
+                "one actor step"
+            );
+            assert!(trace.epochs[9].critic_loss < trace.epochs[1].critic_loss);
+
+            let config = PpoConfig {
+                critic_epochs: Some(1),
+                ..PpoConfig::default()
+            };
+            let trace = Agent::new(&config, 3)?.run_update_as(&batch, None, forced)?;
+            assert_eq!(trace.epochs.len(), 10, "{forced:?}");
+            let critic: Vec<f32> = trace.epochs.iter().map(|e| e.critic_loss).collect();
+            assert!(critic[2..].iter().all(|&l| l == critic[1]), "{critic:?}");
+            assert_ne!(critic[1], critic[0], "one critic step");
+            assert_ne!(trace.epochs[9].ratio, trace.epochs[1].ratio);
+        }
+        Ok(())
+    }
+
     /// Batch sizes on both sides of every switch of gemm's paths and candle's sums
     /// (32-blocks, 64-blocks, N·out ≤ 256 for the horizontal kernel) and the ends.
     #[test]
@@ -722,6 +770,18 @@ mod tests {
             },
             PpoConfig {
                 hidden_dim: 13,
+                ..base.clone()
+            },
+            PpoConfig {
+                epochs: 1,
+                critic_epochs: Some(10),
+                ..base.clone()
+            },
+            PpoConfig {
+                epochs: 10,
+                critic_epochs: Some(1),
+                target_kl: Some(0.002),
+                actor_lr: 0.05,
                 ..base.clone()
             },
             PpoConfig {
