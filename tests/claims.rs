@@ -647,12 +647,82 @@ fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
         ),
     );
 
-    // Experiment 2: epochs.
-    let [ten, one, forty] = &epochs.arms[..] else {
-        return Err("epochs has three arms".into());
+    // Experiment 2: epochs, then one network's epochs at a time.
+    let [ten, one, forty, actor_one, critic_one] = &epochs.arms[..] else {
+        return Err("epochs has five arms".into());
     };
+    assert_eq!(
+        (
+            actor_one.config.epochs_of_each(),
+            critic_one.config.epochs_of_each()
+        ),
+        ((1, 10), (10, 1))
+    );
     let (t, f) = (ten.mean_updates(), forty.mean_updates());
     assert!(one.first_reaching(400.0).is_none() && top(one).0 < top(ten).0);
+    let span = |a: &ArmResult| {
+        let f = first_500(a);
+        (
+            f.iter().copied().min().unwrap_or(0),
+            f.iter().copied().max().unwrap_or(0),
+        )
+    };
+    let (one_span, actor_one_span, critic_one_span, ten_span) =
+        (span(one), span(actor_one), span(critic_one), span(ten));
+    // The actor's reuse is the speed: with ten actor steps every seed plays its first
+    // 500-step episode sooner than with one (whatever the critic's), and ten critic steps
+    // do not bring one actor step near the seed.
+    for (seed, ((a10, a1), both1)) in first_500(critic_one)
+        .iter()
+        .zip(first_500(actor_one))
+        .zip(first_500(one))
+        .enumerate()
+    {
+        assert!(
+            *a10 < a1 && *a10 < both1,
+            "seed {seed}: {a10} vs {a1}, {both1}"
+        );
+    }
+    assert!(actor_one_span.0 > 4 * ten_span.1, "{actor_one_span:?}");
+    assert!(actor_one.first_reaching(400.0).is_none());
+    // The critic's reuse shows at the end: one critic step ends lower and wider.
+    assert!(top(critic_one).0 < top(ten).0 && top(critic_one).1 > 10.0 * top(ten).1);
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "their first 500-step episode comes between episode {} and {}, against {} and {}",
+            actor_one_span.0, actor_one_span.1, one_span.0, one_span.1
+        ),
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!(
+            "it comes between episode {} and {}, nearer the seed's {} to {}",
+            critic_one_span.0, critic_one_span.1, ten_span.0, ten_span.1
+        ),
+    );
+    says(
+        lab_text,
+        lab_file,
+        &format!("one of them at {:.1}", critic_one.worst_final()),
+    );
+    says(
+        pg_text,
+        pg_file,
+        &format!(
+            "its first 500-step episode comes between episode {} and {}. Ten critic steps with \
+             one actor step change little (between {} and {}); ten actor steps with one critic \
+             step bring it to between {} and {}",
+            one_span.0,
+            one_span.1,
+            actor_one_span.0,
+            actor_one_span.1,
+            critic_one_span.0,
+            critic_one_span.1
+        ),
+    );
     assert!(
         forty.first_reaching(400.0) > ten.first_reaching(400.0)
             && top(forty).0 < top(ten).0
@@ -731,13 +801,6 @@ fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
     // Lesson 4: when each algorithm first reaches 500.
     let [ppo, rf] = &reinforce.arms[..] else {
         return Err("reinforce has two arms".into());
-    };
-    let span = |a: &ArmResult| {
-        let f = first_500(a);
-        (
-            f.iter().copied().min().unwrap_or(0),
-            f.iter().copied().max().unwrap_or(0),
-        )
     };
     let ((rl, rh), (pl, ph)) = (span(rf), span(ppo));
     says(

@@ -39,7 +39,9 @@ pub const LAST: usize = 50;
 pub enum Experiment {
     /// The clip range: ε = 0.2 (the seed), 0.05, and no clip at all.
     Eps,
-    /// Passes over each episode: 10 (the seed), 1 and 40.
+    /// Passes over each episode: 10 (the seed), 1 and 40; then 1 for the actor with the
+    /// critic's 10, and 10 for the actor with the critic's 1, which tell apart what each
+    /// network's reuse of an episode does.
     Epochs,
     /// The actor's learning rate: 1e-3 (the seed) and ten times that.
     ActorLr,
@@ -96,8 +98,8 @@ impl Experiment {
                 "截断范围起什么作用？不截断又会怎样？",
             ),
             Self::Epochs => t(
-                "How many passes over one episode help, and when do they hurt?",
-                "在一个回合的数据上训练几轮有帮助？什么时候反而有害？",
+                "How many passes over one episode help, which network's, and when do they hurt?",
+                "在一个回合的数据上训练几轮有帮助？是哪个网络的几轮？什么时候反而有害？",
             ),
             Self::ActorLr => t(
                 "What does a ten times larger actor step do to PPO?",
@@ -130,11 +132,35 @@ impl Experiment {
                 arm("ε = 0.05".into(), with(&|c| c.eps = 0.05)),
                 arm(t("no clip", "不截断").into(), with(&|c| c.no_clip = true)),
             ],
-            Self::Epochs => vec![
-                first(tr!("{} epochs", "{} 轮", base.epochs)),
-                arm(t("1 epoch", "1 轮").into(), with(&|c| c.epochs = 1)),
-                arm(t("40 epochs", "40 轮").into(), with(&|c| c.epochs = 40)),
-            ],
+            Self::Epochs => {
+                let (actor, critic) = base.epochs_of_each();
+                vec![
+                    first(tr!("{} epochs", "{} 轮", base.epochs)),
+                    arm(t("1 epoch", "1 轮").into(), with(&|c| c.epochs = 1)),
+                    arm(t("40 epochs", "40 轮").into(), with(&|c| c.epochs = 40)),
+                    // only the actor's epochs change, then only the critic's
+                    arm(
+                        tr!(
+                            "actor 1, critic {critic} epochs",
+                            "策略网络 1 轮，价值网络 {critic} 轮"
+                        ),
+                        with(&|c| {
+                            c.epochs = 1;
+                            c.critic_epochs = Some(critic);
+                        }),
+                    ),
+                    arm(
+                        tr!(
+                            "actor {actor}, critic 1 epoch",
+                            "策略网络 {actor} 轮，价值网络 1 轮"
+                        ),
+                        with(&|c| {
+                            c.epochs = actor;
+                            c.critic_epochs = Some(1);
+                        }),
+                    ),
+                ]
+            }
             Self::ActorLr => vec![
                 first(format!("actor_lr = {:.0e}", base.actor_lr)),
                 arm(
@@ -467,9 +493,9 @@ mod tests {
         let calls = std::sync::atomic::AtomicUsize::new(0);
         let epochs = run(Experiment::Epochs, &base, &[0, 1], 2, |_, total| {
             calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            assert_eq!(total, 2 * 2 * 12);
+            assert_eq!(total, 4 * 2 * 12);
         })?;
-        assert_eq!(calls.into_inner(), 48);
+        assert_eq!(calls.into_inner(), 96);
         assert_eq!(epochs.arms[0].returns, lab.arms[0].returns);
         assert_eq!(epochs.arms[0].updates, lab.arms[0].updates);
         assert_eq!(lab.arms.len(), 3);
