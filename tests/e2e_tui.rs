@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use portable_pty::{CommandBuilder, PtySize, native_pty_system};
 use ppo_tutor::i18n::Lang;
 use ppo_tutor::lesson::Course;
-use ppo_tutor::lesson::quiz::{QuestionKind, letter_of};
+use ppo_tutor::lesson::quiz::{Answer, QuestionKind, letter_of};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -168,7 +168,13 @@ fn walk(words: &Words) -> TestResult {
         for (i, question) in lesson.quiz.iter().enumerate() {
             let header = (words.question)(i + 1, lesson.quiz.len());
             screen.wait_for(&header, 10)?;
-            if let (0, QuestionKind::Choice { answer, .. }) = (i, &question.kind)
+            if let (
+                0,
+                QuestionKind::Choice {
+                    answer: Answer::Letter(answer),
+                    ..
+                },
+            ) = (i, &question.kind)
                 && lesson.order == 1
             {
                 key(letter_of(*answer).to_string().as_bytes())?;

@@ -529,9 +529,9 @@ fn quiz_questions_are_answered_with_keys_and_counted() -> TestResult {
         for (i, q) in questions.iter().enumerate() {
             assert_eq!((app.overlay, app.quiz.question()), (Overlay::Quiz, i));
             match &q.kind {
-                QuestionKind::Choice {
-                    answer, explain, ..
-                } => {
+                QuestionKind::Choice { explain, .. } => {
+                    // Graded against the run as the quiz shows it (a choice the run decides).
+                    let answer = &q.right_choice(&app.run.snapshot).ok_or("no right choice")?;
                     let wrong = ppo_tutor::lesson::quiz::letter_of((answer + 1) % explain.len());
                     app.update(Action::Type(wrong));
                     let verdict = app.quiz.verdict.clone().ok_or("no verdict")?;
@@ -970,14 +970,16 @@ fn each_face_s_status_line_goes_when_it_closes() -> TestResult {
 /// scrolls, and the panel says that more follows; the keys stay on its last row.
 #[test]
 fn quiz_feedback_scrolls_at_80x24_and_says_more_follows() -> TestResult {
-    use ppo_tutor::lesson::quiz::{QuestionKind, letter_of};
+    use ppo_tutor::lesson::quiz::{Answer, QuestionKind, letter_of};
     let mut app = app()?;
     let mut scrolled = 0;
     let ids: Vec<String> = app.course.lessons.iter().map(|l| l.id.clone()).collect();
     for id in ids {
         open_quiz(&mut app, &id)?;
-        let Some(QuestionKind::Choice { answer, .. }) =
-            app.quiz_question(0).map(|q| q.kind.clone())
+        let Some(QuestionKind::Choice {
+            answer: Answer::Letter(answer),
+            ..
+        }) = app.quiz_question(0).map(|q| q.kind.clone())
         else {
             continue;
         };
@@ -1028,10 +1030,13 @@ fn quiz_feedback_scrolls_at_80x24_and_says_more_follows() -> TestResult {
 /// Issue 25, section 2: answering a question again shows that only the first answer counts.
 #[test]
 fn answering_again_says_only_the_first_answer_counts() -> TestResult {
-    use ppo_tutor::lesson::quiz::{QuestionKind, letter_of};
+    use ppo_tutor::lesson::quiz::{Answer, QuestionKind, letter_of};
     let mut app = app()?;
     open_quiz(&mut app, "what-is-ppo")?;
-    let Some(QuestionKind::Choice { answer, .. }) = app.quiz_question(0).map(|q| q.kind.clone())
+    let Some(QuestionKind::Choice {
+        answer: Answer::Letter(answer),
+        ..
+    }) = app.quiz_question(0).map(|q| q.kind.clone())
     else {
         return Err("lesson 1's quiz opens with a choice".into());
     };

@@ -410,10 +410,13 @@ fn course_in_current_language() -> Option<Course> {
 
 /// The lesson's quiz, last: a heading, then for each question its text (a markdown cell)
 /// and a code cell that grades an answer in place, generated unanswered (`'?'`, `"?"`) so
-/// that a prediction's live value stays hidden until the learner commits to a number.
+/// that a prediction's live value stays hidden until the learner commits to a number. A
+/// question that shows numbers of the run has a cell between the two that shows it with
+/// this notebook's (`quiz::ask`); a choice the run decides is graded with
+/// `quiz::answer_live`.
 #[must_use]
 pub fn quiz_cells(lesson: &Lesson) -> Vec<Cell> {
-    use crate::lesson::quiz::{QuestionKind, letter_of};
+    use crate::lesson::quiz::{Answer, QuestionKind, letter_of, template};
     if lesson.quiz.is_empty() {
         return Vec::new();
     }
@@ -434,18 +437,26 @@ pub fn quiz_cells(lesson: &Lesson) -> Vec<Cell> {
     ];
     for (i, question) in lesson.quiz.iter().enumerate() {
         let n = i + 1;
+        let givens = !template::names(&question.prompt).is_empty();
         let mut text = tr!(
             "**Question {n}.** {}",
             "**第 {n} 题。** {}",
-            question.prompt
+            template::fill(&question.prompt, &crate::lesson::Snapshot::default())
         );
         let code = match &question.kind {
-            QuestionKind::Choice { choices, .. } => {
+            QuestionKind::Choice {
+                choices, answer, ..
+            } => {
                 text.push('\n');
                 for (k, choice) in choices.iter().enumerate() {
                     let _ = write!(text, "\n- **{})** {choice}", letter_of(k));
                 }
-                format!("quiz::answer(\"{}\", {n}, '?')", lesson.id)
+                match answer {
+                    Answer::Letter(_) => format!("quiz::answer(\"{}\", {n}, '?')", lesson.id),
+                    Answer::Live(_) => {
+                        format!("quiz::answer_live(\"{}\", {n}, '?', &snap)", lesson.id)
+                    }
+                }
             }
             QuestionKind::Predict { tolerance, .. } => {
                 text.push_str(&tr!(
@@ -455,7 +466,20 @@ pub fn quiz_cells(lesson: &Lesson) -> Vec<Cell> {
                 format!("quiz::predict(\"{}\", {n}, \"?\", &snap)", lesson.id)
             }
         };
+        if givens {
+            text.push_str(t(
+                "\n\n(Each … is a number of this notebook's run: the cell below shows the \
+                 question with them.)",
+                "\n\n（每个 … 都是本笔记本这次运行中的一个数：下面的单元格会把它们填进题目里显示出来。）",
+            ));
+        }
         cells.push(Cell::Markdown(text));
+        if givens {
+            cells.push(Cell::Code(format!(
+                "quiz::ask(\"{}\", {n}, &snap)",
+                lesson.id
+            )));
+        }
         cells.push(Cell::Code(code));
     }
     cells

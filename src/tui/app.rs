@@ -526,6 +526,14 @@ impl App {
     /// Shows `snapshot` (from the worker's session) and restarts the animation on it.
     pub fn show(&mut self, snapshot: Snapshot) {
         self.run.show(snapshot);
+        if self.overlay == Overlay::Quiz {
+            let question = self
+                .course
+                .lessons
+                .get(self.lesson)
+                .and_then(|l| l.quiz.get(self.quiz.question()));
+            self.quiz.offer(question, &self.run.snapshot);
+        }
     }
 
     /// Advances the animation by one frame (called on each tick).

@@ -1,5 +1,9 @@
 //! The quiz overlay, after a lesson's last step: one question at a time, a choice (a–d) or
 //! a prediction of a live value, its verdict and each choice's explanation.
+//!
+//! A question that shows numbers of the run, or is graded against it, keeps the snapshot it
+//! first had them all in: the run may train on while the learner works the answer out, and
+//! the numbers on screen and the answer they lead to stay the ones of that snapshot.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Margin, Rect};
@@ -8,8 +12,8 @@ use ratatui::widgets::{Paragraph, Widget};
 
 use super::{Component, Ctx, Reply, Scroll, centered, clear, panel};
 use crate::i18n::t;
-use crate::lesson::Progress;
 use crate::lesson::quiz::{Question, QuestionKind, Verdict, letter_of};
+use crate::lesson::{Progress, Snapshot};
 use crate::tr;
 use crate::tui::keys::Action;
 use crate::tui::theme::Theme;
@@ -27,6 +31,9 @@ pub struct Quiz {
     /// whether that first answer was right (this one does not count).
     first: Option<bool>,
     scroll: Scroll,
+    /// The snapshot the open question shows and grades against, once it had every number
+    /// the question needs (`None` before, and for a question that does not use the run).
+    pinned: Option<Box<Snapshot>>,
 }
 
 impl Quiz {
@@ -42,6 +49,7 @@ impl Quiz {
             question: i,
             ..Self::default()
         };
+        self.offer(ctx.lesson.and_then(|l| l.quiz.get(i)), ctx.snapshot);
         let total = ctx.lesson.map_or(0, |l| l.quiz.len());
         let how = match ctx.lesson.and_then(|l| l.quiz.get(i)).map(|q| &q.kind) {
             Some(QuestionKind::Predict { .. }) => t("type a number, Enter", "输入一个数，按 Enter"),
@@ -55,12 +63,29 @@ impl Quiz {
     }
 
     /// Forgets what was typed and the verdict shown (the language changed: they were
-    /// written in the old one).
+    /// written in the old one); the question keeps its snapshot.
     pub fn clear_answer(&mut self) {
         *self = Self {
             question: self.question,
+            pinned: self.pinned.take(),
             ..Self::default()
         };
+    }
+
+    /// Keeps `snapshot` for the open `question` if it uses the run, has not kept one yet,
+    /// and `snapshot` has every number it needs (the app offers each new snapshot).
+    pub fn offer(&mut self, question: Option<&Question>, snapshot: &Snapshot) {
+        if self.pinned.is_none()
+            && question.is_some_and(|q| q.uses_the_run() && q.ready_in(snapshot))
+        {
+            self.pinned = Some(Box::new(snapshot.clone()));
+        }
+    }
+
+    /// The snapshot the open question shows and grades against: the one it kept, else the
+    /// run's latest.
+    fn snapshot<'a>(&'a self, ctx: &Ctx<'a>) -> &'a Snapshot {
+        self.pinned.as_deref().unwrap_or(ctx.snapshot)
     }
 
     fn answered(&self) -> bool {
@@ -96,7 +121,7 @@ impl Quiz {
                 theme.title(),
             ),
             Line::raw(""),
-            Line::raw(format!(" {}", question.prompt)),
+            Line::raw(format!(" {}", question.prompt_in(self.snapshot(ctx)))),
             Line::raw(""),
         ];
         match &question.kind {
@@ -120,16 +145,16 @@ impl Quiz {
                         theme.dim(),
                     ),
                 ]));
-                if ctx.snapshot.trace.is_none() {
-                    lines.push(Line::styled(
-                        t(
-                            " the live value comes from the agent: train an episode first (e or t)",
-                            " 实时数值来自智能体：先训练一个回合（e 或 t）",
-                        ),
-                        theme.dim(),
-                    ));
-                }
             }
+        }
+        if question.uses_the_run() && !question.ready_in(self.snapshot(ctx)) {
+            lines.push(Line::styled(
+                t(
+                    " the live value comes from the agent: train an episode first (e or t)",
+                    " 实时数值来自智能体：先训练一个回合（e 或 t）",
+                ),
+                theme.dim(),
+            ));
         }
         if let Some(verdict) = &self.verdict {
             lines.push(Line::raw(""));
@@ -162,11 +187,13 @@ impl Component for Quiz {
         let Some(question) = ctx.lesson.and_then(|l| l.quiz.get(i)) else {
             return Reply::Close;
         };
+        self.offer(Some(question), ctx.snapshot);
         match action {
             Action::Type(c) => match &question.kind {
                 QuestionKind::Choice { .. } => {
                     if c.is_ascii_lowercase() {
-                        return self.give(question.choose(c), ctx);
+                        let verdict = question.choose(c, self.snapshot(ctx));
+                        return self.give(verdict, ctx);
                     }
                 }
                 QuestionKind::Predict { .. } => {
@@ -186,7 +213,10 @@ impl Component for Quiz {
             Action::Enter => {
                 if matches!(question.kind, QuestionKind::Predict { .. }) && !self.answered() {
                     return match self.input.parse::<f64>() {
-                        Ok(v) => self.give(question.predict(v, ctx.snapshot), ctx),
+                        Ok(v) => {
+                            let verdict = question.predict(v, self.snapshot(ctx));
+                            self.give(verdict, ctx)
+                        }
                         Err(_) => Reply::Say(
                             t(
                                 "type a number first (digits, '.', '-')",

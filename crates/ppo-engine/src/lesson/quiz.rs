@@ -7,13 +7,20 @@
 //! [`Measure`] of the running agent's [`Snapshot`](super::Snapshot), named in the question's
 //! `predict` field and listed in [`MEASURES`].
 //!
-//! One job per file: `measures` (the live values a prediction reads), `parse` (`quiz.toml`),
-//! `zh` (the Chinese twin `quiz.zh.toml`: structure from English, words from Chinese) and
-//! `grade` (a choice, a prediction, the [`Verdict`]); this file holds the types and loads a
-//! lesson's questions.
+//! A question may depend on the run. Its prompt then shows numbers of the run, written
+//! `{{name}}` (a measure, see [`template`]), and asks for a number that follows from them
+//! by what the lesson taught (`predict` names a run measure), or asks a choice whose right
+//! letter the run decides (`answer_from` names a measure whose value is the index of the
+//! true choice). Both are graded against the same snapshot the prompt was filled from.
 //!
-//! The terminal app asks them after a lesson's last step; a notebook cell grades one in
-//! place with [`answer`] or [`predict`]:
+//! One job per file: `measures` (the live values a question reads), `template` (the
+//! `{{name}}` givens), `parse` (`quiz.toml`), `zh` (the Chinese twin `quiz.zh.toml`:
+//! structure from English, words from Chinese) and `grade` (a choice, a prediction, the
+//! [`Verdict`]); this file holds the types and loads a lesson's questions.
+//!
+//! The terminal app asks them after a lesson's last step; a notebook cell shows a question
+//! with its run's numbers with [`ask`] and grades an answer in place with [`answer`],
+//! [`answer_live`] or [`predict`]:
 //!
 //! ```
 //! use ppo_engine::lesson::quiz;
@@ -28,10 +35,11 @@
 mod grade;
 mod measures;
 mod parse;
+pub mod template;
 mod zh;
 
-pub use grade::{Verdict, answer, predict};
-pub use measures::{MEASURES, Measure, measure};
+pub use grade::{Posed, Verdict, answer, answer_live, ask, predict};
+pub use measures::{Basis, MEASURES, Measure, all as all_measures, measure};
 pub use parse::{letter_index, letter_of, parse};
 pub use zh::translate;
 
@@ -54,8 +62,8 @@ pub enum QuestionKind {
     Choice {
         /// The choices, shown as a), b), c), d).
         choices: Vec<String>,
-        /// The index of the right choice.
-        answer: usize,
+        /// Which choice is right.
+        answer: Answer,
         /// Why each choice is right or wrong, one per choice.
         explain: Vec<String>,
     },
@@ -70,17 +78,98 @@ pub enum QuestionKind {
     },
 }
 
+/// The right choice of a multiple-choice question.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Answer {
+    /// The same in every run: the index of the right choice (`answer = "b"`).
+    Letter(usize),
+    /// Decided by the run: the measure's value is the index of the right choice
+    /// (`answer_from = "NAME"`).
+    Live(&'static Measure),
+}
+
 impl Question {
-    /// The question with its choices, as plain text (`a) ...` per line).
+    /// The question with its choices, as plain text (`a) ...` per line), its `{{name}}`
+    /// givens left as they are written.
     #[must_use]
     pub fn text(&self) -> String {
-        let mut out = self.prompt.clone();
+        self.text_with(self.prompt.clone())
+    }
+
+    /// The question with its choices and with the givens of `snapshot` in its prompt (`…`
+    /// where the run has not computed one yet).
+    #[must_use]
+    pub fn text_in(&self, snapshot: &super::Snapshot) -> String {
+        self.text_with(self.prompt_in(snapshot))
+    }
+
+    fn text_with(&self, mut out: String) -> String {
         if let QuestionKind::Choice { choices, .. } = &self.kind {
             for (i, c) in choices.iter().enumerate() {
                 out.push_str(&format!("\n  {}) {c}", letter_of(i)));
             }
         }
         out
+    }
+
+    /// The prompt with the givens of `snapshot` filled in (`…` where the run has not
+    /// computed one yet).
+    #[must_use]
+    pub fn prompt_in(&self, snapshot: &super::Snapshot) -> String {
+        template::fill(&self.prompt, snapshot)
+    }
+
+    /// Whether the question shows numbers of the run or is graded against it: it has
+    /// givens, a prediction or a choice the run decides.
+    #[must_use]
+    pub fn uses_the_run(&self) -> bool {
+        !template::names(&self.prompt).is_empty()
+            || matches!(
+                self.kind,
+                QuestionKind::Predict { .. }
+                    | QuestionKind::Choice {
+                        answer: Answer::Live(_),
+                        ..
+                    }
+            )
+    }
+
+    /// Whether `snapshot` has every number the question shows and grades against.
+    #[must_use]
+    pub fn ready_in(&self, snapshot: &super::Snapshot) -> bool {
+        let graded = match &self.kind {
+            QuestionKind::Predict { measure, .. }
+            | QuestionKind::Choice {
+                answer: Answer::Live(measure),
+                ..
+            } => (measure.value)(snapshot).is_some(),
+            QuestionKind::Choice { .. } => true,
+        };
+        graded
+            && template::names(&self.prompt)
+                .iter()
+                .all(|(name, _)| measure(name).and_then(|m| (m.value)(snapshot)).is_some())
+    }
+
+    /// The index of the right choice in `snapshot` (`None` for a prediction, or while the
+    /// run has not decided it yet).
+    #[must_use]
+    pub fn right_choice(&self, snapshot: &super::Snapshot) -> Option<usize> {
+        match &self.kind {
+            QuestionKind::Choice {
+                answer: Answer::Letter(i),
+                ..
+            } => Some(*i),
+            QuestionKind::Choice {
+                answer: Answer::Live(m),
+                choices,
+                ..
+            } => (m.value)(snapshot)
+                .filter(|v| v.fract() == 0.0 && *v >= 0.0)
+                .map(|v| v as usize)
+                .filter(|&i| i < choices.len()),
+            QuestionKind::Predict { .. } => None,
+        }
     }
 }
 

@@ -1,8 +1,9 @@
 //! Grading an answer: a choice ([`Question::choose`]) or a prediction against the live value
-//! ([`Question::predict`]), and the notebook's in-place graders [`answer`] and [`predict`].
+//! ([`Question::predict`]), and the notebook's question with its run's numbers ([`ask`]) and
+//! in-place graders [`answer`], [`answer_live`] and [`predict`].
 
 use super::super::Snapshot;
-use super::{Question, QuestionKind, QuizError, letter_index, letter_of, questions};
+use super::{Answer, Question, QuestionKind, QuizError, letter_index, letter_of, questions};
 use crate::i18n::t;
 use crate::tr;
 
@@ -50,9 +51,11 @@ impl crate::notebook::Rich for Verdict {
 }
 
 impl Question {
-    /// Grades the choice `letter` (`'a'`..); a letter that is not a choice is no answer.
+    /// Grades the choice `letter` (`'a'`..) against the right choice in `snapshot` (the
+    /// same in every snapshot unless the run decides it); a letter that is not a choice is
+    /// no answer.
     #[must_use]
-    pub fn choose(&self, letter: char) -> Verdict {
+    pub fn choose(&self, letter: char, snapshot: &Snapshot) -> Verdict {
         let QuestionKind::Choice {
             choices,
             answer,
@@ -74,6 +77,17 @@ impl Question {
                 "还没有作答：把 '{letter}' 换成你的选择（a 到 {last}），再运行一次。"
             ));
         };
+        let Some(answer) = self.right_choice(snapshot) else {
+            let about = match answer {
+                Answer::Live(m) => m.describe(),
+                Answer::Letter(_) => "",
+            };
+            return Verdict::unanswered(tr!(
+                "The run has not decided this one yet ({about}): train at least one episode first.",
+                "本次运行还没有给出这道题的答案（{about}）：请先至少训练一个回合。"
+            ));
+        };
+        let answer = &answer;
         let right = index == *answer;
         let mut text = if right {
             tr!(
@@ -142,6 +156,7 @@ impl Question {
         } else {
             t("✗ Not quite", "✗ 不太对")
         };
+        let explain = super::template::fill(explain, snapshot);
         let text = tr!(
             "{mark}: you said {value}, the live value is {} ({}; within ±{tolerance} counts).\n\n{explain}",
             "{mark}：你的预测是 {value}，实时数值是 {}（{}；相差不超过 ±{tolerance} 即算对）。\n\n{explain}",
@@ -180,15 +195,88 @@ fn question(lesson: &str, number: usize) -> Result<Question, QuizError> {
 
 /// Grades choice `letter` for question `number` (from 1) of lesson `lesson`, as a notebook
 /// cell does: `quiz::answer("gae", 2, 'b')`. A placeholder such as `'?'` is no answer yet.
+/// A question whose right choice the run decides is answered with [`answer_live`].
 #[must_use]
 pub fn answer(lesson: &str, number: usize, letter: char) -> Verdict {
     numbered(
         number,
         match question(lesson, number) {
-            Ok(q) => q.choose(letter),
+            Ok(q)
+                if matches!(
+                    q.kind,
+                    QuestionKind::Choice {
+                        answer: Answer::Live(_),
+                        ..
+                    }
+                ) =>
+            {
+                Verdict::unanswered(tr!(
+                    "The run decides this question's answer: grade it with quiz::answer_live(\"{lesson}\", {number}, '{letter}', &snap).",
+                    "这道题的答案由本次运行决定：请用 quiz::answer_live(\"{lesson}\", {number}, '{letter}', &snap) 作答。"
+                ))
+            }
+            Ok(q) => q.choose(letter, &Snapshot::default()),
             Err(e) => Verdict::unanswered(e.to_string()),
         },
     )
+}
+
+/// Grades choice `letter` for question `number` of lesson `lesson` against the run in
+/// `snapshot`, for a question whose right choice the run decides (it grades the others as
+/// [`answer`] does): `quiz::answer_live("clipping", 5, 'c', &snap)`.
+#[must_use]
+pub fn answer_live(lesson: &str, number: usize, letter: char, snapshot: &Snapshot) -> Verdict {
+    numbered(
+        number,
+        match question(lesson, number) {
+            Ok(q) => q.choose(letter, snapshot),
+            Err(e) => Verdict::unanswered(e.to_string()),
+        },
+    )
+}
+
+/// A question as a notebook cell shows it: its prompt with the numbers of the run in
+/// `snapshot` and its choices ([`ask`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Posed {
+    /// The question, numbered, with its choices.
+    pub text: String,
+}
+
+impl std::fmt::Display for Posed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+impl Posed {
+    /// Shows the question as a notebook cell's output (the evcxr kernel calls this).
+    pub fn evcxr_display(&self) {
+        for (mime, content) in crate::notebook::Rich::rich(self) {
+            println!("EVCXR_BEGIN_CONTENT {mime}\n{content}\nEVCXR_END_CONTENT");
+        }
+    }
+}
+
+impl crate::notebook::Rich for Posed {
+    fn rich(&self) -> Vec<(&'static str, String)> {
+        vec![("text/plain", self.text.clone())]
+    }
+}
+
+/// Question `number` of lesson `lesson` with the numbers of the run in `snapshot`, as a
+/// notebook cell shows it before the learner answers: `quiz::ask("gae", 5, &snap)`.
+#[must_use]
+pub fn ask(lesson: &str, number: usize, snapshot: &Snapshot) -> Posed {
+    let text = match question(lesson, number) {
+        Ok(q) => tr!(
+            "Question {number}: {}",
+            "第 {number} 题：{}",
+            q.text_in(snapshot)
+        ),
+        Err(e) => e.to_string(),
+    };
+    Posed { text }
 }
 
 /// `verdict` with the question's number in front, so that answers read apart in a notebook.
@@ -228,16 +316,20 @@ mod tests {
     fn parses_both_kinds_and_grades_them() -> Result<(), QuizError> {
         let qs = parse("99-x", TWO)?;
         assert_eq!(qs.len(), 2);
-        let right = qs[0].choose('B');
+        let none = Snapshot::default();
+        let right = qs[0].choose('B', &none);
         assert!(right.answered && right.right, "{right}");
-        let wrong = qs[0].choose('c');
+        let wrong = qs[0].choose('c', &none);
         assert!(wrong.answered && !wrong.right);
         assert!(
             wrong.text.contains("no 3") && wrong.text.contains("yes"),
             "{wrong}"
         );
-        assert!(!qs[0].choose('?').answered);
-        assert!(!qs[0].choose('d').answered, "d is not a choice of three");
+        assert!(!qs[0].choose('?', &none).answered);
+        assert!(
+            !qs[0].choose('d', &none).answered,
+            "d is not a choice of three"
+        );
         let mut snap = Snapshot::default();
         assert!(!qs[1].predict(3.0, &snap).answered, "nothing trained yet");
         snap.trace = Some(crate::ppo::UpdateTrace {
@@ -247,6 +339,70 @@ mod tests {
         let close = qs[1].predict(12.4, &snap);
         assert!(close.right && close.live == Some(12.0), "{close}");
         assert!(!qs[1].predict(13.0, &snap).right);
+        Ok(())
+    }
+
+    /// A CartPole snapshot whose last state is (θ, θ̇), ending in θ + 0.02·θ̇, and whose last
+    /// epoch's largest ratio `r` belongs to a row with advantage `adv` (ε = 0.2).
+    fn run(theta: f32, theta_dot: f32, r: f32, adv: f32) -> Snapshot {
+        Snapshot {
+            hyper: vec![("eps".into(), "0.2".into())],
+            trace: Some(crate::ppo::UpdateTrace {
+                states: vec![[0.0, 0.0, theta, theta_dot]],
+                next_states: vec![[0.0, 0.0, theta + 0.02 * theta_dot, 0.0]],
+                advantage: vec![adv, 0.5],
+                epochs: vec![crate::ppo::EpochTrace {
+                    ratio: vec![r, 1.0],
+                    ..crate::ppo::EpochTrace::default()
+                }],
+                ..crate::ppo::UpdateTrace::default()
+            }),
+            ..Snapshot::default()
+        }
+    }
+
+    #[test]
+    fn run_dependent_questions_are_graded_against_their_run() -> Result<(), QuizError> {
+        let qs = parse("99-x", super::super::parse::tests::LIVE)?;
+        // A prediction that follows from the shown θ and θ̇: right within the tolerance of
+        // this run's value, wrong outside it, and wrong for another run's value.
+        let (a, b) = (run(0.15, 1.5, 1.3, 0.4), run(-0.1, -2.0, 1.1, 0.4));
+        assert!(
+            qs[1].prompt_in(&a).contains("θ = 0.15, θ̇ = 1.5:"),
+            "{}",
+            qs[1].prompt_in(&a)
+        );
+        let right = qs[1].predict(0.18, &a);
+        assert!(
+            right.right && right.text.contains("0.15 + 0.02·1.5."),
+            "{right}"
+        );
+        assert!(qs[1].predict(0.1804, &a).right);
+        assert!(!qs[1].predict(0.1806, &a).right, "outside ±0.0005");
+        assert!(
+            !qs[1].predict(0.18, &b).right,
+            "another run, another answer"
+        );
+        assert!(qs[1].predict(-0.14, &b).right);
+        // A choice the run decides: r = 1.3 with Â > 0 is past the band (nothing pulls);
+        // r = 1.1 is inside (pushed up); Â < 0 at r = 1.3 is pushed down.
+        for (snap, right, wrong) in [
+            (&a, 'c', 'a'),
+            (&b, 'a', 'c'),
+            (&run(0.0, 0.0, 1.3, -0.4), 'b', 'c'),
+        ] {
+            assert_eq!(qs[0].right_choice(snap), letter_index(&right.to_string()));
+            assert!(qs[0].choose(right, snap).right);
+            let no = qs[0].choose(wrong, snap);
+            assert!(no.answered && !no.right, "{no}");
+        }
+        let untrained = qs[0].choose('a', &Snapshot::default());
+        assert!(
+            !untrained.answered && untrained.text.contains("train"),
+            "{untrained}"
+        );
+        assert!(qs[0].ready_in(&a) && !qs[0].ready_in(&Snapshot::default()));
+        assert!(qs[0].prompt_in(&Snapshot::default()).contains("r = …"));
         Ok(())
     }
 

@@ -1,5 +1,24 @@
-//! The measures a "predict the number" question is graded against: each reads one live
-//! value of the running agent's [`Snapshot`].
+//! The measures a question is graded against: each reads one live value of the running
+//! agent's [`Snapshot`].
+//!
+//! A measure is one of three kinds ([`Basis`]):
+//!
+//! - a **fact** ([`facts`]): what the course teaches, the same in every run with the seed's
+//!   settings (every ratio of epoch 1 is 1; the actor has 898 parameters). Two questions of
+//!   the course may not ask the same fact;
+//! - a **given** ([`givens`]): a number of this run that a question shows in its prompt,
+//!   written `{{name}}` there (the batch's last TD error, the run's γ);
+//! - a **run** measure ([`run`]): a number of this run that follows from givens by what a
+//!   lesson taught (Â from the last three δ and γλ). Its question shows those givens, and
+//!   the learner computes the answer from them.
+//!
+//! A measure is a number, or the index of the true one of a question's choices
+//! ([`Measure::choices`]), for a multiple-choice question whose right answer depends on the
+//! run (`answer_from` in `quiz.toml`).
+
+mod facts;
+mod givens;
+mod run;
 
 use super::super::Snapshot;
 use crate::i18n::t;
@@ -7,7 +26,7 @@ use crate::i18n::t;
 /// A number a prediction is graded against, measured on the running agent.
 #[derive(Debug)]
 pub struct Measure {
-    /// The name a question's `predict` field uses.
+    /// The name a question's `predict`, `answer_from` or `{{…}}` uses.
     pub name: &'static str,
     /// What it is, in words (shown with the revealed value).
     pub about: &'static str,
@@ -15,6 +34,30 @@ pub struct Measure {
     pub about_zh: &'static str,
     /// Its value in a snapshot, `None` before anything computed it.
     pub value: fn(&Snapshot) -> Option<f64>,
+    /// 0 for a number; `n` for the index (0 to `n − 1`) of the true one of a question's `n`
+    /// choices.
+    pub choices: usize,
+    /// What the value rests on.
+    pub basis: Basis,
+}
+
+/// What a measure's value rests on: a fact of the course, or this run.
+#[derive(Debug, Clone, Copy)]
+pub enum Basis {
+    /// The same in every run with the seed's settings; the fact, in a few words (no two
+    /// questions of the course ask the same one).
+    Fact(&'static str),
+    /// A number of this run that a question shows (`{{name}}` in its prompt).
+    Given,
+    /// A number of this run that follows from the givens `given` (shown in the question's
+    /// prompt) by `from`, what the lesson taught: the value of [`Measure::value`] is the
+    /// agent's own, and `from` is how the learner gets it from the shown numbers.
+    Run {
+        /// The givens the question shows, in the order `from` takes them.
+        given: &'static [&'static str],
+        /// The answer from the givens' values.
+        from: fn(&[f64]) -> f64,
+    },
 }
 
 impl Measure {
@@ -22,6 +65,22 @@ impl Measure {
     #[must_use]
     pub fn describe(&self) -> &'static str {
         t(self.about, self.about_zh)
+    }
+
+    /// Whether its value depends on the run: it follows from numbers of the run the
+    /// question shows ([`Basis::Run`]). A test checks that it differs between runs.
+    #[must_use]
+    pub fn depends_on_run(&self) -> bool {
+        matches!(self.basis, Basis::Run { .. })
+    }
+
+    /// The givens its question must show (none for a fact or a given).
+    #[must_use]
+    pub fn given(&self) -> &'static [&'static str] {
+        match self.basis {
+            Basis::Run { given, .. } => given,
+            _ => &[],
+        }
     }
 }
 
@@ -31,240 +90,161 @@ impl PartialEq for Measure {
     }
 }
 
-/// Every measure a prediction can be graded against.
-pub static MEASURES: &[Measure] = &[
-    Measure {
-        name: "batch_rows",
-        about: "transitions in the latest episode's batch",
-        about_zh: "最新回合批次中的状态转移数",
-        value: |s| match &s.continuous {
-            Some(c) => Some(c.rewards.len() as f64),
-            None => Some(s.trace.as_ref()?.rewards.len() as f64),
-        },
-    },
-    Measure {
-        name: "episode_return",
-        about: "the latest episode's return",
-        about_zh: "最新回合的回报",
-        value: |s| s.returns.last().copied(),
-    },
-    Measure {
-        name: "dones_count",
-        about: "rows of the latest batch with done = 1",
-        about_zh: "最新批次中 done = 1 的行数",
-        value: |s| {
-            let dones = match &s.continuous {
-                Some(c) => &c.dones,
-                None => &s.trace.as_ref()?.dones,
-            };
-            Some(dones.iter().filter(|d| **d).count() as f64)
-        },
-    },
-    Measure {
-        name: "obs_dim",
-        about: "numbers in one CartPole observation",
-        about_zh: "一个 CartPole 观测中的数的个数",
-        value: |s| s.trace.as_ref()?.states.first().map(|o| o.len() as f64),
-    },
-    Measure {
-        name: "actor_parameters",
-        about: "trainable parameters of the actor",
-        about_zh: "策略网络的可训练参数个数",
-        value: |s| parameters(s, "actor."),
-    },
-    Measure {
-        name: "critic_parameters",
-        about: "trainable parameters of the critic",
-        about_zh: "价值网络的可训练参数个数",
-        value: |s| parameters(s, "critic."),
-    },
-    Measure {
-        name: "probs_row_sum",
-        about: "π(left|s_0) + π(right|s_0) for the batch's first row",
-        about_zh: "批次第一行的 π(left|s_0) + π(right|s_0)",
-        value: |s| s.probs.first().map(|p| f64::from(p[0]) + f64::from(p[1])),
-    },
-    Measure {
-        name: "entropy_max",
-        about: "the largest entropy of a policy over CartPole's actions, in nats",
-        about_zh: "CartPole 动作上策略熵的最大值（单位 nat）",
-        value: |s| s.probs.first().map(|p| (p.len() as f64).ln()),
-    },
-    Measure {
-        name: "td_target_last",
-        about: "the TD target of the batch's last row",
-        about_zh: "批次最后一行的 TD 目标",
-        value: |s| s.trace.as_ref()?.td_target.last().map(|&v| f64::from(v)),
-    },
-    Measure {
-        name: "gamma_lambda",
-        about: "γ·λ of the run",
-        about_zh: "本次运行的 γ·λ",
-        value: |s| Some(s.gamma * lambda(s)?),
-    },
-    Measure {
-        name: "discount_50",
-        about: "γ^50, the weight of a reward 50 steps ahead",
-        about_zh: "γ^50，即 50 步之后一个奖励的权重",
-        value: |s| Some(s.gamma.powi(50)),
-    },
-    Measure {
-        name: "horizon_gamma",
-        about: "1/(1 − γ)",
-        about_zh: "1/(1 − γ)",
-        value: |s| Some(1.0 / (1.0 - s.gamma)),
-    },
-    Measure {
-        name: "horizon_gae",
-        about: "1/(1 − γλ)",
-        about_zh: "1/(1 − γλ)",
-        value: |s| Some(1.0 / (1.0 - s.gamma * lambda(s)?)),
-    },
-    Measure {
-        name: "advantage_last_minus_td_delta_last",
-        about: "Â_T − δ_T for the batch's last row",
-        about_zh: "批次最后一行的 Â_T − δ_T",
-        value: |s| {
-            let t = s.trace.as_ref()?;
-            Some(f64::from(*t.advantage.last()?) - f64::from(*t.td_delta.last()?))
-        },
-    },
-    Measure {
-        name: "ratio_epoch1_min",
-        about: "the smallest ratio in epoch 1",
-        about_zh: "第 1 轮中最小的比率",
-        value: |s| first_ratios(s).map(min),
-    },
-    Measure {
-        name: "ratio_epoch1_max",
-        about: "the largest ratio in epoch 1",
-        about_zh: "第 1 轮中最大的比率",
-        value: |s| first_ratios(s).map(max),
-    },
-    Measure {
-        name: "clipped_rows_epoch1",
-        about: "rows with the clip active in epoch 1",
-        about_zh: "第 1 轮中截断生效的行数",
-        value: |s| first_epoch(s, |e| e.clipped.iter().filter(|c| **c).count() as f64),
-    },
-    Measure {
-        name: "clip_frac_epoch1",
-        about: "the clip fraction of epoch 1",
-        about_zh: "第 1 轮的截断比例（clip fraction）",
-        value: |s| first_epoch(s, |e| f64::from(e.clip_fraction)),
-    },
-    Measure {
-        name: "approx_kl_epoch1",
-        about: "approx_kl in epoch 1",
-        about_zh: "第 1 轮的 approx_kl",
-        value: |s| first_epoch(s, |e| f64::from(e.approx_kl)),
-    },
-    Measure {
-        name: "actor_loss_epoch1_plus_mean_advantage",
-        about: "the actor loss of epoch 1 plus the batch's mean advantage",
-        about_zh: "第 1 轮的策略网络损失加上批次的平均优势值",
-        value: |s| {
-            let t = s.trace.as_ref()?;
-            let mean =
-                t.advantage.iter().map(|&a| f64::from(a)).sum::<f64>() / t.advantage.len() as f64;
-            Some(f64::from(t.epochs.first()?.actor_loss) + mean)
-        },
-    },
-    Measure {
-        name: "epochs_run",
-        about: "epochs the latest update ran",
-        about_zh: "最新一次更新运行的轮数",
-        value: |s| Some(s.trace.as_ref()?.epochs_run() as f64),
-    },
-    Measure {
-        name: "grad_max_diff",
-        about: "the largest difference between the two policy gradients at θ_old",
-        about_zh: "θ_old 处两种策略梯度之间的最大差值",
-        value: |s| {
-            let g = s.gradients.as_ref()?;
-            Some(f64::from(g.max_abs_diff()))
-        },
-    },
-    Measure {
-        name: "adv_norm_mean",
-        about: "the mean of the normalised advantages",
-        about_zh: "归一化后优势值的均值",
-        value: |s| normalised(s).map(|(mean, _)| mean),
-    },
-    Measure {
-        name: "adv_norm_std",
-        about: "the unbiased standard deviation of the normalised advantages",
-        about_zh: "归一化后优势值的无偏标准差",
-        value: |s| normalised(s).map(|(_, std)| std),
-    },
-    Measure {
-        name: "moving_average_window",
-        about: "the window of the seed's moving average",
-        about_zh: "原教程代码中移动平均的窗口大小",
-        value: |_| Some(crate::lesson::live::session::MOVING_AVERAGE_WINDOW as f64),
-    },
-];
+/// Every measure, by kind: facts, givens, run measures.
+pub static MEASURES: [&[Measure]; 3] = [facts::FACTS, givens::GIVENS, run::RUN];
+
+/// Every measure, in [`MEASURES`]' order.
+pub fn all() -> impl Iterator<Item = &'static Measure> {
+    MEASURES.iter().flat_map(|kind| kind.iter())
+}
 
 /// The measure called `name`.
 #[must_use]
 pub fn measure(name: &str) -> Option<&'static Measure> {
-    MEASURES.iter().find(|m| m.name == name)
+    all().find(|m| m.name == name)
 }
 
-fn lambda(s: &Snapshot) -> Option<f64> {
+/// The hyper-parameter `name` of the run, as a number.
+fn hyper(s: &Snapshot, name: &str) -> Option<f64> {
     s.hyper
         .iter()
-        .find(|(name, _)| name == "lmbda")
+        .find(|(n, _)| n == name)
         .and_then(|(_, v)| v.parse().ok())
 }
 
-fn parameters(s: &Snapshot, prefix: &str) -> Option<f64> {
-    let n: usize = s
-        .weights
-        .iter()
-        .filter(|(name, _)| name.starts_with(prefix))
-        .map(|(_, w)| w.data.len())
-        .sum();
-    (n > 0).then_some(n as f64)
+/// Whether the run's setting `name` reads `value`.
+fn setting_is(s: &Snapshot, name: &str, value: &str) -> bool {
+    s.hyper.iter().any(|(n, v)| n == name && v == value)
 }
 
-fn first_epoch(s: &Snapshot, f: impl Fn(&crate::ppo::EpochTrace) -> f64) -> Option<f64> {
-    s.trace.as_ref()?.epochs.first().map(f)
-}
-
-/// The ratios of the latest update's first epoch, in either run.
-fn first_ratios(s: &Snapshot) -> Option<&[f32]> {
-    match &s.continuous {
-        Some(c) => c.epochs.first().map(|e| e.ratio.as_slice()),
-        None => s.trace.as_ref()?.epochs.first().map(|e| e.ratio.as_slice()),
+/// GAE's λ as the update uses it: the run's `lmbda`, or 1 for REINFORCE.
+fn lambda(s: &Snapshot) -> Option<f64> {
+    if setting_is(s, "algorithm", "reinforce") {
+        return Some(1.0);
     }
+    hyper(s, "lmbda")
 }
 
-fn max(xs: &[f32]) -> f64 {
-    xs.iter()
-        .map(|&x| f64::from(x))
-        .fold(f64::NEG_INFINITY, f64::max)
+/// Whether the actor minimises the seed's clipped surrogate (not REINFORCE, no `no_clip`,
+/// no other objective).
+fn clipped_objective(s: &Snapshot) -> bool {
+    !setting_is(s, "algorithm", "reinforce")
+        && !setting_is(s, "no_clip", "true")
+        && s.hyper
+            .iter()
+            .all(|(n, v)| n != "objective" || v.as_str() == "clip")
 }
 
-fn min(xs: &[f32]) -> f64 {
-    xs.iter()
-        .map(|&x| f64::from(x))
-        .fold(f64::INFINITY, f64::min)
+/// The latest batch's columns and its update's epochs, in either run: what the two traces
+/// have in common.
+struct Batch<'a> {
+    values: &'a [f32],
+    next_values: &'a [f32],
+    td_delta: &'a [f32],
+    advantage: &'a [f32],
+    old_log_probs: &'a [f32],
+    /// Each epoch's `(log_probs, ratio, surr1, surr2)`.
+    epochs: Vec<EpochView<'a>>,
 }
 
-/// Mean and unbiased std of CleanRL's normalised advantages of the latest batch.
-fn normalised(s: &Snapshot) -> Option<(f64, f64)> {
-    let adv = &s.trace.as_ref()?.advantage;
-    if adv.len() < 2 {
-        return None;
+/// One epoch of [`Batch`].
+struct EpochView<'a> {
+    log_probs: &'a [f32],
+    ratio: &'a [f32],
+    surr1: &'a [f32],
+    surr2: &'a [f32],
+}
+
+fn batch(s: &Snapshot) -> Option<Batch<'_>> {
+    if let Some(c) = &s.continuous {
+        return Some(Batch {
+            values: &c.values,
+            next_values: &c.next_values,
+            td_delta: &c.td_delta,
+            advantage: &c.advantage,
+            old_log_probs: &c.old_log_probs,
+            epochs: c
+                .epochs
+                .iter()
+                .map(|e| EpochView {
+                    log_probs: &e.log_probs,
+                    ratio: &e.ratio,
+                    surr1: &e.surr1,
+                    surr2: &e.surr2,
+                })
+                .collect(),
+        });
     }
-    let out = crate::ppo::advantage::normalize_advantage(adv);
-    let n = out.len() as f64;
-    let mean = out.iter().map(|&x| f64::from(x)).sum::<f64>() / n;
-    let var = out
-        .iter()
-        .map(|&x| (f64::from(x) - mean).powi(2))
-        .sum::<f64>()
-        / (n - 1.0);
-    Some((mean, var.sqrt()))
+    let t = s.trace.as_ref()?;
+    Some(Batch {
+        values: &t.values,
+        next_values: &t.next_values,
+        td_delta: &t.td_delta,
+        advantage: &t.advantage,
+        old_log_probs: &t.old_log_probs,
+        epochs: t
+            .epochs
+            .iter()
+            .map(|e| EpochView {
+                log_probs: &e.log_probs,
+                ratio: &e.ratio,
+                surr1: &e.surr1,
+                surr2: &e.surr2,
+            })
+            .collect(),
+    })
+}
+
+/// `xs[i]` as f64.
+fn at(xs: &[f32], i: usize) -> Option<f64> {
+    xs.get(i).map(|&x| f64::from(x))
+}
+
+/// `xs[len − k]` as f64 (`k = 1` is the last).
+fn from_end(xs: &[f32], k: usize) -> Option<f64> {
+    at(xs, xs.len().checked_sub(k)?)
+}
+
+/// The row with the largest (`largest`) or smallest ratio in the update's last epoch.
+fn extreme_row(s: &Snapshot, largest: bool) -> Option<usize> {
+    let b = batch(s)?;
+    let ratio = b.epochs.last()?.ratio;
+    let better = |a: f32, b: f32| if largest { a > b } else { a < b };
+    (0..ratio.len()).reduce(|best, i| {
+        if better(ratio[i], ratio[best]) {
+            i
+        } else {
+            best
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_run_measures_name_known_givens() {
+        let mut names: Vec<&str> = all().map(|m| m.name).collect();
+        let count = names.len();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), count, "a measure name is used twice");
+        for m in all() {
+            for g in m.given() {
+                assert!(
+                    measure(g).is_some(),
+                    "{}: given {g} is not a measure",
+                    m.name
+                );
+                assert_ne!(*g, m.name, "{} is its own given", m.name);
+            }
+            assert_eq!(
+                m.depends_on_run(),
+                !m.given().is_empty(),
+                "{}: a run measure follows from givens",
+                m.name
+            );
+        }
+    }
 }

@@ -4,7 +4,7 @@
 use serde::Deserialize;
 
 use super::parse::Explain;
-use super::{Question, QuestionKind, QuizError};
+use super::{Question, QuestionKind, QuizError, template};
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -59,6 +59,8 @@ pub fn translate(dir: &str, questions: &mut [Question], text: &str) -> Result<()
             (QuestionKind::Predict { explain, .. }, Explain::One(zh_explain))
                 if t.choices.is_empty() =>
             {
+                same_givens(explain, &zh_explain)
+                    .map_err(|e| bad(format!("question {n}: explain {e}")))?;
                 *explain = zh_explain;
             }
             _ => {
@@ -68,7 +70,64 @@ pub fn translate(dir: &str, questions: &mut [Question], text: &str) -> Result<()
                 )));
             }
         }
+        same_givens(&q.prompt, &t.prompt).map_err(|e| bad(format!("question {n}: prompt {e}")))?;
         q.prompt = t.prompt;
     }
     Ok(())
+}
+
+/// Checks that the translation `zh` of `en` shows the same `{{…}}` givens.
+fn same_givens(en: &str, zh: &str) -> Result<(), String> {
+    let (mut a, mut b) = (template::names(en), template::names(zh));
+    a.sort();
+    b.sort();
+    if a == b {
+        return Ok(());
+    }
+    let list = |v: &[(String, Option<usize>)]| {
+        v.iter()
+            .map(|(n, d)| match d {
+                Some(d) => format!("{{{{{n}:.{d}}}}}"),
+                None => format!("{{{{{n}}}}}"),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    Err(format!(
+        "shows {}, but quiz.toml shows {}: give the same givens",
+        list(&b),
+        list(&a)
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_translation_shows_the_same_givens() -> Result<(), QuizError> {
+        let en = super::super::parse::tests::LIVE;
+        let mut qs = super::super::parse("99-x", en)?;
+        let zh = r#"
+[[question]]
+prompt = "r = {{ratio_max_last}}，Â = {{adv_at_ratio_max_last}}，ε = {{eps}}：损失怎样作用？"
+choices = ["向上", "向下", "不作用"]
+explain = ["甲", "乙", "丙"]
+
+[[question]]
+prompt = "θ = {{theta_last}}，θ̇ = {{theta_dot_last}}：下一个 θ？"
+explain = "θ + 0.02·θ̇ = {{theta_last}} + 0.02·{{theta_dot_last}}。"
+"#;
+        translate("99-x", &mut qs, zh)?;
+        let lost = zh.replace("，θ̇ = {{theta_dot_last}}", "");
+        let mut qs = super::super::parse("99-x", en)?;
+        let e = translate("99-x", &mut qs, &lost)
+            .err()
+            .map(|e| e.to_string());
+        assert!(
+            e.as_deref().is_some_and(|e| e.contains("question 2: prompt shows {{theta_last}}, but quiz.toml shows {{theta_dot_last}}, {{theta_last}}")),
+            "{e:?}"
+        );
+        Ok(())
+    }
 }
