@@ -469,14 +469,23 @@ fn without_a_terminal_the_tutor_says_so_in_one_line() -> TestResult {
     Ok(())
 }
 
-/// Every lesson ends with at least three questions, and every "predict the number" question
-/// can be answered by reasoning: its live value is the same, within the question's
-/// tolerance, in runs of three seeds after 3 and after 12 episodes.
+/// Every lesson ends with at least three questions, and every question graded against the
+/// agent asks what the lesson taught, in one of two ways (issue 27, section 3):
+///
+/// - a fact (`Basis::Fact`): its live value is the same, within the question's tolerance,
+///   in runs of three seeds after 3 and after 12 episodes;
+/// - a run measure (`Basis::Run`): its value differs between those runs, by more than the
+///   tolerance (a choice: the right letter differs), so no fixed answer passes; and it
+///   follows from the numbers the prompt shows. The lesson's formula on the givens, as the
+///   prompt prints them (rounded), lands within the tolerance of the agent's own value, in
+///   every run where the question can be asked.
+///
+/// And every lesson has at least one question of the second kind.
 #[test]
 fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResult {
     use ppo_tutor::lesson::RunConfig;
     use ppo_tutor::lesson::Session;
-    use ppo_tutor::lesson::quiz::QuestionKind;
+    use ppo_tutor::lesson::quiz::{Answer, Basis, QuestionKind, template};
     let course = Course::embedded()?;
     let mut runs = std::collections::BTreeMap::new();
     for env in Environment::ALL {
@@ -488,7 +497,7 @@ fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResul
         }
         runs.insert(env, snapshots);
     }
-    let mut predictions = 0;
+    let (mut facts, mut run_questions) = (0, 0);
     for lesson in &course.lessons {
         assert!(
             lesson.quiz.len() >= 3,
@@ -496,33 +505,184 @@ fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResul
             lesson.id,
             lesson.quiz.len()
         );
+        let mut depends_on_run = false;
         for (i, q) in lesson.quiz.iter().enumerate() {
-            let QuestionKind::Predict {
-                measure, tolerance, ..
-            } = &q.kind
-            else {
-                continue;
+            let at = format!("{} question {}", lesson.id, i + 1);
+            let (measure, tolerance) = match &q.kind {
+                QuestionKind::Predict {
+                    measure, tolerance, ..
+                } => (*measure, *tolerance),
+                QuestionKind::Choice {
+                    answer: Answer::Live(measure),
+                    ..
+                } => (*measure, 0.0),
+                QuestionKind::Choice { .. } => continue,
             };
-            predictions += 1;
-            let values: Vec<f64> = runs[&lesson.env]
-                .iter()
-                .map(|s| (measure.value)(s).ok_or(format!("{}: no {}", lesson.id, measure.name)))
-                .collect::<Result<_, _>>()?;
-            let (lo, hi) = values
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-                    (l.min(*v), h.max(*v))
-                });
-            assert!(
-                hi - lo <= *tolerance,
-                "{} question {}: {} varies over runs ({values:?}), more than ±{tolerance}",
-                lesson.id,
-                i + 1,
-                measure.name
-            );
+            let snapshots = &runs[&lesson.env];
+            match measure.basis {
+                Basis::Fact(_) => {
+                    facts += 1;
+                    let values: Vec<f64> = snapshots
+                        .iter()
+                        .map(|s| (measure.value)(s).ok_or(format!("{at}: no {}", measure.name)))
+                        .collect::<Result<_, _>>()?;
+                    let (lo, hi) = range(&values);
+                    assert!(
+                        hi - lo <= tolerance,
+                        "{at}: {} varies over runs ({values:?}), more than ±{tolerance}",
+                        measure.name
+                    );
+                }
+                Basis::Run { given, from } => {
+                    run_questions += 1;
+                    depends_on_run = true;
+                    let shown = template::names(&q.prompt);
+                    let mut values = Vec::new();
+                    for s in snapshots.iter().filter(|s| q.ready_in(s)) {
+                        let value = (measure.value)(s).ok_or("ready, so resolved")?;
+                        let mut exact = Vec::new();
+                        let mut printed = Vec::new();
+                        for g in given {
+                            let m = ppo_tutor::lesson::quiz::measure(g).ok_or("a measure")?;
+                            let v = (m.value)(s).ok_or("ready, so resolved")?;
+                            let decimals = shown
+                                .iter()
+                                .find(|(name, _)| name == g)
+                                .ok_or(format!("{at}: the prompt shows {g}"))?
+                                .1;
+                            exact.push(v);
+                            printed.push(template::show(v, decimals).parse::<f64>()?);
+                        }
+                        for (how, givens, within) in [
+                            ("the exact givens", &exact, tolerance / 4.0),
+                            ("the givens as printed", &printed, tolerance),
+                        ] {
+                            let derived = from(givens);
+                            assert!(
+                                (derived - value).abs() <= within.max(1e-9),
+                                "{at}: {} from {how} {givens:?} is {derived}, the agent's \
+                                 value {value}: more than ±{within} apart",
+                                measure.name
+                            );
+                        }
+                        values.push(value);
+                    }
+                    assert!(
+                        values.len() >= 2,
+                        "{at}: {} resolves in {} of the runs",
+                        measure.name,
+                        values.len()
+                    );
+                    let (lo, hi) = range(&values);
+                    assert!(
+                        hi - lo > tolerance,
+                        "{at}: {} is {values:?} in different runs, within ±{tolerance}: it \
+                         does not depend on the run",
+                        measure.name
+                    );
+                }
+                Basis::Given => return Err(format!("{at}: graded against a given").into()),
+            }
+        }
+        assert!(
+            depends_on_run,
+            "{}: no question depends on the run (issue 27, section 3)",
+            lesson.id
+        );
+    }
+    assert!(
+        facts >= 6 && run_questions >= course.lessons.len(),
+        "{facts} facts, {run_questions} run questions"
+    );
+    Ok(())
+}
+
+fn range(values: &[f64]) -> (f64, f64) {
+    values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(*v), h.max(*v))
+        })
+}
+
+/// Issue 27, section 3: the course asks no fact twice. No two questions are graded against
+/// the same measure, no two against the same fact (every ratio of epoch 1 is 1 is read by
+/// several measures, and asked once), and no two choice questions have the same right
+/// answer.
+#[test]
+fn no_fact_is_asked_twice() -> TestResult {
+    use ppo_tutor::lesson::quiz::{Answer, Basis, QuestionKind};
+    use std::collections::BTreeMap;
+    let course = Course::embedded()?;
+    let (mut measures, mut facts, mut answers) =
+        (BTreeMap::new(), BTreeMap::new(), BTreeMap::new());
+    let mut twice = Vec::new();
+    let mut seen = |map: &mut BTreeMap<String, String>, key: String, at: &str| {
+        if let Some(first) = map.insert(key.clone(), at.to_string()) {
+            twice.push(format!("{first} and {at}: {key}"));
+        }
+    };
+    for lesson in &course.lessons {
+        for (i, q) in lesson.quiz.iter().enumerate() {
+            let at = format!("{} question {}", lesson.id, i + 1);
+            let measure = match &q.kind {
+                QuestionKind::Predict { measure, .. }
+                | QuestionKind::Choice {
+                    answer: Answer::Live(measure),
+                    ..
+                } => measure,
+                QuestionKind::Choice {
+                    choices,
+                    answer: Answer::Letter(a),
+                    ..
+                } => {
+                    seen(&mut answers, choices[*a].trim().to_lowercase(), &at);
+                    continue;
+                }
+            };
+            seen(&mut measures, measure.name.to_string(), &at);
+            if let Basis::Fact(fact) = measure.basis {
+                seen(&mut facts, fact.to_string(), &at);
+            }
         }
     }
-    assert!(predictions >= 6, "{predictions} predict questions");
+    assert!(twice.is_empty(), "asked twice: {twice:#?}");
+    assert!(measures.len() >= course.lessons.len(), "{measures:?}");
+    Ok(())
+}
+
+/// Issue 27, section 3: a measure that depends on the run does: over two seeds, after 3
+/// and after 12 episodes, each run measure that resolves on an environment takes at least
+/// two values there.
+#[test]
+fn run_measures_differ_between_runs() -> TestResult {
+    use ppo_tutor::lesson::quiz::all_measures;
+    use ppo_tutor::lesson::{RunConfig, Session};
+    let mut snapshots = Vec::new();
+    for env in Environment::ALL {
+        for seed in [0, 1] {
+            for episodes in [3, 12] {
+                snapshots.push(Session::run(RunConfig::default_for(env), seed, episodes)?);
+            }
+        }
+    }
+    let mut checked = 0;
+    for m in all_measures().filter(|m| m.depends_on_run()) {
+        for env in Environment::ALL {
+            let values: Vec<f64> = snapshots
+                .iter()
+                .filter(|s| s.env == env)
+                .filter_map(|s| (m.value)(s))
+                .collect();
+            if values.len() < 2 {
+                continue;
+            }
+            checked += 1;
+            let (lo, hi) = range(&values);
+            assert!(hi > lo, "{} is {values:?} in every {env:?} run", m.name);
+        }
+    }
+    assert!(checked >= 17, "{checked} run measures checked");
     Ok(())
 }
 

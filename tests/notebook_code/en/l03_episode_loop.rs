@@ -98,6 +98,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(quiz::answer("episode-loop", 3, '?')))).outputs());
     nb.cell(29);
     nb.show((&Shown(&(quiz::predict("episode-loop", 4, "?", &snap)))).outputs());
+    nb.cell(31);
+    nb.show((&Shown(&(quiz::ask("episode-loop", 5, &snap)))).outputs());
+    nb.cell(32);
+    nb.show((&Shown(&(quiz::predict("episode-loop", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {

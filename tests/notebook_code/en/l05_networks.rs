@@ -72,5 +72,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(quiz::answer("networks", 3, '?')))).outputs());
     nb.cell(24);
     nb.show((&Shown(&(quiz::predict("networks", 4, "?", &snap)))).outputs());
+    nb.cell(26);
+    nb.show((&Shown(&(quiz::ask("networks", 5, &snap)))).outputs());
+    nb.cell(27);
+    nb.show((&Shown(&(quiz::predict("networks", 5, "?", &snap)))).outputs());
     Ok(())
 }

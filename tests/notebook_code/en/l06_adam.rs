@@ -48,5 +48,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(quiz::answer("adam", 3, '?')))).outputs());
     nb.cell(21);
     nb.show((&Shown(&(quiz::answer("adam", 4, '?')))).outputs());
+    nb.cell(23);
+    nb.show((&Shown(&(quiz::ask("adam", 5, &snap)))).outputs());
+    nb.cell(24);
+    nb.show((&Shown(&(quiz::predict("adam", 5, "?", &snap)))).outputs());
     Ok(())
 }

@@ -100,6 +100,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(quiz::answer("td-target", 3, '?')))).outputs());
     nb.cell(27);
     nb.show((&Shown(&(quiz::answer("td-target", 4, '?')))).outputs());
+    nb.cell(29);
+    nb.show((&Shown(&(quiz::ask("td-target", 5, &snap)))).outputs());
+    nb.cell(30);
+    nb.show((&Shown(&(quiz::predict("td-target", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {

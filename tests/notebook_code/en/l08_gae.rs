@@ -96,6 +96,8 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(29);
     nb.show((&Shown(&(quiz::answer("gae", 4, '?')))).outputs());
     nb.cell(31);
+    nb.show((&Shown(&(quiz::ask("gae", 5, &snap)))).outputs());
+    nb.cell(32);
     nb.show((&Shown(&(quiz::predict("gae", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

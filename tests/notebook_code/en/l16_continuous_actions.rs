@@ -100,8 +100,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(28);
     nb.show((&Shown(&(quiz::answer("continuous-actions", 2, '?')))).outputs());
     nb.cell(30);
+    nb.show((&Shown(&(quiz::ask("continuous-actions", 3, &snap)))).outputs());
+    nb.cell(31);
     nb.show((&Shown(&(quiz::predict("continuous-actions", 3, "?", &snap)))).outputs());
-    nb.cell(32);
+    nb.cell(33);
     nb.show((&Shown(&(quiz::predict("continuous-actions", 4, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

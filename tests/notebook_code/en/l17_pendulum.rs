@@ -89,10 +89,12 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(23);
     nb.show((&Shown(&(quiz::answer("pendulum", 1, '?')))).outputs());
     nb.cell(25);
+    nb.show((&Shown(&(quiz::ask("pendulum", 2, &snap)))).outputs());
+    nb.cell(26);
     nb.show((&Shown(&(quiz::predict("pendulum", 2, "?", &snap)))).outputs());
-    nb.cell(27);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::predict("pendulum", 3, "?", &snap)))).outputs());
-    nb.cell(29);
+    nb.cell(30);
     nb.show((&Shown(&(quiz::answer("pendulum", 4, '?')))).outputs());
     Ok(())
 }

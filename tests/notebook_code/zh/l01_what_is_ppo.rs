@@ -76,6 +76,8 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(24);
     nb.show((&Shown(&(quiz::answer("what-is-ppo", 2, '?')))).outputs());
     nb.cell(26);
+    nb.show((&Shown(&(quiz::ask("what-is-ppo", 3, &snap)))).outputs());
+    nb.cell(27);
     nb.show((&Shown(&(quiz::predict("what-is-ppo", 3, "?", &snap)))).outputs());
     Ok(())
 }

@@ -106,5 +106,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(quiz::answer("cartpole", 3, '?')))).outputs());
     nb.cell(32);
     nb.show((&Shown(&(quiz::answer("cartpole", 4, '?')))).outputs());
+    nb.cell(34);
+    nb.show((&Shown(&(quiz::ask("cartpole", 5, &snap)))).outputs());
+    nb.cell(35);
+    nb.show((&Shown(&(quiz::predict("cartpole", 5, "?", &snap)))).outputs());
     Ok(())
 }

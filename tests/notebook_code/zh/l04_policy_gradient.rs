@@ -98,6 +98,8 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(28);
     nb.show((&Shown(&(quiz::answer("policy-gradient", 3, '?')))).outputs());
     nb.cell(30);
+    nb.show((&Shown(&(quiz::ask("policy-gradient", 4, &snap)))).outputs());
+    nb.cell(31);
     nb.show((&Shown(&(quiz::predict("policy-gradient", 4, "?", &snap)))).outputs());
     Ok(())
 }

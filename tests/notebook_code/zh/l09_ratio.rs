@@ -103,10 +103,12 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(23);
     nb.show((&Shown(&(quiz::predict("ratio", 1, "?", &snap)))).outputs());
     nb.cell(25);
+    nb.show((&Shown(&(quiz::ask("ratio", 2, &snap)))).outputs());
+    nb.cell(26);
     nb.show((&Shown(&(quiz::predict("ratio", 2, "?", &snap)))).outputs());
-    nb.cell(27);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::answer("ratio", 3, '?')))).outputs());
-    nb.cell(29);
+    nb.cell(30);
     nb.show((&Shown(&(quiz::answer("ratio", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

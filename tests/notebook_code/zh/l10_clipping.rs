@@ -132,7 +132,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(31);
     nb.show((&Shown(&(quiz::answer("clipping", 4, '?')))).outputs());
     nb.cell(33);
-    nb.show((&Shown(&(quiz::predict("clipping", 5, "?", &snap)))).outputs());
+    nb.show((&Shown(&(quiz::ask("clipping", 5, &snap)))).outputs());
+    nb.cell(34);
+    nb.show((&Shown(&(quiz::answer_live("clipping", 5, '?', &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {

@@ -138,12 +138,14 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(23);
     use ppo_engine::lesson::quiz;
     nb.cell(25);
+    nb.show((&Shown(&(quiz::ask("losses", 1, &snap)))).outputs());
+    nb.cell(26);
     nb.show((&Shown(&(quiz::predict("losses", 1, "?", &snap)))).outputs());
-    nb.cell(27);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::answer("losses", 2, '?')))).outputs());
-    nb.cell(29);
+    nb.cell(30);
     nb.show((&Shown(&(quiz::answer("losses", 3, '?')))).outputs());
-    nb.cell(31);
+    nb.cell(32);
     nb.show((&Shown(&(quiz::answer("losses", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

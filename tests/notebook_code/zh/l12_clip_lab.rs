@@ -111,6 +111,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(quiz::answer("clip-lab", 3, '?')))).outputs());
     nb.cell(30);
     nb.show((&Shown(&(quiz::answer("clip-lab", 4, '?')))).outputs());
+    nb.cell(32);
+    nb.show((&Shown(&(quiz::ask("clip-lab", 5, &snap)))).outputs());
+    nb.cell(33);
+    nb.show((&Shown(&(quiz::predict("clip-lab", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {

@@ -91,6 +91,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(quiz::answer("training", 3, '?')))).outputs());
     nb.cell(28);
     nb.show((&Shown(&(quiz::answer("training", 4, '?')))).outputs());
+    nb.cell(30);
+    nb.show((&Shown(&(quiz::ask("training", 5, &snap)))).outputs());
+    nb.cell(31);
+    nb.show((&Shown(&(quiz::predict("training", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {

@@ -72,5 +72,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(quiz::answer("hyperparameters", 3, '?')))).outputs());
     nb.cell(29);
     nb.show((&Shown(&(quiz::answer("hyperparameters", 4, '?')))).outputs());
+    nb.cell(31);
+    nb.show((&Shown(&(quiz::ask("hyperparameters", 5, &snap)))).outputs());
+    nb.cell(32);
+    nb.show((&Shown(&(quiz::predict("hyperparameters", 5, "?", &snap)))).outputs());
     Ok(())
 }

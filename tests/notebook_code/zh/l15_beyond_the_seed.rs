@@ -114,8 +114,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(25);
     nb.show((&Shown(&(quiz::answer("beyond-the-seed", 2, '?')))).outputs());
     nb.cell(27);
+    nb.show((&Shown(&(quiz::ask("beyond-the-seed", 3, &snap)))).outputs());
+    nb.cell(28);
     nb.show((&Shown(&(quiz::predict("beyond-the-seed", 3, "?", &snap)))).outputs());
-    nb.cell(29);
+    nb.cell(30);
     nb.show((&Shown(&(quiz::predict("beyond-the-seed", 4, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

@@ -16,8 +16,9 @@ pub const STATE_FILE: &str = ".ppo-tutor-state.json";
 
 /// The numbering of quiz questions that [`Progress::quiz`] keys follow now. A progress file
 /// written before a numbering existed (with no `quiz_numbering`) is 0, and loading it moves
-/// its answers by [`RENUMBERED`].
-pub const QUIZ_NUMBERING: u32 = 1;
+/// its answers by [`RENUMBERED`]; one written before numbering 2 forgets its answers to the
+/// questions in [`REPLACED`].
+pub const QUIZ_NUMBERING: u32 = 2;
 
 /// A quiz question by lesson id and number (from 1), as in [`Progress::quiz_key`].
 pub type QuestionAt = (&'static str, usize);
@@ -38,6 +39,22 @@ pub const RENUMBERED: &[(QuestionAt, QuestionAt)] = &[
     (("clipping", 2), ("clipping", 3)),
     (("clipping", 3), ("clipping", 4)),
     (("clipping", 4), ("clipping", 5)),
+];
+
+/// Questions replaced in place at numbering 2 (issue 27, section 3): the fixed-fact
+/// predictions that asked again what another lesson asks ("every ratio is 1 in epoch 1",
+/// one done per batch) or that a question depending on the run now asks better. An answer
+/// saved before belongs to the old question, and is forgotten.
+pub const REPLACED: &[QuestionAt] = &[
+    ("what-is-ppo", 3),
+    ("policy-gradient", 4),
+    ("gae", 5),
+    ("ratio", 2),
+    ("clipping", 5),
+    ("losses", 1),
+    ("beyond-the-seed", 3),
+    ("continuous-actions", 3),
+    ("pendulum", 2),
 ];
 
 /// The learner's progress.
@@ -90,18 +107,26 @@ impl Progress {
     }
 
     /// Moves answers saved under an older numbering of the questions to the current one
-    /// ([`RENUMBERED`]), so that an answer stays with its question.
+    /// ([`RENUMBERED`]), so that an answer stays with its question, and forgets those whose
+    /// question was replaced since ([`REPLACED`]).
     pub fn renumber_quiz(&mut self) {
         if self.quiz_numbering >= QUIZ_NUMBERING {
             return;
         }
-        let old = std::mem::take(&mut self.quiz);
-        for (key, right) in old {
-            let moved = RENUMBERED.iter().find_map(|((id, n), (to, m))| {
-                (key == Self::quiz_key(id, *n)).then(|| Self::quiz_key(to, *m))
-            });
-            self.quiz.entry(moved.unwrap_or(key)).or_insert(right);
+        if self.quiz_numbering < 1 {
+            let old = std::mem::take(&mut self.quiz);
+            for (key, right) in old {
+                let moved = RENUMBERED.iter().find_map(|((id, n), (to, m))| {
+                    (key == Self::quiz_key(id, *n)).then(|| Self::quiz_key(to, *m))
+                });
+                self.quiz.entry(moved.unwrap_or(key)).or_insert(right);
+            }
         }
+        self.quiz.retain(|key, _| {
+            !REPLACED
+                .iter()
+                .any(|(id, n)| *key == Self::quiz_key(id, *n))
+        });
         self.quiz_numbering = QUIZ_NUMBERING;
     }
 
@@ -270,7 +295,8 @@ mod tests {
     -> Result<(), Box<dyn std::error::Error>> {
         let dir = tempfile::tempdir()?;
         let path = dir.path().join("state.json");
-        // Written before issue 25 moved lesson 1's questions 2 and 3 (no quiz_numbering).
+        // Written before issue 25 moved lesson 1's questions 2 and 3 (no quiz_numbering), and
+        // so before issue 27 replaced lesson 1's question 3 and gae's question 5.
         std::fs::write(
             &path,
             r#"{"quiz":{"what-is-ppo#1":true,"what-is-ppo#2":false,"what-is-ppo#3":true,
@@ -283,10 +309,8 @@ mod tests {
             ("what-is-ppo#1", true),
             ("clipping#1", false),
             ("gae#2", true),
-            ("what-is-ppo#3", true),
             ("gae#1", true),
             ("gae#3", true),
-            ("gae#5", false),
             ("clipping#2", true),
         ];
         let moved: BTreeMap<String, bool> = moved.map(|(k, r)| (k.to_string(), r)).into();
@@ -301,12 +325,10 @@ mod tests {
                 .unwrap_or_default()
         };
         for (id, n, says) in [
-            ("what-is-ppo", 3, "π(left|s) + π(right|s)"),
             ("clipping", 1, "r_t is 1.35"),
             ("clipping", 2, "grown to 1.5"),
             ("gae", 2, "λ = 0"),
             ("gae", 3, "λ = 1"),
-            ("gae", 5, "Â − δ"),
         ] {
             assert!(prompt(id, n).contains(says), "{id}#{n}: {}", prompt(id, n));
         }
@@ -316,6 +338,36 @@ mod tests {
         let fresh = Progress::default();
         fresh.save(&path)?;
         assert_eq!(Progress::load(&path).0.quiz_numbering, QUIZ_NUMBERING);
+        Ok(())
+    }
+
+    #[test]
+    fn answers_to_replaced_questions_are_forgotten() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("state.json");
+        // Numbering 1: lesson 9's question 2 asked for approx_kl in epoch 1, since replaced
+        // by a question on this run's ratio; its question 1 stays.
+        std::fs::write(
+            &path,
+            r#"{"quiz":{"ratio#1":true,"ratio#2":true,"losses#1":false,"losses#2":true},
+                "quiz_numbering":1}"#,
+        )?;
+        let (p, _) = Progress::load(&path);
+        let kept: BTreeMap<String, bool> = [
+            ("ratio#1".to_string(), true),
+            ("losses#2".to_string(), true),
+        ]
+        .into();
+        assert_eq!((p.quiz, p.quiz_numbering), (kept, QUIZ_NUMBERING));
+        // Every replaced question exists, and asks about the run (its prompt shows givens).
+        let course = Course::embedded_in(crate::i18n::Lang::En)?;
+        for (id, n) in REPLACED {
+            let q = course
+                .get(id)
+                .and_then(|l| l.quiz.get(n - 1))
+                .ok_or(format!("{id}#{n}"))?;
+            assert!(q.prompt.contains("{{"), "{id}#{n}: {}", q.prompt);
+        }
         Ok(())
     }
 

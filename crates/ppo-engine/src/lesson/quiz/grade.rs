@@ -407,6 +407,40 @@ mod tests {
     }
 
     #[test]
+    fn notebooks_ask_with_the_run_and_answer_live_choices_with_it() {
+        // Lesson 10's last question: its right choice comes from the run.
+        let Ok(lesson) = questions("clipping") else {
+            panic!("the clipping quiz loads");
+        };
+        let n = lesson
+            .iter()
+            .position(|q| {
+                matches!(
+                    q.kind,
+                    QuestionKind::Choice {
+                        answer: Answer::Live(_),
+                        ..
+                    }
+                )
+            })
+            .map_or(0, |i| i + 1);
+        assert!(n > 0, "lesson 10 has a choice the run decides");
+        let told = answer("clipping", n, 'a');
+        assert!(
+            !told.answered && told.text.contains("quiz::answer_live"),
+            "{told}"
+        );
+        let snap = run(0.0, 0.0, 1.3, 0.4);
+        let posed = ask("clipping", n, &snap);
+        assert!(
+            posed.text.contains("r = 1.3 ") && posed.text.contains("c)"),
+            "{posed}"
+        );
+        assert!(answer_live("clipping", n, 'c', &snap).right);
+        assert!(!answer_live("clipping", n, 'a', &snap).right);
+    }
+
+    #[test]
     fn unknown_lessons_and_numbers_are_explained() {
         assert!(answer("nope", 1, 'a').text.contains("ppo-tutor lessons"));
         assert!(
