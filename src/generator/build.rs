@@ -24,7 +24,8 @@
 //! let steps: String = lesson.steps.iter().map(|s| format!("// %% step: {}\n", s.title)).collect();
 //! let recipe = format!("// %%\nlet x = 1;\n{steps}");
 //! let cells = cells_from_recipe(lesson, &recipe, "recipe.rs", Path::new(env!("CARGO_MANIFEST_DIR")))?;
-//! assert!(matches!(&cells[1], Cell::Code(c) if c.ends_with(r#":dep ppo-engine = { path = "../crates/ppo-engine" }"#)));
+//! assert!(matches!(&cells[1], Cell::Code(c) if c.contains(r#":dep ppo-engine = { path = "../crates/ppo-engine" }"#)
+//!     && c.ends_with("claim_work_folder();")));
 //! assert_eq!(cells[2], Cell::Code("let x = 1;".to_string()));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
