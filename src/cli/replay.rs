@@ -1,7 +1,8 @@
 //! `ppo-tutor replay FILE`: re-run recorded PyTorch updates and print ours, to compare.
 //!
 //! FILE is either agent's fixture, told apart by its keys: the seed's discrete PPO
-//! (`ppo_update_pytorch.json`) or the book's `PPOContinuous` on Pendulum
+//! (`ppo_update_pytorch.json`, or PPO-Penalty's `ppo_penalty_update_pytorch.json`, whose
+//! cases say `"objective": "penalty"`) or the book's `PPOContinuous` on Pendulum
 //! (`ppo_continuous_update_pytorch.json`, whose actor has `fc_mu` and `fc_std`).
 
 use std::io::Write;
@@ -18,9 +19,11 @@ use crate::tr;
 /// Arguments of `ppo-tutor replay`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "FILE has the schema of ppo_update_pytorch.json (made by ppo_fixtures.py) or of \
+    after_help = "FILE has the schema of ppo_update_pytorch.json (made by ppo_fixtures.py), of \
+ppo_penalty_update_pytorch.json (ppo_fixtures.py --objective penalty: each case has \"objective\": \"penalty\", \
+hyper adds beta and kl_target, and the update starts from expected.beta_before) or of \
 ppo_continuous_update_pytorch.json (made by ppo_continuous_fixtures.py; its actor has fc_mu and fc_std): \
-{\"cases\": [{\"hyper\", \"weights_before\", \"batch\"}, ...]}.\n\nExamples:\n  ppo-tutor replay tests/fixtures/ppo_update_pytorch.json --json > ours.json\n  ppo-tutor replay tests/fixtures/ppo_continuous_update_pytorch.json --json > ours_continuous.json"
+{\"cases\": [{\"hyper\", \"weights_before\", \"batch\"}, ...]}.\n\nExamples:\n  ppo-tutor replay tests/fixtures/ppo_update_pytorch.json --json > ours.json\n  ppo-tutor replay tests/fixtures/ppo_penalty_update_pytorch.json --json > ours_penalty.json\n  ppo-tutor replay tests/fixtures/ppo_continuous_update_pytorch.json --json > ours_continuous.json"
 )]
 pub struct ReplayArgs {
     /// The recorded updates.

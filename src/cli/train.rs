@@ -19,8 +19,8 @@ use crate::lesson::RunConfig;
 use crate::plot::{ascii_return_plot, save_return_plot, smoothed_returns};
 use crate::ppo::train::mean_last;
 use crate::ppo::{
-    AgentConfig, Algorithm, EpisodeReport, OnPolicyAgent, PpoConfig, PpoError, TrainSummary,
-    UpdatePath, train,
+    AgentConfig, Algorithm, EpisodeReport, Objective, OnPolicyAgent, PpoConfig, PpoError,
+    TrainSummary, UpdatePath, train,
 };
 use crate::run::RunVisitor;
 use crate::tr;
@@ -115,6 +115,36 @@ pub struct TrainArgs {
     /// episode on log π·(G_t − V(s_t)), no ratio, no clip; CartPole only).
     #[arg(long, value_enum, default_value = "ppo")]
     pub algorithm: AlgorithmArg,
+    /// PPO's objective for the actor: clip (the seed's PPO-Clip) or penalty (PPO-Penalty:
+    /// −mean(ratio·Â) + β·mean(KL(π_old‖π)), β halved or doubled after each update to keep
+    /// the KL near --kl-delta); CartPole only.
+    #[arg(long, value_enum, default_value = "clip")]
+    pub objective: ObjectiveArg,
+    /// PPO-Penalty's first β [default: 1].
+    #[arg(long, allow_hyphen_values = true)]
+    pub beta_init: Option<f64>,
+    /// PPO-Penalty's KL target δ: β halves below δ/1.5 and doubles above 1.5·δ [default:
+    /// 0.01]. Not --target-kl, which stops epochs early.
+    #[arg(long, allow_hyphen_values = true)]
+    pub kl_delta: Option<f64>,
+}
+
+/// `--objective` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ObjectiveArg {
+    /// PPO-Clip, the seed's.
+    Clip,
+    /// PPO-Penalty, an adaptive KL penalty.
+    Penalty,
+}
+
+impl From<ObjectiveArg> for Objective {
+    fn from(o: ObjectiveArg) -> Self {
+        match o {
+            ObjectiveArg::Clip => Self::Clip,
+            ObjectiveArg::Penalty => Self::Penalty,
+        }
+    }
 }
 
 /// `--algorithm` values.
@@ -159,6 +189,9 @@ impl TrainArgs {
             target_kl: self.target_kl,
             no_clip: self.no_clip,
             algorithm: self.algorithm.into(),
+            objective: self.objective.into(),
+            beta_init: self.beta_init.unwrap_or(seed.beta_init),
+            kl_delta: self.kl_delta.unwrap_or(seed.kl_delta),
         }
     }
 }

@@ -13,6 +13,11 @@ const FIXTURE: &str = concat!(
     "/tests/fixtures/ppo_update_pytorch.json"
 );
 
+const PENALTY_FIXTURE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/fixtures/ppo_penalty_update_pytorch.json"
+);
+
 use crate::common;
 use common::english;
 
@@ -201,6 +206,111 @@ fn replay_prints_the_fixture_schema() -> TestResult {
                 "{name}"
             );
         }
+    }
+    Ok(())
+}
+
+/// `replay` on PPO-Penalty's recording: every case replays from its recorded β, and the
+/// output has the fixture's keys (per epoch `kl`, no `surr1`/`surr2`; `beta_before`,
+/// `kl_after`, `beta_after`), with β equal to PyTorch's before and after.
+#[test]
+fn replay_runs_the_penalty_fixture() -> TestResult {
+    let out = ppo_tutor(&["replay", PENALTY_FIXTURE, "--json"])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let ours: Value = serde_json::from_slice(&out.stdout)?;
+    let fixture: Value = serde_json::from_str(&std::fs::read_to_string(PENALTY_FIXTURE)?)?;
+    let cases = ours["cases"].as_array().ok_or("no cases")?;
+    let want = fixture["cases"].as_array().ok_or("no cases")?;
+    assert_eq!(cases.len(), want.len());
+    for (case, want) in cases.iter().zip(want) {
+        let n = want["batch"]["actions"].as_array().map(Vec::len);
+        let epochs = case["epochs"].as_array().ok_or("no epochs")?;
+        assert_eq!(epochs.len(), 10);
+        for epoch in epochs {
+            let mut keys: Vec<&String> = epoch.as_object().ok_or("no epoch")?.keys().collect();
+            keys.sort();
+            assert_eq!(keys, ["actor_loss", "critic_loss", "kl", "ratio"]);
+            assert_eq!(epoch["kl"].as_array().map(Vec::len), n);
+        }
+        for key in ["beta_before", "beta_after"] {
+            assert_eq!(case[key], want["expected"][key], "{key}");
+        }
+        let kl_after = case["kl_after"].as_f64().ok_or("no kl_after")?;
+        let want_kl = want["expected"]["kl_after"].as_f64().ok_or("no kl_after")?;
+        assert!((kl_after - want_kl).abs() < 1e-6, "{kl_after} vs {want_kl}");
+    }
+    // the table names the cases too
+    let out = ppo_tutor(&["replay", PENALTY_FIXTURE])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let table = String::from_utf8(out.stdout)?;
+    assert!(
+        table.contains("case 3: 101 transitions, 10 epochs"),
+        "{table}"
+    );
+    Ok(())
+}
+
+/// `--objective penalty` trains PPO-Penalty on candle (its configuration in the JSON), and
+/// the flags that would change nothing, or do not fit it, are refused with their reason.
+#[test]
+fn train_with_the_penalty_objective() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let json = dir.path().join("run.json");
+    let out = ppo_tutor(&[
+        "train",
+        "--quiet",
+        "--episodes",
+        "4",
+        "--objective",
+        "penalty",
+        "--kl-delta",
+        "0.02",
+        "--json",
+        path(&json)?,
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8(out.stdout)?;
+    assert!(
+        stdout.contains("update path: candle (autograd) for all 4 updates"),
+        "{stdout}"
+    );
+    let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+    let config = run["config"].to_string();
+    assert!(
+        config.contains(r#""objective":"penalty""#) && config.contains(r#""kl_delta":0.02"#),
+        "{config}"
+    );
+    assert!(
+        !config.contains("beta_init"),
+        "the default β₀ is left out: {config}"
+    );
+
+    for (args, expected) in [
+        (
+            &["--kl-delta", "0.02"][..],
+            "--kl-delta is a setting of PPO-Penalty: add --objective penalty",
+        ),
+        (
+            &["--objective", "penalty", "--algorithm", "reinforce"][..],
+            "--objective penalty and --algorithm reinforce do not go together",
+        ),
+        (
+            &["--objective", "penalty", "--no-clip"][..],
+            "--objective penalty and --no-clip do not go together",
+        ),
+        (
+            &["--objective", "penalty", "--beta-init", "0"][..],
+            "invalid --beta-init 0: expected a finite number > 0",
+        ),
+        (
+            &["--env", "Pendulum-v1", "--objective", "penalty"][..],
+            "--objective works only with CartPole",
+        ),
+    ] {
+        let out = ppo_tutor(&[&["train", "--episodes", "1"][..], args].concat())?;
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        assert!(err.contains(expected), "{args:?}: {err}");
     }
     Ok(())
 }

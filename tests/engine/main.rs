@@ -1,11 +1,13 @@
 //! The engine's tests in one binary (each links candle once): the native CartPole-v1 and
 //! Pendulum-v1 against Gymnasium (bit for bit), their invariants, the inline sin/cos and
-//! the fast division against libm and IEEE, the PPO updates against PyTorch, and learning.
+//! the fast division against libm and IEEE, the PPO updates (PPO-Clip and PPO-Penalty on
+//! CartPole, PPOContinuous on Pendulum) against PyTorch, and learning.
 
 mod parity_cartpole;
 mod parity_pendulum;
 mod parity_ppo;
 mod parity_ppo_continuous;
+mod parity_ppo_penalty;
 mod props_cartpole;
 mod quotient;
 mod sincos;

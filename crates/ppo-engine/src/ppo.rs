@@ -59,13 +59,13 @@ pub mod train;
 pub mod update_path;
 
 // The discrete agent's modules keep their old paths (`ppo::agent`, `ppo::config`, ...).
-pub use discrete::{ACTION_DIM, STATE_DIM, agent, config, gradient, replay, trace};
+pub use discrete::{ACTION_DIM, STATE_DIM, agent, config, gradient, penalty, replay, trace};
 
 pub use adam::Adam;
 pub use advantage::{compute_advantage, normalize_advantage};
 pub use agent::{Agent, Losses, Transitions};
 pub use checkpoint::CheckpointKind;
-pub use config::{Algorithm, PpoConfig};
+pub use config::{Algorithm, Objective, PpoConfig};
 pub use continuous::{
     ContinuousEpisodeReport, ContinuousEpochTrace, ContinuousTransitions, ContinuousUpdateTrace,
     PolicyNetContinuous, PpoContinuous, PpoContinuousConfig,
@@ -74,7 +74,7 @@ pub use gradient::{SurrogateGradients, surrogate_gradients};
 pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
 pub use moving_average::moving_average;
 pub use on_policy::{AgentConfig, Batch, EnvStep, Environment, OnPolicyAgent};
-pub use trace::{EarlyStop, EpochTrace, UpdateTrace};
+pub use trace::{EarlyStop, EpochTrace, PenaltyTrace, UpdateTrace};
 pub use train::{ContinuousTrainer, EpisodeReport, TrainSummary, Trainer, Training, train};
 pub use update_path::UpdatePath;
 

@@ -6,12 +6,13 @@
 //! environment's reference (the seed's on CartPole, the book's on Pendulum-v1). The
 //! CartPole agent's opt-in switches are refused on Pendulum-v1, each with its reason: the
 //! book's continuous update has none of them (no advantage normalisation, entropy bonus,
-//! gradient clipping, KL stop, unclipped or REINFORCE variant, nor a bootstrap at the time
-//! limit: its `done` is `terminated or truncated`).
+//! gradient clipping, KL stop, unclipped, PPO-Penalty or REINFORCE variant, nor a bootstrap
+//! at the time limit: its `done` is `terminated or truncated`). PPO-Penalty's own flags
+//! (`--beta-init`, `--kl-delta`) need `--objective penalty`, and PPO-Penalty needs PPO.
 
 use std::fmt;
 
-use super::{AlgorithmArg, TrainArgs};
+use super::{AlgorithmArg, ObjectiveArg, TrainArgs};
 use crate::env::EnvId;
 use crate::env::pendulum::ENV_ID as PENDULUM_V1;
 use crate::i18n::t;
@@ -79,7 +80,10 @@ pub fn parse_train_env(s: &str) -> Result<TrainEnv, String> {
 /// switch given with Pendulum-v1, with its reason.
 pub fn run_config(args: &TrainArgs) -> Result<RunConfig, String> {
     let setup = match args.env_id {
-        TrainEnv::CartPole(env_id) => RunConfig::CartPole(args.config_for(env_id)),
+        TrainEnv::CartPole(env_id) => {
+            refuse_lone_penalty_flags(args)?;
+            RunConfig::CartPole(args.config_for(env_id))
+        }
         TrainEnv::Pendulum => {
             refuse_cartpole_switches(args)?;
             let book = PpoContinuousConfig::default();
@@ -114,7 +118,7 @@ pub fn run_config(args: &TrainArgs) -> Result<RunConfig, String> {
 
 /// Refuses each switch of the CartPole agent that the book's continuous update lacks.
 fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
-    let given: [(bool, &str, &str); 8] = [
+    let given: [(bool, &str, &str); 9] = [
         (
             args.bootstrap_truncation,
             "--bootstrap-truncation",
@@ -181,11 +185,59 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
                 "REINFORCE 只为 CartPole 的 softmax 策略实现了",
             ),
         ),
+        (
+            args.objective != ObjectiveArg::Clip,
+            "--objective",
+            t(
+                "the book's PPOContinuous is PPO-Clip; PPO-Penalty's exact KL is written for \
+                 CartPole's two actions",
+                "书中的 PPOContinuous 是 PPO-截断；PPO-惩罚的精确 KL 是为 CartPole 的两个动作写的",
+            ),
+        ),
     ];
     match given.into_iter().find(|(on, _, _)| *on) {
         Some((_, flag, why)) => Err(tr!(
             "{flag} works only with CartPole: {why}; drop {flag} to train {PENDULUM_V1}",
             "{flag} 只适用于 CartPole：{why}。要训练 {PENDULUM_V1}，请去掉 {flag}"
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Refuses PPO-Penalty's flags where they would change nothing: `--beta-init` and
+/// `--kl-delta` without `--objective penalty`, and `--objective penalty` with REINFORCE
+/// (no ratio) or `--no-clip` (PPO-Penalty has no clip to drop).
+fn refuse_lone_penalty_flags(args: &TrainArgs) -> Result<(), String> {
+    let penalty = args.objective == ObjectiveArg::Penalty;
+    let unused = [
+        (!penalty && args.beta_init.is_some(), "--beta-init"),
+        (!penalty && args.kl_delta.is_some(), "--kl-delta"),
+    ];
+    if let Some((_, flag)) = unused.into_iter().find(|(on, _)| *on) {
+        return Err(tr!(
+            "{flag} is a setting of PPO-Penalty: add --objective penalty, or drop {flag}",
+            "{flag} 是 PPO-惩罚的设置：请加上 --objective penalty，或去掉 {flag}"
+        ));
+    }
+    let clash = [
+        (
+            args.algorithm == AlgorithmArg::Reinforce,
+            "--algorithm reinforce",
+            t(
+                "REINFORCE has no ratio to penalise",
+                "REINFORCE 没有比率可供惩罚",
+            ),
+        ),
+        (
+            args.no_clip,
+            "--no-clip",
+            t("PPO-Penalty has no clip to drop", "PPO-惩罚本来就没有截断"),
+        ),
+    ];
+    match clash.into_iter().find(|(on, _, _)| penalty && *on) {
+        Some((_, flag, why)) => Err(tr!(
+            "--objective penalty and {flag} do not go together: {why}",
+            "--objective penalty 不能与 {flag} 同用：{why}"
         )),
         None => Ok(()),
     }

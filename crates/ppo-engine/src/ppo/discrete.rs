@@ -6,12 +6,14 @@
 //! - [`agent`]: [`Agent`] with `take_action` and `update`, which returns an [`UpdateTrace`].
 //! - [`trace`]: the recorded intermediates every face displays.
 //! - [`gradient`]: the policy gradient and PPO's surrogate have one gradient at θ_old.
+//! - [`penalty`]: PPO-Penalty's exact KL and adaptive β ([`Objective::Penalty`]).
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
 
 pub mod agent;
 pub mod checkpoint;
 pub mod config;
 pub mod gradient;
+pub mod penalty;
 pub mod replay;
 pub mod trace;
 
@@ -25,8 +27,8 @@ use crate::ppo::model::NamedWeights;
 use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent, Replayed};
 
 pub use agent::{Agent, Losses, Transitions};
-pub use config::{Algorithm, PpoConfig};
-pub use trace::{EarlyStop, EpochTrace, UpdateTrace};
+pub use config::{Algorithm, Objective, PpoConfig};
+pub use trace::{EarlyStop, EpochTrace, PenaltyTrace, UpdateTrace};
 
 /// Observations per state: CartPole's `(x, x_dot, theta, theta_dot)`.
 pub const STATE_DIM: usize = 4;

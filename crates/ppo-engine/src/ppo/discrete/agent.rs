@@ -25,7 +25,8 @@
 //! `f32` slices (the private module `lean`, whose tests compare both number for number):
 //! [`UpdatePath::Plain`], the same trace and weights bit for bit, about ten times faster.
 //! `update` runs plain when the losses are the built-in ones (not [`Agent::update_with`]'s),
-//! the algorithm is PPO with the clip (not REINFORCE, not `no_clip`), `entropy_coef` is 0,
+//! the algorithm is PPO with the clip (not REINFORCE, not `no_clip`, not PPO-Penalty, whose
+//! KL term only candle differentiates), `entropy_coef` is 0,
 //! the batch has 3 to 512 transitions, `hidden_dim` is 2 to 512 with
 //! transitions × `hidden_dim` > 256, the CPU is x86-64 with AVX2 and FMA (detected at run
 //! time), and `PPO_TUTOR_UPDATE` is not `candle`; on candle otherwise
@@ -48,8 +49,9 @@
 
 use candle_core::{DType, Device, Tensor, Var};
 
-use super::trace::{EarlyStop, EpochTrace, UpdateTrace};
-use super::{ACTION_DIM, Algorithm, PpoConfig, STATE_DIM};
+use super::penalty::{adapt_beta, categorical_kl, penalty_actor_loss};
+use super::trace::{EarlyStop, EpochTrace, PenaltyTrace, UpdateTrace};
+use super::{ACTION_DIM, Algorithm, Objective, PpoConfig, STATE_DIM};
 use crate::env::seeding::NumpyRng;
 use crate::ppo::PpoError;
 use crate::ppo::adam::Adam;
@@ -166,6 +168,8 @@ pub struct Agent {
     acting: ActorSnapshot,
     /// Buffers of the update without tensors ([`lean`]), boxed to keep the agent small.
     lean: Box<lean::Workspace>,
+    /// PPO-Penalty's β for the next update (`beta_init` at first; unused with the clip).
+    beta: f64,
 }
 
 impl Agent {
@@ -261,7 +265,26 @@ impl Agent {
             rng,
             acting,
             lean: Box::default(),
+            beta: config.beta_init,
         })
+    }
+
+    /// PPO-Penalty's β for the next update: `beta_init` before the first, then as
+    /// [`adapt_beta`] left it ([`PenaltyTrace`] records each change). Not saved in
+    /// checkpoints (they hold the weights only, and Adam starts fresh too).
+    #[must_use]
+    pub fn beta(&self) -> f64 {
+        self.beta
+    }
+
+    /// Sets PPO-Penalty's β for the next update (a replay starts from the recorded β).
+    ///
+    /// # Errors
+    /// [`PpoError::InvalidConfig`] for a β that is not a finite number > 0.
+    pub fn set_beta(&mut self, beta: f64) -> Result<(), PpoError> {
+        crate::ppo::ranges::positive("beta", beta)?;
+        self.beta = beta;
+        Ok(())
     }
 
     /// The hyper-parameters.
@@ -487,6 +510,11 @@ impl Agent {
             .log()?
             .detach();
         // ANCHOR_END: old_log_probs
+        // PPO-Penalty's π_old(·|s), held fixed like old_log_probs (the KL's first argument)
+        let old_probs = match (cfg.algorithm, cfg.objective) {
+            (Algorithm::Ppo, Objective::Penalty) => Some(self.actor.forward(&states)?.detach()),
+            _ => None,
+        };
 
         let mut trace = UpdateTrace {
             states: batch.states.clone(),
@@ -505,6 +533,7 @@ impl Agent {
             early_stop: None,
             explained_variance: None,
             path: UpdatePath::Candle,
+            penalty: None,
         };
         check_batch(&mut trace)?;
 
@@ -514,6 +543,7 @@ impl Agent {
             advantage: &advantage,
             old_log_probs: &old_log_probs,
             old_log_probs_vec: &trace.old_log_probs,
+            old_probs: old_probs.as_ref(),
             critic_target: &critic_target,
             losses,
         };
@@ -557,8 +587,39 @@ impl Agent {
                 }
             }
         }
+        if let Some(old_probs) = &old_probs {
+            trace.penalty = Some(self.adapt_beta(old_probs, &states)?);
+        }
         self.acting = ActorSnapshot::of(&self.actor)?;
         Ok(trace)
+    }
+
+    /// PPO-Penalty after the update's last epoch: `d`, the mean exact KL under the updated
+    /// actor, moves β for the next update ([`adapt_beta`]).
+    ///
+    /// # Errors
+    /// [`PpoError::NonFinite`] when `d` is NaN or infinite (β is then left as it was).
+    fn adapt_beta(
+        &mut self,
+        old_probs: &Tensor,
+        states: &Tensor,
+    ) -> Result<PenaltyTrace, PpoError> {
+        let probs = self.actor.forward(states)?.detach();
+        let kl_after = categorical_kl(old_probs, &probs)?
+            .mean_all()?
+            .to_scalar::<f32>()?;
+        if !kl_after.is_finite() {
+            return Err(PpoError::NonFinite(format!(
+                "the KL after the update ({kl_after})"
+            )));
+        }
+        let beta_before = self.beta;
+        self.beta = adapt_beta(beta_before, f64::from(kl_after), self.config.kl_delta);
+        Ok(PenaltyTrace {
+            beta_before,
+            kl_after,
+            beta_after: self.beta,
+        })
     }
 
     /// One pass over the batch that steps only `network`: the other one has taken all its
@@ -644,6 +705,17 @@ impl Agent {
             actor_loss = (actor_loss - (&entropy * self.config.entropy_coef)?)?;
         }
         // ANCHOR_END: actor_loss
+        // PPO-Penalty: a KL term in place of the clip, −mean(ratio · Â) + β · mean(KL)
+        let kl = match b.old_probs {
+            Some(old_probs) => Some(categorical_kl(old_probs, &probs)?),
+            None => None,
+        };
+        if let Some(kl) = &kl {
+            actor_loss = penalty_actor_loss(&surr1, kl, self.beta)?;
+            if self.config.entropy_coef > 0.0 {
+                actor_loss = (actor_loss - (&entropy * self.config.entropy_coef)?)?;
+            }
+        }
         // ANCHOR: critic_loss
         let critic_loss = (self.critic.forward(b.states)? - b.critic_target)?
             .sqr()?
@@ -685,6 +757,11 @@ impl Agent {
             surr2: to_vec(&surr2)?,
             log_probs: log_probs_vec,
             ratio: ratio_vec,
+            kl: kl.as_ref().map(to_vec).transpose()?.unwrap_or_default(),
+            kl_mean: match &kl {
+                Some(kl) => Some(kl.mean_all()?.to_scalar::<f32>()?),
+                None => None,
+            },
         };
         let record = EpochTrace {
             clip_fraction: mean(record.clipped.iter().map(|&c| f32::from(u8::from(c)))),
@@ -780,6 +857,8 @@ struct EpochInputs<'a> {
     old_log_probs_vec: &'a [f32],
     /// What the critic is fitted to: the TD target (PPO) or the return (REINFORCE).
     critic_target: &'a Tensor,
+    /// PPO-Penalty's `π_old(·|s)` `(N, 2)`, `None` for the clip and REINFORCE.
+    old_probs: Option<&'a Tensor>,
     /// A learner's losses in place of the built-in ones ([`Agent::update_with`]).
     losses: Option<&'a Losses<'a>>,
 }

@@ -61,6 +61,75 @@ pub struct PpoConfig {
     /// The update rule: the seed's PPO, or REINFORCE with a baseline for comparison.
     #[serde(default)]
     pub algorithm: Algorithm,
+    /// PPO's objective for the actor: the seed's clipped surrogate (`clip`, PPO-Clip, the
+    /// book's PPO-截断) or a KL penalty with an adaptive β (`penalty`, PPO-惩罚; see
+    /// [`penalty`](super::penalty)). REINFORCE has no ratio and ignores it.
+    #[serde(default, skip_serializing_if = "Objective::is_clip")]
+    pub objective: Objective,
+    /// PPO-Penalty's β₀, the KL coefficient of the first update (β then adapts from update
+    /// to update); 1, the PPO paper's. Unused with `clip`.
+    #[serde(
+        default = "default_beta_init",
+        skip_serializing_if = "is_default_beta_init"
+    )]
+    pub beta_init: f64,
+    /// PPO-Penalty's δ, the mean KL per update that β steers towards (β halves below
+    /// δ / 1.5, doubles above 1.5 · δ); 0.01. Not `target_kl`, which stops epochs early.
+    /// Unused with `clip`.
+    #[serde(
+        default = "default_kl_delta",
+        skip_serializing_if = "is_default_kl_delta"
+    )]
+    pub kl_delta: f64,
+}
+
+/// PPO-Penalty's β₀ and δ when a saved configuration has none: the defaults.
+fn default_beta_init() -> f64 {
+    PpoConfig::default().beta_init
+}
+
+fn default_kl_delta() -> f64 {
+    PpoConfig::default().kl_delta
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde passes a reference
+fn is_default_beta_init(v: &f64) -> bool {
+    *v == default_beta_init()
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde passes a reference
+fn is_default_kl_delta(v: &f64) -> bool {
+    *v == default_kl_delta()
+}
+
+/// What PPO's actor minimises ([`PpoConfig::objective`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Objective {
+    /// PPO-Clip, the seed's: `mean(-min(ratio · Â, clamp(ratio, 1-ε, 1+ε) · Â))`.
+    #[default]
+    Clip,
+    /// PPO-Penalty: `−mean(ratio · Â) + β · mean(KL(π_old ‖ π_θ))`, β adapted after each
+    /// update towards `kl_delta` ([`penalty`](super::penalty)). `eps` and `no_clip` are unused.
+    Penalty,
+}
+
+impl Objective {
+    /// The name used on the command line and in JSON (`clip`, `penalty`).
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Clip => "clip",
+            Self::Penalty => "penalty",
+        }
+    }
+
+    /// Whether this is the seed's clip (the default, left out of JSON).
+    #[allow(clippy::trivially_copy_pass_by_ref)] // serde passes a reference
+    #[must_use]
+    pub fn is_clip(&self) -> bool {
+        *self == Self::Clip
+    }
 }
 
 /// Which update rule [`crate::ppo::Agent::update`] applies to each episode.
@@ -109,6 +178,9 @@ impl Default for PpoConfig {
             target_kl: None,
             no_clip: false,
             algorithm: Algorithm::Ppo,
+            objective: Objective::Clip,
+            beta_init: 1.0,
+            kl_delta: 0.01,
         }
     }
 }
@@ -158,6 +230,8 @@ impl PpoConfig {
         if let Some(kl) = self.target_kl {
             positive("target_kl", kl)?;
         }
+        positive("beta_init", self.beta_init)?;
+        positive("kl_delta", self.kl_delta)?;
         Ok(())
     }
 }

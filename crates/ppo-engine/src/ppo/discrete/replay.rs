@@ -13,6 +13,13 @@
 //! and [`ReplayOutput`] holds what the fixture's `expected` and `weights_after` hold, with
 //! the same key names and shapes (column tensors as `(N, 1)` lists of one-element lists).
 //!
+//! A PPO-Penalty case (`ppo_penalty_update_pytorch.json`, made by `ppo_fixtures.py
+//! --objective penalty`) says `"objective": "penalty"` and adds `beta` (β₀) and `kl_target`
+//! (δ, our `kl_delta`) to `hyper`; its update starts from the β the recording had reached,
+//! `expected.beta_before`. Its epochs hold `ratio`, `kl` (per row), `actor_loss` and
+//! `critic_loss` (no `surr1`, `surr2`), and the output adds `beta_before`, `kl_after` and
+//! `beta_after`, as the fixture does.
+//!
 //! The continuous agent's fixture (`ppo_continuous_update_pytorch.json`, the book's
 //! `PPOContinuous` on Pendulum) has the same layout with a Gaussian actor
 //! (`actor.fc_mu`, `actor.fc_std`); [`replay_file::replay_any`](crate::ppo::replay_file::replay_any)
@@ -22,7 +29,7 @@ use serde::Serialize;
 use serde_json::{Map, Value};
 
 use super::checkpoint::parameter_shapes;
-use super::{Agent, PpoConfig, Transitions};
+use super::{Agent, Objective, PpoConfig, Transitions};
 use crate::ppo::PpoError;
 use crate::ppo::model::NamedWeights;
 use crate::ppo::replay_file::{Reader, nested};
@@ -36,6 +43,9 @@ pub struct ReplayCase {
     pub weights_before: NamedWeights,
     /// `batch`.
     pub batch: Transitions,
+    /// PPO-Penalty: β when the recorded update started (`expected.beta_before`, else
+    /// `hyper.beta`); `None` for the clip.
+    pub beta_before: Option<f64>,
 }
 
 /// One replayed case, in the fixture's key names and shapes.
@@ -51,6 +61,15 @@ pub struct ReplayOutput {
     pub old_log_probs: Vec<[f32; 1]>,
     /// One per epoch.
     pub epochs: Vec<ReplayEpoch>,
+    /// PPO-Penalty: β during the update.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beta_before: Option<f64>,
+    /// PPO-Penalty: the mean KL under the updated actor.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kl_after: Option<f32>,
+    /// PPO-Penalty: β for the next update.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beta_after: Option<f64>,
     /// Every parameter after the update, nested lists in PyTorch's layout.
     pub weights_after: Map<String, Value>,
 }
@@ -60,10 +79,15 @@ pub struct ReplayOutput {
 pub struct ReplayEpoch {
     /// `(N, 1)`.
     pub ratio: Vec<[f32; 1]>,
-    /// `(N, 1)`.
-    pub surr1: Vec<[f32; 1]>,
-    /// `(N, 1)`.
-    pub surr2: Vec<[f32; 1]>,
+    /// `(N, 1)`; the clip only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surr1: Option<Vec<[f32; 1]>>,
+    /// `(N, 1)`; the clip only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surr2: Option<Vec<[f32; 1]>>,
+    /// `(N, 1)`, the exact KL(π_old ‖ π) of each row; PPO-Penalty only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kl: Option<Vec<[f32; 1]>>,
     /// Scalar.
     pub actor_loss: f32,
     /// Scalar.
@@ -88,7 +112,11 @@ pub fn parse_replay(text: &str, file: &str) -> Result<Vec<ReplayCase>, PpoError>
 /// [`parse_replay`].
 pub fn replay_case(case: &ReplayCase) -> Result<ReplayOutput, PpoError> {
     let mut agent = Agent::from_weights(&case.config, &case.weights_before, 0, "weights_before")?;
+    if let Some(beta) = case.beta_before {
+        agent.set_beta(beta)?;
+    }
     let trace = agent.update(&case.batch)?;
+    let penalty = case.config.objective == Objective::Penalty;
     let col = |v: &[f32]| v.iter().map(|&x| [x]).collect::<Vec<_>>();
     let mut weights_after = Map::new();
     for (name, w) in agent.weights()? {
@@ -104,22 +132,56 @@ pub fn replay_case(case: &ReplayCase) -> Result<ReplayOutput, PpoError> {
             .iter()
             .map(|e| ReplayEpoch {
                 ratio: col(&e.ratio),
-                surr1: col(&e.surr1),
-                surr2: col(&e.surr2),
+                surr1: (!penalty).then(|| col(&e.surr1)),
+                surr2: (!penalty).then(|| col(&e.surr2)),
+                kl: penalty.then(|| col(&e.kl)),
                 actor_loss: e.actor_loss,
                 critic_loss: e.critic_loss,
             })
             .collect(),
+        beta_before: trace.penalty.map(|p| p.beta_before),
+        kl_after: trace.penalty.map(|p| p.kl_after),
+        beta_after: trace.penalty.map(|p| p.beta_after),
         weights_after,
     })
 }
 
 impl Reader<'_> {
     fn case(&self, case: &Value, path: &str) -> Result<ReplayCase, PpoError> {
-        let config = self.hyper(
-            self.key(case, path, "hyper", HYPER)?,
-            &format!("{path}.hyper"),
-        )?;
+        let objective = match case.get("objective") {
+            None => Objective::Clip,
+            Some(v) => serde_json::from_value(v.clone()).map_err(|_| {
+                self.wrong(&format!("{path}.objective"), "\"clip\" or \"penalty\"", v)
+            })?,
+        };
+        let hpath = format!("{path}.hyper");
+        let hyper = self.key(case, path, "hyper", HYPER)?;
+        let mut config = self.hyper(hyper, &hpath)?;
+        let mut beta_before = None;
+        if objective == Objective::Penalty {
+            let num = |key: &str| -> Result<f64, PpoError> {
+                let expected = "a number > 0 (PPO-Penalty)";
+                self.number(
+                    self.key(hyper, &hpath, key, expected)?,
+                    &format!("{hpath}.{key}"),
+                    expected,
+                )
+            };
+            config = PpoConfig {
+                objective,
+                beta_init: num("beta")?,
+                kl_delta: num("kl_target")?,
+                ..config
+            };
+            config.validate()?;
+            let recorded = case.get("expected").and_then(|e| e.get("beta_before"));
+            beta_before = Some(match recorded {
+                Some(v) => {
+                    self.number(v, &format!("{path}.expected.beta_before"), "a number > 0")?
+                }
+                None => config.beta_init,
+            });
+        }
         let wpath = format!("{path}.weights_before");
         let weights = self.key(
             case,
@@ -136,6 +198,7 @@ impl Reader<'_> {
             config,
             weights_before,
             batch,
+            beta_before,
         })
     }
 

@@ -8,8 +8,9 @@
 //! values = V(s), next_values = V(s') (N)
 //! td_target, td_delta, advantage, lambda_return, old_log_probs (N)
 //! per epoch: log_probs, ratio, surr1, surr2, clipped (N); actor_loss, critic_loss, approx_kl,
-//!            clip_fraction, entropy (scalars)
-//! per update: explained_variance, early_stop (scalars), path (which implementation ran)
+//!            clip_fraction, entropy (scalars); PPO-Penalty only: kl (N), kl_mean (scalar)
+//! per update: explained_variance, early_stop (scalars), path (which implementation ran);
+//!             PPO-Penalty only: penalty (β before and after, the KL after the last epoch)
 //! ```
 
 use serde::Serialize;
@@ -58,8 +59,23 @@ pub struct UpdateTrace {
     pub explained_variance: Option<f32>,
     /// Which implementation computed this update: the plain `f32` kernels or candle with
     /// autograd (the same numbers; see [`update_path`](crate::ppo::update_path) for when
-    /// each runs, and `PPO_TUTOR_UPDATE=candle` to force candle).
+    /// each runs, and `PPO_TUTOR_UPDATE=candle` to force candle). PPO-Penalty always runs on
+    /// candle: the plain kernels hold only the clipped surrogate's gradient.
     pub path: UpdatePath,
+    /// PPO-Penalty's β and the KL it was adapted on; `None` for the clip and REINFORCE.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub penalty: Option<PenaltyTrace>,
+}
+
+/// What one PPO-Penalty update did to β ([`penalty`](super::penalty)).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PenaltyTrace {
+    /// β during this update's epochs.
+    pub beta_before: f64,
+    /// `d`, the mean exact KL(π_old ‖ π) under the actor after the last epoch.
+    pub kl_after: f32,
+    /// β for the next update: halved if `d < δ / 1.5`, doubled if `d > 1.5 · δ`, else kept.
+    pub beta_after: f64,
 }
 
 /// An update that `target_kl` ended before its last epoch.
@@ -84,7 +100,8 @@ pub struct EpochTrace {
     pub surr2: Vec<f32>,
     /// Whether the ratio left `[1-ε, 1+ε]` (CleanRL's `clipfrac` counts these).
     pub clipped: Vec<bool>,
-    /// `mean(-min(surr1, surr2))` (minus the entropy bonus when that switch is on).
+    /// `mean(-min(surr1, surr2))`, or PPO-Penalty's `−mean(surr1) + β · kl_mean` (minus the
+    /// entropy bonus when that switch is on).
     pub actor_loss: f32,
     /// `mean((V(s_t) - td_target_t)²)`.
     pub critic_loss: f32,
@@ -94,6 +111,14 @@ pub struct EpochTrace {
     pub clip_fraction: f32,
     /// Mean policy entropy over the batch, `-Σ_a π log π`.
     pub entropy: f32,
+    /// PPO-Penalty: the exact `KL(π_old(·|s_t) ‖ π(·|s_t))` of each row under the current
+    /// actor; empty for the clip and REINFORCE.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub kl: Vec<f32>,
+    /// PPO-Penalty: `mean(kl)`, the term β multiplies in this epoch's actor loss; `None` for
+    /// the clip and REINFORCE.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kl_mean: Option<f32>,
 }
 
 impl UpdateTrace {

@@ -43,7 +43,7 @@ use super::{Agent, EpochTrace, Transitions, check_batch, mean};
 use crate::ppo::PpoError;
 use crate::ppo::advantage::{compute_advantage, normalize_advantage};
 use crate::ppo::discrete::trace::{EarlyStop, UpdateTrace};
-use crate::ppo::discrete::{Algorithm, PpoConfig, STATE_DIM};
+use crate::ppo::discrete::{Algorithm, Objective, PpoConfig, STATE_DIM};
 use crate::ppo::kernels::{
     CriticKernels, Grads, Isa, Params, Scratch, Surrogate, critic_loss, exp_exact,
     fc1_backward_row, hidden_columns, hidden_layer, horizontal_columns, input_columns, isa, kernel,
@@ -79,7 +79,10 @@ impl std::fmt::Debug for Workspace {
 pub(super) fn conditions(config: &PpoConfig, rows: usize, learner_losses: bool) -> PathConditions {
     PathConditions {
         learner_losses,
-        clipped_surrogate: config.algorithm == Algorithm::Ppo && !config.no_clip,
+        // PPO-Penalty's KL term has no plain kernel: it runs on candle
+        clipped_surrogate: config.algorithm == Algorithm::Ppo
+            && !config.no_clip
+            && config.objective == Objective::Clip,
         entropy_bonus: config.entropy_coef != 0.0,
         rows,
         hidden: config.hidden_dim,
@@ -273,6 +276,7 @@ fn epochs(
         early_stop: None,
         explained_variance: None,
         path: UpdatePath::Plain,
+        penalty: None,
     };
     check_batch(&mut trace)?;
 
@@ -358,6 +362,8 @@ fn epochs(
             surr2,
             log_probs,
             ratio,
+            kl: Vec::new(),
+            kl_mean: None,
         };
         for (name, value) in [("actor_loss", actor_loss), ("critic_loss", critic_loss)] {
             if !value.is_finite() {
