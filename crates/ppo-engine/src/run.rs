@@ -582,7 +582,7 @@ mod tests {
             assert!(config.set_env_id(choice.id));
             assert_eq!(config.choice(), choice);
         }
-        assert_eq!(RunConfig::all_knob_ids().len(), 15);
+        assert_eq!(RunConfig::all_knob_ids().len(), 16);
         for env in Environment::ALL {
             assert_eq!(
                 env.index(),

@@ -251,6 +251,7 @@ mod tests {
                 "target_kl",
                 "epochs",
                 "no_clip",
+                "objective",
                 "algorithm"
             ]
         );

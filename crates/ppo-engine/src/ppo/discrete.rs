@@ -79,7 +79,8 @@ impl AgentConfig for PpoConfig {
         f64::from(self.env_id.max_episode_steps())
     }
 
-    /// The seed's five numbers, the seed, the CleanRL-style switches and the algorithm:
+    /// The seed's five numbers, the seed, the CleanRL-style switches, the objective (clip or
+    /// PPO-Penalty, with its defaults β₀ = 1 and δ = 0.01) and the algorithm:
     /// the three switches with a value toggle between off and the value their source uses
     /// (an entropy bonus of 0.01, CleanRL's gradient clip of 0.5, Spinning Up's target KL
     /// of 0.01).
@@ -163,6 +164,16 @@ impl AgentConfig for PpoConfig {
             "no_clip",
             |c| c.no_clip.to_string(),
             |c, _| c.no_clip = !c.no_clip,
+        ),
+        Knob::value(
+            "objective",
+            |c| c.objective.as_str().into(),
+            |c, _| {
+                c.objective = match c.objective {
+                    Objective::Clip => Objective::Penalty,
+                    Objective::Penalty => Objective::Clip,
+                };
+            },
         ),
         Knob::value(
             "algorithm",
