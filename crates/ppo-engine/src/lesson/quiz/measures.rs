@@ -155,15 +155,17 @@ struct EpochView<'a> {
     surr2: &'a [f32],
 }
 
-fn batch(s: &Snapshot) -> Option<Batch<'_>> {
-    if let Some(c) = &s.continuous {
-        return Some(Batch {
-            values: &c.values,
-            next_values: &c.next_values,
-            td_delta: &c.td_delta,
-            advantage: &c.advantage,
-            old_log_probs: &c.old_log_probs,
-            epochs: c
+/// The [`Batch`] view of a trace: the Pendulum and CartPole traces are different types with
+/// the same field names, so one macro builds both.
+macro_rules! batch_of {
+    ($t:expr) => {
+        Batch {
+            values: &$t.values,
+            next_values: &$t.next_values,
+            td_delta: &$t.td_delta,
+            advantage: &$t.advantage,
+            old_log_probs: &$t.old_log_probs,
+            epochs: $t
                 .epochs
                 .iter()
                 .map(|e| EpochView {
@@ -173,26 +175,15 @@ fn batch(s: &Snapshot) -> Option<Batch<'_>> {
                     surr2: &e.surr2,
                 })
                 .collect(),
-        });
+        }
+    };
+}
+
+fn batch(s: &Snapshot) -> Option<Batch<'_>> {
+    match &s.continuous {
+        Some(c) => Some(batch_of!(c)),
+        None => Some(batch_of!(s.trace.as_ref()?)),
     }
-    let t = s.trace.as_ref()?;
-    Some(Batch {
-        values: &t.values,
-        next_values: &t.next_values,
-        td_delta: &t.td_delta,
-        advantage: &t.advantage,
-        old_log_probs: &t.old_log_probs,
-        epochs: t
-            .epochs
-            .iter()
-            .map(|e| EpochView {
-                log_probs: &e.log_probs,
-                ratio: &e.ratio,
-                surr1: &e.surr1,
-                surr2: &e.surr2,
-            })
-            .collect(),
-    })
 }
 
 /// `xs[i]` as f64.
