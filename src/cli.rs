@@ -353,7 +353,7 @@ mod tests {
         for line in [
             &["ppo-tutor", "--lang", "zh", "lessons"][..],
             &["ppo-tutor", "lessons", "--lang", "zh"][..],
-            &["ppo-tutor", "grade", "td_target", "--lang=zh"][..],
+            &["ppo-tutor", "grade", "compute_advantage", "--lang=zh"][..],
             &["ppo-tutor", "--lang", "zh"][..],
         ] {
             let cli = Cli::try_parse_from(line);

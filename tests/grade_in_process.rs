@@ -11,7 +11,7 @@ use ppo_tutor::grade::{self, CheckStatus, GradeOptions, Problem, Report, exercis
 
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/03-episode-loop/solution.rs"]
-mod sol06;
+mod sol03;
 #[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/07-td-target/solution.rs"]
 mod sol07;
@@ -31,15 +31,12 @@ mod sol11;
 #[path = "../lessons/11-losses/solution_candle.rs"]
 mod sol11_candle;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/13-training/solution.rs"]
-mod sol12;
-
 #[path = "../lessons/12-clip-lab/solution.rs"]
-mod sol_clip_lab;
-
-#[allow(clippy::needless_range_loop)]
+mod sol12;
+#[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/15-beyond-the-seed/solution.rs"]
 mod sol15;
+#[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/16-continuous-actions/solution.rs"]
 mod sol16;
 #[allow(unused, clippy::all, clippy::pedantic)]
@@ -56,76 +53,48 @@ mod w_losses_no_minus_sign;
 #[path = "wrong_answers/ppo_losses/ratio_detached.rs"]
 mod w_losses_ratio_detached;
 
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/actor_loss/max_instead_of_min.rs"]
-mod w_actor_loss;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/compute_advantage/forwards.rs"]
-mod w_advantage;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/approx_kl/naive_estimator.rs"]
-mod w_approx_kl;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/clip_fraction/bounds_not_distance.rs"]
-mod w_clip_fraction;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/critic_loss/root_mean_square.rs"]
-mod w_critic_loss;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/gae_rollout/resets_only_on_termination.rs"]
-mod w_gae_rollout;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/gaussian_log_prob/sigma_as_variance.rs"]
-mod w_gaussian_log_prob;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/log_prob_of_actions/no_log.rs"]
-mod w_log_prob;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/moving_average/no_edges.rs"]
-mod w_moving_average;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/normalize_advantage/biased_std.rs"]
-mod w_normalize_advantage;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/ratio/no_exp.rs"]
-mod w_ratio;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/sample_action/swapped_actions.rs"]
-mod w_sample_action;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/td_delta/inverted.rs"]
-mod w_td_delta;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/td_target/missing_done_mask.rs"]
-mod w_td_target;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/td_target_truncation/stops_at_truncation.rs"]
-mod w_td_target_truncation;
-#[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "wrong_answers/zero_gradient_rows/sides_swapped.rs"]
-mod w_zero_gradient_rows;
+/// One catalogued wrong answer per plain exercise: its module, from
+/// `tests/wrong_answers/<exercise>/<mistake>.rs`.
+macro_rules! wrong_answers {
+    ($($module:ident = $path:literal;)+) => {
+        $(
+            #[allow(unused, clippy::all, clippy::pedantic)]
+            #[path = $path]
+            mod $module;
+        )+
+    };
+}
+
+wrong_answers! {
+    w_sample_action = "wrong_answers/sample_action/swapped_actions.rs";
+    w_n_step_target = "wrong_answers/n_step_target/crosses_episode_end.rs";
+    w_advantage = "wrong_answers/compute_advantage/forwards.rs";
+    w_importance = "wrong_answers/importance_weighted_mean/inverted_ratio.rs";
+    w_zero_gradient_rows = "wrong_answers/zero_gradient_rows/sides_swapped.rs";
+    w_clipped_value_loss = "wrong_answers/clipped_value_loss/min_instead_of_max.rs";
+    w_approx_kl = "wrong_answers/approx_kl/naive_estimator.rs";
+    w_kl_early_stop = "wrong_answers/kl_early_stop/k3_estimator.rs";
+    w_td_target_truncation = "wrong_answers/td_target_truncation/stops_at_truncation.rs";
+    w_gae_rollout = "wrong_answers/gae_rollout/resets_only_on_termination.rs";
+    w_diag_gaussian = "wrong_answers/diag_gaussian_log_prob/mean_over_dims.rs";
+}
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 #[test]
 fn every_reference_solution_passes_in_place() {
     let reports = [
-        in_process::sample_action(sol06::sample_action),
-        in_process::td_target(sol07::td_target),
-        in_process::td_delta(sol07::td_delta),
+        in_process::sample_action(sol03::sample_action),
+        in_process::n_step_target(sol07::n_step_target),
         in_process::compute_advantage(sol08::compute_advantage),
-        in_process::log_prob_of_actions(sol09::log_prob_of_actions),
-        in_process::ratio(sol09::ratio),
-        in_process::actor_loss(sol10::actor_loss),
-        in_process::critic_loss(sol11::critic_loss),
-        in_process::moving_average(sol12::moving_average),
+        in_process::importance_weighted_mean(sol09::importance_weighted_mean),
         in_process::zero_gradient_rows(sol10::zero_gradient_rows),
-        in_process::approx_kl(sol_clip_lab::approx_kl),
-        in_process::clip_fraction(sol_clip_lab::clip_fraction),
+        in_process::clipped_value_loss(sol11::clipped_value_loss),
+        in_process::approx_kl(sol12::approx_kl),
+        in_process::kl_early_stop(sol12::kl_early_stop),
         in_process::td_target_truncation(sol15::td_target_truncation),
         in_process::gae_rollout(sol15::gae_rollout),
-        in_process::normalize_advantage(sol15::normalize_advantage),
-        in_process::gaussian_log_prob(sol16::gaussian_log_prob),
+        in_process::diag_gaussian_log_prob(sol16::diag_gaussian_log_prob),
     ];
     for r in &reports {
         assert!(r.passed(), "{}", r.render());
@@ -180,82 +149,67 @@ fn compare(name: &str, wrong: &str, in_place: &Report) -> TestResult {
 
 #[test]
 fn wrong_answers_get_the_same_diagnosis_and_messages_as_from_a_file() -> TestResult {
-    compare(
-        "sample_action",
-        "swapped_actions",
-        &in_process::sample_action(w_sample_action::sample_action),
-    )?;
-    compare(
-        "td_target",
-        "missing_done_mask",
-        &in_process::td_target(w_td_target::td_target),
-    )?;
-    compare(
-        "td_delta",
-        "inverted",
-        &in_process::td_delta(w_td_delta::td_delta),
-    )?;
-    compare(
-        "compute_advantage",
-        "forwards",
-        &in_process::compute_advantage(w_advantage::compute_advantage),
-    )?;
-    compare(
-        "log_prob_of_actions",
-        "no_log",
-        &in_process::log_prob_of_actions(w_log_prob::log_prob_of_actions),
-    )?;
-    compare("ratio", "no_exp", &in_process::ratio(w_ratio::ratio))?;
-    compare(
-        "actor_loss",
-        "max_instead_of_min",
-        &in_process::actor_loss(w_actor_loss::actor_loss),
-    )?;
-    compare(
-        "critic_loss",
-        "root_mean_square",
-        &in_process::critic_loss(w_critic_loss::critic_loss),
-    )?;
-    compare(
-        "moving_average",
-        "no_edges",
-        &in_process::moving_average(w_moving_average::moving_average),
-    )?;
-    compare(
-        "zero_gradient_rows",
-        "sides_swapped",
-        &in_process::zero_gradient_rows(w_zero_gradient_rows::zero_gradient_rows),
-    )?;
-    compare(
-        "approx_kl",
-        "naive_estimator",
-        &in_process::approx_kl(w_approx_kl::approx_kl),
-    )?;
-    compare(
-        "clip_fraction",
-        "bounds_not_distance",
-        &in_process::clip_fraction(w_clip_fraction::clip_fraction),
-    )?;
-    compare(
-        "td_target_truncation",
-        "stops_at_truncation",
-        &in_process::td_target_truncation(w_td_target_truncation::td_target_truncation),
-    )?;
-    compare(
-        "gae_rollout",
-        "resets_only_on_termination",
-        &in_process::gae_rollout(w_gae_rollout::gae_rollout),
-    )?;
-    compare(
-        "normalize_advantage",
-        "biased_std",
-        &in_process::normalize_advantage(w_normalize_advantage::normalize_advantage),
-    )?;
-    compare(
-        "gaussian_log_prob",
-        "sigma_as_variance",
-        &in_process::gaussian_log_prob(w_gaussian_log_prob::gaussian_log_prob),
-    )?;
+    use in_process as g;
+    let pairs = [
+        (
+            "sample_action",
+            "swapped_actions",
+            g::sample_action(w_sample_action::sample_action),
+        ),
+        (
+            "n_step_target",
+            "crosses_episode_end",
+            g::n_step_target(w_n_step_target::n_step_target),
+        ),
+        (
+            "compute_advantage",
+            "forwards",
+            g::compute_advantage(w_advantage::compute_advantage),
+        ),
+        (
+            "importance_weighted_mean",
+            "inverted_ratio",
+            g::importance_weighted_mean(w_importance::importance_weighted_mean),
+        ),
+        (
+            "zero_gradient_rows",
+            "sides_swapped",
+            g::zero_gradient_rows(w_zero_gradient_rows::zero_gradient_rows),
+        ),
+        (
+            "clipped_value_loss",
+            "min_instead_of_max",
+            g::clipped_value_loss(w_clipped_value_loss::clipped_value_loss),
+        ),
+        (
+            "approx_kl",
+            "naive_estimator",
+            g::approx_kl(w_approx_kl::approx_kl),
+        ),
+        (
+            "kl_early_stop",
+            "k3_estimator",
+            g::kl_early_stop(w_kl_early_stop::kl_early_stop),
+        ),
+        (
+            "td_target_truncation",
+            "stops_at_truncation",
+            g::td_target_truncation(w_td_target_truncation::td_target_truncation),
+        ),
+        (
+            "gae_rollout",
+            "resets_only_on_termination",
+            g::gae_rollout(w_gae_rollout::gae_rollout),
+        ),
+        (
+            "diag_gaussian_log_prob",
+            "mean_over_dims",
+            g::diag_gaussian_log_prob(w_diag_gaussian::diag_gaussian_log_prob),
+        ),
+    ];
+    for (name, wrong, report) in &pairs {
+        compare(name, wrong, report)?;
+    }
     Ok(())
 }
 
@@ -264,7 +218,7 @@ fn a_panic_is_reported_with_its_message_and_the_grader_goes_on() {
     fn starter(_: &[f32], _: &[f32]) -> f32 {
         todo!()
     }
-    let report = in_process::critic_loss(starter);
+    let report = in_process::approx_kl(starter);
     assert!(!report.passed());
     let failed: Vec<_> = report
         .checks
@@ -301,7 +255,7 @@ fn assert_timed_out(report: &Report, started: std::time::Instant) -> TestResult 
 #[test]
 fn a_function_that_never_returns_is_reported_after_the_time_limit() -> TestResult {
     let started = std::time::Instant::now();
-    let report = exercises::critic_loss::EXERCISE.grade_in_place_within(
+    let report = exercises::approx_kl::EXERCISE.grade_in_place_within(
         Arc::new(|_| {
             loop {
                 std::thread::sleep(Duration::from_millis(50));

@@ -208,8 +208,8 @@ fn every_mistake_differs_from_the_reference_somewhere() -> TestResult {
 #[test]
 fn a_file_that_does_not_compile_shows_rustc_errors() -> TestResult {
     let report = grade_text(
-        "ratio",
-        "pub fn ratio(log_probs: &[f32], old_log_probs: &[f32]) -> Vec<f32> {\n    let x: u32 = \"no\";\n    todo!()\n}\n",
+        "approx_kl",
+        "pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {\n    let x: u32 = \"no\";\n    todo!()\n}\n",
         Duration::from_secs(10),
     )?;
     let (summary, compiler) = report.compile_error.clone().ok_or("compiled")?;
@@ -223,20 +223,20 @@ fn a_file_that_does_not_compile_shows_rustc_errors() -> TestResult {
 
 #[test]
 fn a_missing_or_mistyped_function_is_named() -> TestResult {
-    let report = grade_text("ratio", "pub fn other() {}\n", Duration::from_secs(10))?;
+    let report = grade_text("approx_kl", "pub fn other() {}\n", Duration::from_secs(10))?;
     let (summary, _) = report.compile_error.ok_or("compiled")?;
-    assert!(summary.contains("has no function `ratio`"), "{summary}");
+    assert!(summary.contains("has no function `approx_kl`"), "{summary}");
     let report = grade_text(
-        "ratio",
-        "pub fn ratio(log_probs: &[f64], old: &[f64]) -> Vec<f64> { vec![] }\n",
+        "approx_kl",
+        "pub fn approx_kl(old: &[f64], log_probs: &[f64]) -> f64 { 0.0 }\n",
         Duration::from_secs(10),
     )?;
     let (summary, _) = report.compile_error.ok_or("compiled")?;
     assert!(summary.contains("signature"), "{summary}");
-    assert!(summary.contains("pub fn ratio(log_probs: &[f32], old_log_probs: &[f32]) -> Vec<f32>"));
+    assert!(summary.contains("pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32"));
     let report = grade_text(
-        "ratio",
-        "fn ratio(a: &[f32], b: &[f32]) -> Vec<f32> { vec![] }\n",
+        "approx_kl",
+        "fn approx_kl(a: &[f32], b: &[f32]) -> f32 { 0.0 }\n",
         Duration::from_secs(10),
     )?;
     let (summary, _) = report.compile_error.ok_or("compiled")?;
@@ -247,8 +247,8 @@ fn a_missing_or_mistyped_function_is_named() -> TestResult {
 #[test]
 fn a_panic_is_reported_with_its_message_and_input() -> TestResult {
     let report = grade_text(
-        "td_delta",
-        "pub fn td_delta(t: &[f32], v: &[f32]) -> Vec<f32> {\n    (0..=t.len()).map(|i| t[i] - v[i]).collect()\n}\n",
+        "compute_advantage",
+        "pub fn compute_advantage(g: f32, l: f32, d: &[f32]) -> Vec<f32> {\n    (0..=d.len()).map(|i| d[i] * g * l).collect()\n}\n",
         Duration::from_secs(10),
     )?;
     let failure = report.first_failure().ok_or("no failure")?;
@@ -267,8 +267,8 @@ fn a_panic_is_reported_with_its_message_and_input() -> TestResult {
 #[test]
 fn an_endless_loop_is_reported_as_never_returning() -> TestResult {
     let report = grade_text(
-        "critic_loss",
-        "pub fn critic_loss(v: &[f32], t: &[f32]) -> f32 {\n    let mut i = 0;\n    while i < v.len() { if v.len() > 1 { continue; } i += 1; }\n    0.0\n}\n",
+        "approx_kl",
+        "pub fn approx_kl(o: &[f32], l: &[f32]) -> f32 {\n    let mut i = 0;\n    while i < o.len() { if o.len() > 1 { continue; } i += 1; }\n    0.0\n}\n",
         Duration::from_secs(1),
     )?;
     let failed: Vec<&Problem> = report
@@ -320,21 +320,21 @@ fn ppo_tutor(dir: &Path, args: &[&str]) -> Result<(i32, String), Box<dyn std::er
 fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     let dir = tempfile::tempdir()?;
     let d = dir.path();
-    let wrong = Path::new(ROOT).join("tests/wrong_answers/actor_loss/clamp_advantage.rs");
+    let wrong = Path::new(ROOT).join("tests/wrong_answers/zero_gradient_rows/sides_swapped.rs");
     let wrong = wrong.to_str().ok_or("path")?;
-    let (code, text) = ppo_tutor(d, &["grade", "actor_loss", "--file", wrong])?;
+    let (code, text) = ppo_tutor(d, &["grade", "zero_gradient_rows", "--file", wrong])?;
     assert_eq!(code, 1, "{text}");
     assert!(text.contains("✗") && text.contains("expected:") && text.contains("got:"));
-    assert!(text.contains("The clamp is applied to the advantage instead of the ratio"));
+    assert!(text.contains("The two sides are swapped"));
 
     let (code, text) = ppo_tutor(d, &["grade", "no_such_exercise"])?;
     assert_eq!(code, 2, "{text}");
     assert_eq!(text.lines().count(), 1, "{text}");
     let (code, _) = ppo_tutor(d, &["grade", "--file", "x.rs"])?;
     assert_eq!(code, 2);
-    let (code, text) = ppo_tutor(d, &["grade", "ratio"])?;
+    let (code, text) = ppo_tutor(d, &["grade", "sample_action"])?;
     assert_eq!(code, 1, "{text}");
-    assert!(text.contains("ppo-tutor reset ratio"), "{text}");
+    assert!(text.contains("ppo-tutor reset sample_action"), "{text}");
 
     for name in grade::exercise_names() {
         let (code, text) = ppo_tutor(d, &["reset", name])?;
@@ -346,10 +346,10 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     let (candle, _) = grade::starter("ppo_losses").ok_or("no candle starter")?;
     std::fs::remove_file(d.join(candle))?;
     std::fs::copy(
-        Path::new(ROOT).join("lessons/07-td-target/solution.rs"),
-        d.join("lessons/07-td-target/exercise.rs"),
+        Path::new(ROOT).join("lessons/12-clip-lab/solution.rs"),
+        d.join("lessons/12-clip-lab/exercise.rs"),
     )?;
-    let (code, text) = ppo_tutor(d, &["grade", "td_target"])?;
+    let (code, text) = ppo_tutor(d, &["grade", "approx_kl"])?;
     assert_eq!(code, 0, "{text}");
     let (code, text) = ppo_tutor(d, &["grade"])?;
     assert_eq!(code, 1, "{text}");
@@ -362,22 +362,22 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     );
     let state = std::fs::read_to_string(d.join("state.json"))?;
     assert!(
-        state.contains("td_target") && state.contains("td_delta"),
+        state.contains("approx_kl") && state.contains("kl_early_stop"),
         "{state}"
     );
 
-    // Resetting td_delta keeps td_target's work in the same file (issue 25, bug 3) ...
-    let (code, text) = ppo_tutor(d, &["reset", "td_delta"])?;
+    // Resetting kl_early_stop keeps approx_kl's work in the same file (issue 25, bug 3) ...
+    let (code, text) = ppo_tutor(d, &["reset", "kl_early_stop"])?;
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("exercise.rs.bak"), "{text}");
-    let (code, text) = ppo_tutor(d, &["grade", "td_target"])?;
-    assert_eq!(code, 0, "reset td_delta kept td_target: {text}");
-    let (code, text) = ppo_tutor(d, &["grade", "td_delta"])?;
-    assert_eq!(code, 1, "reset restores td_delta's starter: {text}");
-    // ... and resetting td_target, the file's only work, restores the whole starter.
-    let (code, _) = ppo_tutor(d, &["reset", "td_target"])?;
+    let (code, text) = ppo_tutor(d, &["grade", "approx_kl"])?;
+    assert_eq!(code, 0, "reset kl_early_stop kept approx_kl: {text}");
+    let (code, text) = ppo_tutor(d, &["grade", "kl_early_stop"])?;
+    assert_eq!(code, 1, "reset restores kl_early_stop's starter: {text}");
+    // ... and resetting approx_kl, the file's only work, restores the whole starter.
+    let (code, _) = ppo_tutor(d, &["reset", "approx_kl"])?;
     assert_eq!(code, 0);
-    let (code, text) = ppo_tutor(d, &["grade", "td_target"])?;
+    let (code, text) = ppo_tutor(d, &["grade", "approx_kl"])?;
     assert_eq!(code, 1, "reset restores the starter: {text}");
     Ok(())
 }
@@ -434,14 +434,14 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     use ppo_tutor::tui::keys::Action;
 
     let course = Course::embedded()?;
-    let lesson = course.index_of("td-target").ok_or("no td-target lesson")?;
+    let lesson = course.index_of("clip-lab").ok_or("no clip-lab lesson")?;
     let progress = Progress {
-        lesson: "td-target".into(),
+        lesson: "clip-lab".into(),
         ..Progress::default()
     };
     let mut app = App::new(course, progress, None);
     assert_eq!(app.lesson, lesson);
-    assert!(tutor_screen(&app)?.contains("exercise td_target, td_delta: pending"));
+    assert!(tutor_screen(&app)?.contains("exercise approx_kl, kl_early_stop: pending"));
 
     app.update(Action::Hint);
     assert_eq!(app.overlay, Overlay::Exercise);
@@ -461,11 +461,11 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
 
     app.update(Action::Grade);
     let names = app.exercise.request.take().ok_or("no grading requested")?;
-    assert_eq!(names, ["td_target", "td_delta"]);
+    assert_eq!(names, ["approx_kl", "kl_early_stop"]);
     assert!(app.exercise.grading);
 
     // The starter fails: no solution shown, nothing recorded.
-    let starter = Path::new(ROOT).join("lessons/07-td-target/exercise.rs");
+    let starter = Path::new(ROOT).join("lessons/12-clip-lab/exercise.rs");
     let graded = names
         .iter()
         .map(|n| Ok((n.clone(), Ok(grade_file(n, &starter)?))))
@@ -477,14 +477,14 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     assert!(!app.exercise_done());
 
     // The solution passes: recorded, shown, and the bar moves.
-    let solution = Path::new(ROOT).join("lessons/07-td-target/solution.rs");
+    let solution = Path::new(ROOT).join("lessons/12-clip-lab/solution.rs");
     let graded = names
         .iter()
         .map(|n| Ok((n.clone(), Ok(grade_file(n, &solution)?))))
         .collect::<Result<Vec<_>, Box<dyn std::error::Error>>>()?;
     app.on_graded(graded);
     assert!(app.exercise_done());
-    assert!(app.progress.exercises_done.contains("td_delta"));
+    assert!(app.progress.exercises_done.contains("kl_early_stop"));
     let text = tutor_screen(&app)?;
     assert!(text.contains("The reference solution"), "{text}");
     assert!(
@@ -497,7 +497,7 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
 
     app.update(Action::Back);
     assert_eq!(app.overlay, Overlay::None);
-    assert!(tutor_screen(&app)?.contains("exercise td_target, td_delta: done"));
+    assert!(tutor_screen(&app)?.contains("exercise approx_kl, kl_early_stop: done"));
     Ok(())
 }
 
@@ -775,7 +775,7 @@ fn read_until(
 fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
     let dir = tempfile::tempdir()?;
     let d = dir.path();
-    let (code, text) = ppo_tutor(d, &["reset", "td_target"])?;
+    let (code, text) = ppo_tutor(d, &["reset", "approx_kl"])?;
     assert_eq!(code, 0, "{text}");
     let mut child = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
         // English whatever the machine's locale.
@@ -783,7 +783,7 @@ fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
         .env_remove("LC_ALL")
         .env_remove("LC_MESSAGES")
         .env("LANG", "C.UTF-8")
-        .args(["watch", "td_target"])
+        .args(["watch", "approx_kl"])
         .current_dir(d)
         .env("PPO_TUTOR_STATE", d.join("state.json"))
         .env("RAYON_NUM_THREADS", "1")
@@ -796,26 +796,26 @@ fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
         let first = read_until(&rx, "Watching")?;
         assert!(first.contains("todo!()"), "{first}");
         // A wrong answer, saved: graded without a key press, with its hint.
-        let file = d.join("lessons/07-td-target/exercise.rs");
+        let file = d.join("lessons/12-clip-lab/exercise.rs");
         std::fs::copy(
-            Path::new(ROOT).join("tests/wrong_answers/td_target/missing_gamma.rs"),
+            Path::new(ROOT).join("tests/wrong_answers/approx_kl/naive_estimator.rs"),
             &file,
         )?;
         let graded = read_until(&rx, "Watching")?;
         assert!(
-            graded.contains("discounted"),
+            graded.contains("naive estimator"),
             "the mistake's hint: {graded}"
         );
         // The solution, saved: it passes and the next exercise is graded at once.
         std::fs::copy(
-            Path::new(ROOT).join("lessons/07-td-target/solution.rs"),
+            Path::new(ROOT).join("lessons/12-clip-lab/solution.rs"),
             &file,
         )?;
         let passed = read_until(&rx, "passes. Next:")?;
-        assert!(passed.contains("td_delta"), "{passed}");
+        assert!(passed.contains("kl_early_stop"), "{passed}");
         let next = read_until(&rx, "passes. Next:")?;
         assert!(
-            next.contains("✓ td_delta passes. Next: compute_advantage"),
+            next.contains("✓ kl_early_stop passes. Next: td_target_truncation"),
             "{next}"
         );
         Ok(())

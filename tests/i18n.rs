@@ -296,6 +296,7 @@ fn every_hint_and_mistake_text_is_translated() -> TestResult {
                 .hints
                 .iter()
                 .chain(std::iter::once(&t.fallback))
+                .chain(t.idea.as_ref())
                 .chain(t.mistakes.values())
                 .chain(t.other.values());
             for s in all {
@@ -350,7 +351,7 @@ fn chinese_starters_are_the_english_code_with_chinese_comments() -> TestResult {
             checked += 1;
         }
     }
-    assert!(checked >= 11, "only {checked} starters checked");
+    assert!(checked >= 10, "only {checked} starters checked");
     Ok(())
 }
 
@@ -358,7 +359,7 @@ fn chinese_starters_are_the_english_code_with_chinese_comments() -> TestResult {
 fn chinese_starters_are_what_reset_writes_in_chinese() -> TestResult {
     let tmp = tempfile::tempdir()?;
     let _zh = Lang::Zh.scoped();
-    let path = ppo_tutor::grade::reset("td_target", tmp.path())?.path;
+    let path = ppo_tutor::grade::reset("n_step_target", tmp.path())?.path;
     let written = std::fs::read_to_string(&path)?;
     let expected = std::fs::read_to_string(lessons_dir().join("07-td-target/exercise.zh.rs"))?;
     assert_eq!(written, expected);

@@ -346,7 +346,7 @@ fn a_lesson_s_exercise_comes_from_its_exercise_file() -> Result<(), Box<dyn std:
     let course = Course::embedded()?;
     let lesson = course.get("losses").ok_or("no losses lesson")?;
     let exercise = lesson.exercise.as_ref().ok_or("no exercise")?;
-    assert_eq!(exercise.names(), ["critic_loss", "ppo_losses"]);
+    assert_eq!(exercise.names(), ["clipped_value_loss", "ppo_losses"]);
     let files = ppo_tutor::lesson::loader::embedded_exercises()?;
     let (_, texts) = files
         .iter()
@@ -759,31 +759,44 @@ fn an_exercise_must_declare_what_it_reveals_with_real_anchors() -> TestResult {
             .map(|e| e.to_string())
             .unwrap_or_default()
     };
-    let missing = error("[[exercise]]\nname = \"f\"\nfallback = \"look again\"\n");
+    let missing = error("[[exercise]]\nname = \"f\"\nidea = \"i\"\nfallback = \"look again\"\n");
     assert!(
         missing.contains("lessons/07-x/exercise.toml") && missing.contains("no `reveals`"),
         "{missing}"
     );
-    let unknown =
-        error("[[exercise]]\nname = \"f\"\nreveals = [\"no_such_anchor\"]\nfallback = \"a\"\n");
+    let unknown = error(
+        "[[exercise]]\nname = \"f\"\nidea = \"i\"\nreveals = [\"no_such_anchor\"]\nfallback = \"a\"\n",
+    );
     assert!(
         unknown.contains("'no_such_anchor', which is not a code anchor"),
         "{unknown}"
     );
     assert_eq!(
-        error("[[exercise]]\nname = \"f\"\nreveals = [\"td_target_formula\"]\nfallback = \"a\"\n"),
+        error(
+            "[[exercise]]\nname = \"f\"\nidea = \"i\"\nreveals = [\"td_target_formula\"]\nfallback = \"a\"\n"
+        ),
         ""
     );
     assert_eq!(
-        error("[[exercise]]\nname = \"f\"\nreveals = []\nfallback = \"a\"\n"),
+        error("[[exercise]]\nname = \"f\"\nidea = \"i\"\nreveals = []\nfallback = \"a\"\n"),
         ""
     );
+    // Every exercise states the idea it tests (issue 27, section 2), in both languages.
+    let no_idea = error("[[exercise]]\nname = \"f\"\nreveals = []\nfallback = \"a\"\n");
+    assert!(no_idea.contains("has no `idea`"), "{no_idea}");
+    let blank = error("[[exercise]]\nname = \"f\"\nidea = \" \"\nreveals = []\nfallback = \"a\"\n");
+    assert!(blank.contains("has no `idea`"), "{blank}");
     // Every exercise of the course declares it, and the Chinese course shares the English
     // declaration.
     for lang in [ppo_tutor::i18n::Lang::En, ppo_tutor::i18n::Lang::Zh] {
         for (dir, texts) in ppo_tutor::lesson::loader::embedded_exercises_in(lang)? {
             for t in texts {
                 assert!(t.reveals.is_some(), "{dir}: {} declares no reveals", t.name);
+                assert!(
+                    t.idea.as_deref().is_some_and(|i| !i.trim().is_empty()),
+                    "{dir}: {} states no idea",
+                    t.name
+                );
             }
         }
     }

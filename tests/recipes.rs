@@ -25,22 +25,17 @@ fn root() -> PathBuf {
 /// exercise away. Every exercise of the course must be listed.
 const SPOILS: &[(&str, &[&str])] = &[
     ("sample_action", &["actions"]),
-    ("td_target", &["td_target"]),
-    ("td_delta", &["td_delta"]),
+    ("n_step_target", &["n_step_target"]),
     ("compute_advantage", &["advantage"]),
-    ("log_prob_of_actions", &["old_log_probs", "log_probs"]),
-    ("ratio", &["ratio"]),
-    ("actor_loss", &["surr1", "surr2", "actor_loss"]),
+    ("importance_weighted_mean", &["weighted_mean"]),
     ("zero_gradient_rows", &["surr1", "surr2"]),
-    ("critic_loss", &["critic_loss"]),
+    ("clipped_value_loss", &["v_clipped", "value_loss"]),
     ("ppo_losses", &["actor_loss", "critic_loss"]),
     ("approx_kl", &["approx_kl"]),
-    ("clip_fraction", &["clip_frac", "clipped"]),
-    ("moving_average", &["moving_average"]),
+    ("kl_early_stop", &["stopped_at", "early_stop"]),
     ("td_target_truncation", &["td_target"]),
     ("gae_rollout", &["advantage"]),
-    ("normalize_advantage", &["advantage"]),
-    ("gaussian_log_prob", &["old_log_probs", "log_probs"]),
+    ("diag_gaussian_log_prob", &["old_log_probs", "log_probs"]),
 ];
 
 /// The code of a recipe before its `// %% exercise` marker (the header and markers
@@ -506,25 +501,26 @@ fn after_a_pass_the_crate_s_version_shows() -> TestResult {
             );
         }
     }
-    // One exercise at a time: passing `td_target` alone opens its line and names the file.
+    // One exercise at a time: passing `compute_advantage` alone opens its lines and names
+    // the file.
     let _en = Lang::En.scoped();
     let course = Course::embedded()?;
-    let lesson = course.get("td-target").ok_or("no td-target")?;
+    let lesson = course.get("gae").ok_or("no gae")?;
     let k = lesson
         .steps
         .iter()
-        .position(|s| s.code == "td_target")
-        .ok_or("no td_target step")?;
+        .position(|s| s.code == "compute_advantage")
+        .ok_or("no compute_advantage step")?;
     let before = ppo_tutor::tui::ui::code_pane_text(lesson, k, &|_| false);
-    let after = ppo_tutor::tui::ui::code_pane_text(lesson, k, &|e| e == "td_target");
+    let after = ppo_tutor::tui::ui::code_pane_text(lesson, k, &|e| e == "compute_advantage");
     assert!(
-        before.contains("solve exercise `td_target` (lesson 7)"),
+        before.contains("solve exercise `compute_advantage` (lesson 8)"),
         "{before}"
     );
-    assert!(!before.contains("let td_target ="), "{before}");
-    assert!(after.contains("let td_target ="), "{after}");
+    assert!(!before.contains("adv = coef * adv + delta"), "{before}");
+    assert!(after.contains("adv = coef * adv + delta"), "{after}");
     assert!(
-        after.contains("// your td_target: lessons/07-td-target/exercise.rs"),
+        after.contains("// your compute_advantage: lessons/08-gae/exercise.rs"),
         "{after}"
     );
     Ok(())

@@ -464,7 +464,7 @@ fn x_runs_the_step_s_experiment_and_the_panel_shows_its_result() -> TestResult {
 #[test]
 fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
     let old: Progress = serde_json::from_str(
-        r#"{"lesson":"hyperparameters","step":2,"lessons_done":["what-is-ppo"],"exercises_done":["td_target"]}"#,
+        r#"{"lesson":"hyperparameters","step":2,"lessons_done":["what-is-ppo"],"exercises_done":["compute_advantage"]}"#,
     )?;
     let app = App::new(Course::embedded()?, old, None);
     let lesson = app.current_lesson().ok_or("no lesson")?;
@@ -481,7 +481,7 @@ fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
 #[test]
 fn unknown_lessons_in_the_progress_file_count_for_nothing() -> TestResult {
     let old: Progress = serde_json::from_str(
-        r#"{"lesson":"gone","step":99,"lessons_done":["gone","also-gone","what-is-ppo"],"exercises_done":["nope","td_target"]}"#,
+        r#"{"lesson":"gone","step":99,"lessons_done":["gone","also-gone","what-is-ppo"],"exercises_done":["nope","compute_advantage"]}"#,
     )?;
     let app = App::new(Course::embedded()?, old, None);
     assert_eq!((app.lesson, app.step), (0, 0));
@@ -597,12 +597,15 @@ fn quiz_questions_are_answered_with_keys_and_counted() -> TestResult {
 #[test]
 fn saving_the_exercise_file_grades_it_one_grading_at_a_time() -> TestResult {
     let mut app = app()?;
-    open(&mut app, "td-target")?;
+    open(&mut app, "clip-lab")?;
     app.on_saved();
     assert!(app.exercise.grading);
     assert_eq!(app.overlay, Overlay::Exercise);
     let names = app.exercise.request.take().ok_or("no grading requested")?;
-    assert_eq!(names, vec!["td_target".to_string(), "td_delta".to_string()]);
+    assert_eq!(
+        names,
+        vec!["approx_kl".to_string(), "kl_early_stop".to_string()]
+    );
     app.on_saved();
     assert!(app.exercise.request.is_none(), "one grading at a time");
     app.on_graded(Vec::<ppo_tutor::tui::app::Graded>::new());
@@ -612,7 +615,7 @@ fn saving_the_exercise_file_grades_it_one_grading_at_a_time() -> TestResult {
     );
     assert_eq!(
         app.exercise_files(),
-        vec![std::path::PathBuf::from("lessons/07-td-target/exercise.rs")]
+        vec![std::path::PathBuf::from("lessons/12-clip-lab/exercise.rs")]
     );
     app.update(Action::Back);
     open(&mut app, "cartpole")?;
@@ -887,7 +890,7 @@ fn l_switches_the_language_live_and_keeps_the_place() -> TestResult {
 #[test]
 fn a_lesson_s_status_line_does_not_follow_into_another_lesson() -> TestResult {
     let mut app = app()?;
-    open(&mut app, "training")?;
+    open(&mut app, "gae")?;
     let hints = app
         .current_lesson()
         .and_then(|l| l.exercise.as_ref())
@@ -922,7 +925,7 @@ fn a_lesson_s_status_line_does_not_follow_into_another_lesson() -> TestResult {
 #[test]
 fn each_face_s_status_line_goes_when_it_closes() -> TestResult {
     let mut app = app()?;
-    open(&mut app, "training")?;
+    open(&mut app, "gae")?;
     app.update(Action::Hint);
     assert_eq!(app.overlay, Overlay::Exercise);
     assert!(app.status.text().contains("hint 1/"), "{}", app.status);

@@ -1,22 +1,38 @@
-//! Reference solution for lesson 07: the seed's
-//! `td_target = rewards + self.gamma * self.critic(next_states) * (1 - dones)` and
-//! `td_delta = td_target - self.critic(states)`, row by row.
+//! Reference solution for lesson 07: the n-step target, of which the seed's
+//! `td_target = rewards + self.gamma * self.critic(next_states) * (1 - dones)` is the case
+//! `n = 1`.
 
-/// `td_target[i] = rewards[i] + gamma * next_values[i] * (1 - dones[i])`.
-pub fn td_target(rewards: &[f32], next_values: &[f32], dones: &[bool], gamma: f32) -> Vec<f32> {
-    rewards
-        .iter()
-        .zip(next_values)
-        .zip(dones)
-        .map(|((&r, &v), &done)| {
-            let not_done = if done { 0.0 } else { 1.0 };
-            r + gamma * v * not_done
-        })
-        .collect()
-}
-
-/// `td_delta[i] = td_target[i] - values[i]`: how much better the step went than the critic
-/// predicted.
-pub fn td_delta(td_target: &[f32], values: &[f32]) -> Vec<f32> {
-    td_target.iter().zip(values).map(|(t, v)| t - v).collect()
+/// For each step `t`: up to `n` real rewards from `t` on, each discounted once per step it
+/// lies ahead, then the critic's `V` of the state reached, discounted once more per step,
+/// unless the episode terminated on the way (then the sum stops after that step's reward,
+/// and nothing is bootstrapped). The rollout's end shortens the window to what remains.
+pub fn n_step_target(
+    rewards: &[f32],
+    values: &[f32],
+    dones: &[bool],
+    gamma: f32,
+    n: usize,
+) -> Vec<f32> {
+    let steps = rewards.len();
+    let mut targets = Vec::with_capacity(steps);
+    for t in 0..steps {
+        let window = n.min(steps - t);
+        let mut target = 0.0_f32;
+        let mut discount = 1.0_f32;
+        let mut terminated = false;
+        for k in 0..window {
+            target += discount * rewards[t + k];
+            discount *= gamma;
+            if dones[t + k] {
+                terminated = true;
+                break;
+            }
+        }
+        if !terminated {
+            // `discount` is now γ^window: the state reached lies `window` steps ahead.
+            target += discount * values[t + window];
+        }
+        targets.push(target);
+    }
+    targets
 }

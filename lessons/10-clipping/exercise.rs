@@ -1,41 +1,13 @@
-//! Lesson 10 exercise: PPO's clipped surrogate loss.
+//! Lesson 10 exercise: which rows the clipped objective has stopped pushing on.
 //!
-//! Grade: `ppo-tutor grade actor_loss` (or `g` in the tutor).
-//! Start over: `ppo-tutor reset actor_loss`.
-
-/// PPO's actor loss: the one number the optimizer minimises to improve the policy, the
-/// seed's `actor_loss`.
-///
-/// It rewards making actions with a positive advantage more likely and actions with a
-/// negative advantage less likely, but only up to a band around a ratio of 1, `[1 − ε, 1 + ε]`.
-/// Once a row's ratio has left the band in the direction its advantage wants, that row earns
-/// no further credit. A row that moved the wrong way keeps its full penalty: the objective is
-/// pessimistic.
-///
-/// - `ratio[i]` is `π_θ(a_i|s_i) / π_old(a_i|s_i)` (lesson 9): above 1 when the current
-///   policy makes the action taken more likely than the policy that played it.
-/// - `advantage[i]` is `Â_i`, how much better the action of step `i` turned out than
-///   expected (lesson 8); either sign.
-/// - `eps` is the clip range ε (0.2 in the seed).
-///
-/// Both slices have the same length, at least one. Return a single number. PPO maximises its
-/// objective while the optimizer minimises, so mind the sign: a better policy gives a lower
-/// loss. Like the seed's, the loss must not grow with the number of rows. The grader tries a
-/// single step, only negative advantages and ratios outside the band, and compares to 1e-5
-/// absolute and 1e-4 relative.
-///
-/// Taught in lesson 10 (clipping), step 3 "Taking the minimum", after step 1 "Two
-/// surrogates" and step 2 on the band around 1.
-pub fn actor_loss(ratio: &[f32], advantage: &[f32], eps: f32) -> f32 {
-    // TODO: your code here; `h` in the tutor reveals hints one by one.
-    // A row with a positive advantage has a ratio of 1.5: how much credit should it get?
-    todo!()
-}
+//! Grade: `ppo-tutor grade zero_gradient_rows` (or `g` in the tutor).
+//! Start over: `ppo-tutor reset zero_gradient_rows`.
 
 /// Which rows the clipped objective has stopped pushing on.
 ///
-/// Each row contributes one term to the clipped surrogate PPO maximises (the term your
-/// `actor_loss` averages, sign flipped). Return, for each row, `true` when that term's
+/// Each row contributes one term to the clipped surrogate PPO maximises,
+/// `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)` (the seed's actor loss is the mean of these terms,
+/// sign flipped). Return, for each row, `true` when that term's
 /// derivative with respect to the row's ratio is zero, so that the update no longer moves
 /// the policy's probability of that row's action, and `false` when the gradient still flows.
 ///

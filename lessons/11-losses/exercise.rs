@@ -1,24 +1,33 @@
-//! Lesson 11 exercise: the critic's loss.
+//! Lesson 11 exercise: CleanRL's clipped value loss, the clip applied to the critic.
 //!
-//! Grade: `ppo-tutor grade critic_loss` (or `g` in the tutor).
-//! Start over: `ppo-tutor reset critic_loss`.
+//! Grade: `ppo-tutor grade clipped_value_loss` (or `g` in the tutor).
+//! Start over: `ppo-tutor reset clipped_value_loss`.
 
-/// The critic's loss: one number that says how far the critic's predictions are from their
-/// TD targets over the whole episode. The critic learns by regression, and minimising this
-/// number moves each prediction `V(s_i)` towards its target. It is the seed's `critic_loss`.
+/// The critic's loss as CleanRL computes it when `clip_vloss` is on (its default): the
+/// regression of lesson 11, with PPO's clip turned on the critic.
 ///
-/// - `values[i]` is the critic's prediction `V(s_i)` for the state of step `i`.
-/// - `td_target[i]` is the TD target of step `i` (lesson 7), a fixed number here: only the
-///   prediction depends on the critic's weights.
+/// The seed lets each epoch move a prediction as far towards its target as the gradient
+/// takes it. CleanRL treats the critic as PPO treats the actor: a prediction that moves more
+/// than `eps` away from the one the critic made before the update gets no credit for the
+/// extra distance, and, as in the actor's clipped objective, the loss stays pessimistic: the
+/// clip may never make a row look better than it is. Work out what that means row by row.
 ///
-/// Both slices have the same length, at least one. Return a single number: 0 when every
-/// prediction hits its target, larger the further off they are, and not growing with the
-/// number of rows. Use the same loss as the seed: the grader checks its exact scale, with
-/// errors of both signs and a single step, to 1e-5 absolute and 1e-4 relative.
+/// - `values[i]` is the current critic's prediction `V(s_i)`, the only input that depends on
+///   the weights being trained.
+/// - `old_values[i]` is the prediction made for the same state before the update started
+///   (CleanRL's `b_values`), fixed during the update.
+/// - `returns[i]` is the row's regression target (CleanRL's `b_returns`), fixed too.
+/// - `eps` is the clip range (CleanRL reuses the actor's `clip_coef`, 0.2), in the units
+///   of the values.
 ///
-/// Taught in lesson 11 (losses), step 2 "The critic loss".
-pub fn critic_loss(values: &[f32], td_target: &[f32]) -> f32 {
+/// All three slices have the same length, at least one. Return one number at CleanRL's scale:
+/// its `v_loss` keeps a factor ½ in front of the mean over the rows. The grader tries
+/// predictions inside and outside the range, targets on either side, and a single row, to
+/// 1e-5 absolute and 1e-4 relative.
+///
+/// Taught in lesson 11 (losses), step 2 "The critic loss", with lesson 10's clip.
+pub fn clipped_value_loss(values: &[f32], old_values: &[f32], returns: &[f32], eps: f32) -> f32 {
     // TODO: your code here; `h` in the tutor reveals hints one by one.
-    // Should a miss of −2 cost as much as a miss of +2? And more than a miss of 1?
+    // A prediction moved 3·eps closer to its target: how much of that move should count?
     todo!()
 }

@@ -1,6 +1,6 @@
-//! 第 12 课练习：CleanRL 用来观察一次更新的两个数，由你自己从批次数据算出来。
+//! 第 12 课练习：衡量一次更新让策略移动了多远，并及时让它停下。
 //!
-//! 评分：`ppo-tutor grade approx_kl` 和 `ppo-tutor grade clip_fraction`（或在 tutor 中
+//! 评分：`ppo-tutor grade approx_kl` 和 `ppo-tutor grade kl_early_stop`（或在 tutor 中
 //! 按 `g`）。从头再来：`ppo-tutor reset approx_kl`（恢复整个文件）。
 
 /// 策略离收集这批数据的那个策略有多远，用一个数表示。
@@ -19,15 +19,25 @@ pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
     todo!()
 }
 
-/// 截断作用在批次中多大的比例上：即 CleanRL 的 `clipfracs`。
+/// 在 Spinning Up 的提前停止之下，一次更新执行了多少个梯度步。
 ///
-/// - `ratio[i]` 是 `π_θ(a_i|s_i) / π_old(a_i|s_i)`，至少有一行；`eps` 是截断范围 ε。
-/// - 返回比率离 1 超过 ε 的行所占的比例（介于 0 和 1 之间），按 CleanRL 的方式测量，
-///   用 float32 计算。
+/// 截断并不能阻止策略离收集这批数据的那个策略越来越远（第 12 课实验 4）。Spinning Up 的
+/// PPO 加了一道防线：在每一轮执行梯度步之前，先估计策略已经移动了多远；如果估计值超过了
+/// `target_kl` 之上的那道界限，就在那里结束本次更新，这一步也不再执行。请用它的估计量、
+/// 按它的规则，处理一次逐轮给出对数概率的更新。
 ///
-/// 讲解见第 12 课（clip-lab）第 1 节“每次更新都要看什么”，以及第 10 课（clipping）
-/// 第 6 节“有多少行被截断”。
-pub fn clip_fraction(ratio: &[f32], eps: f32) -> f32 {
-    // TODO：在这里写代码。
+/// - `old_log_probs[i]` 是 `log π_old(a_i|s_i)`，在更新之前就已固定；共 `N` 行，至少 1 行。
+/// - `log_probs_per_epoch` 依次存放 `E` 行、每行 `N` 个数（按行优先排列，
+///   `E = log_probs_per_epoch.len() / N`，至少为 1）：第 `e` 行是第 `e` 轮*开始*时、
+///   也就是这一轮的梯度步之前，策略给出的 `log π(a_i|s_i)`。
+/// - `target_kl` 就是 Spinning Up 的 `target_kl`（默认 0.01）。
+///
+/// 返回 `E` 轮中有多少轮执行了梯度步：防线从未触发时返回 `E`。各个估计值都是对所有行
+/// 求的均值，用 float32 计算。
+///
+/// 讲解见第 12 课（clip-lab）第 5 节“实验 4：在目标 KL 处提前停止”。
+pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {
+    // TODO：在这里写代码；在 tutor 中按 `h` 可逐条显示提示。
+    // Spinning Up 检验的是 KL 散度的哪一种估计？估计值第一次过大的那一轮，它的梯度步会怎样？
     todo!()
 }

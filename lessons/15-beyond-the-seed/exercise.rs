@@ -1,8 +1,8 @@
 //! Lesson 15 exercise: targets and advantages that tell a time-limit cut from a real end,
-//! over a rollout of several episodes, and the advantage normalisation the seed leaves out.
+//! over a rollout of several episodes.
 //!
-//! Grade: `ppo-tutor grade td_target_truncation`, `ppo-tutor grade gae_rollout` and
-//! `ppo-tutor grade normalize_advantage` (or `g` in the tutor).
+//! Grade: `ppo-tutor grade td_target_truncation` and `ppo-tutor grade gae_rollout` (or `g`
+//! in the tutor).
 //! Start over: `ppo-tutor reset td_target_truncation` (restores this whole file).
 
 /// The one-step TD target, done right: what step `t` is worth, as the reward it earned plus
@@ -25,7 +25,8 @@ pub fn td_target_truncation(
     truncated: &[bool],
     gamma: f32,
 ) -> Vec<f32> {
-    // TODO: your code here.
+    // TODO: when the clock cut the episode, was there still a future worth V(s_{t+1})? And
+    // when the pole fell?
     todo!()
 }
 
@@ -52,19 +53,7 @@ pub fn gae_rollout(
     gamma: f32,
     lmbda: f32,
 ) -> (Vec<f32>, Vec<f32>) {
-    // TODO: your code here.
-    todo!()
-}
-
-/// CleanRL's advantage normalisation, which the seed does not do: shift and scale the
-/// batch's advantages so they have mean 0 and standard deviation 1, keeping their order.
-///
-/// - `advantage` has at least 2 rows. Return one value per row.
-/// - Match PyTorch: `Tensor.std()` is the unbiased standard deviation, and CleanRL adds
-///   `1e-8` to it so that a batch of equal advantages gives zeros, not NaN.
-///
-/// Taught in lesson 15 (beyond-the-seed), step 2 "Advantages are not normalised".
-pub fn normalize_advantage(advantage: &[f32]) -> Vec<f32> {
-    // TODO: your code here.
+    // TODO: two questions per row: does its TD error bootstrap, and does the next row's
+    // advantage belong to the same episode?
     todo!()
 }

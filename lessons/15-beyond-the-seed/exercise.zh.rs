@@ -1,8 +1,7 @@
-//! 第 15 课练习：能分清时限中断和真正结束的目标值与优势值，作用在跨越多个回合的一段采样上；
-//! 以及原教程代码省略了的优势值归一化。
+//! 第 15 课练习：能分清时限中断和真正结束的目标值与优势值，作用在跨越多个回合的一段采样上。
 //!
-//! 评分：`ppo-tutor grade td_target_truncation`、`ppo-tutor grade gae_rollout` 和
-//! `ppo-tutor grade normalize_advantage`（或在教程中按 `g`）。
+//! 评分：`ppo-tutor grade td_target_truncation` 和 `ppo-tutor grade gae_rollout`
+//! （或在教程中按 `g`）。
 //! 重新开始：`ppo-tutor reset td_target_truncation`（恢复整个文件）。
 
 /// 正确的单步 TD 目标：第 `t` 步的价值，等于它得到的奖励，加上价值网络对之后的预期，
@@ -23,7 +22,7 @@ pub fn td_target_truncation(
     truncated: &[bool],
     gamma: f32,
 ) -> Vec<f32> {
-    // TODO：在这里写代码。
+    // TODO：时限把回合中断时，还有没有一个值得 V(s_{t+1}) 的未来？杆倒下时呢？
     todo!()
 }
 
@@ -49,19 +48,6 @@ pub fn gae_rollout(
     gamma: f32,
     lmbda: f32,
 ) -> (Vec<f32>, Vec<f32>) {
-    // TODO：在这里写代码。
-    todo!()
-}
-
-/// CleanRL 的优势值归一化，原教程代码没有做这一步：平移并缩放这一批次的优势值，
-/// 使它们均值为 0、标准差为 1，同时保持大小顺序不变。
-///
-/// - `advantage` 至少有 2 行。每一行返回一个值。
-/// - 与 PyTorch 保持一致：`Tensor.std()` 是无偏标准差，CleanRL 再给它加上 `1e-8`，
-///   这样一批相等的优势值得到的是 0，而不是 NaN。
-///
-/// 讲解见第 15 课（beyond-the-seed）第 2 节“优势值没有归一化”。
-pub fn normalize_advantage(advantage: &[f32]) -> Vec<f32> {
-    // TODO：在这里写代码。
+    // TODO：每一行有两个问题：它的 TD 误差要不要自举？下一行的优势值与它属于同一个回合吗？
     todo!()
 }

@@ -1,6 +1,5 @@
 //! Reference solution for lesson 15: the TD target and GAE that tell a time-limit cut from
-//! a real end, over a rollout of several episodes (CleanRL's layout), and CleanRL's
-//! advantage normalisation.
+//! a real end, over a rollout of several episodes (CleanRL's layout).
 
 /// `y_t = r_t + γ·V(s_{t+1})`, except `y_t = r_t` where the episode terminated at `t`. A
 /// truncated step still bootstraps: the pole was up, the future was only cut off.
@@ -49,21 +48,4 @@ pub fn gae_rollout(
     }
     let returns = advantages.iter().zip(values).map(|(a, v)| a + v).collect();
     (advantages, returns)
-}
-
-/// CleanRL's `(adv - adv.mean()) / (adv.std() + 1e-8)`, with PyTorch's unbiased standard
-/// deviation (divided by `n − 1`).
-pub fn normalize_advantage(advantage: &[f32]) -> Vec<f32> {
-    let n = advantage.len() as f32;
-    let mean = advantage.iter().sum::<f32>() / n;
-    let variance = advantage
-        .iter()
-        .map(|a| (a - mean) * (a - mean))
-        .sum::<f32>()
-        / (n - 1.0);
-    let std = variance.sqrt();
-    advantage
-        .iter()
-        .map(|a| (a - mean) / (std + 1e-8))
-        .collect()
 }

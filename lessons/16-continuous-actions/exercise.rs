@@ -1,22 +1,34 @@
-//! Lesson 16 exercise: the log-density of the Gaussian policy at the actions it took, the
-//! `log π(a|s)` that PPO's ratio is made of once the action is a torque.
+//! Lesson 16 exercise: the log-probability of a whole action when the action has several
+//! dimensions, the `log π(a|s)` that PPO's ratio is made of.
 //!
-//! Grade: `ppo-tutor grade gaussian_log_prob` (or `g` in the tutor).
-//! Start over: `ppo-tutor reset gaussian_log_prob` (restores this whole file).
+//! Grade: `ppo-tutor grade diag_gaussian_log_prob` (or `g` in the tutor).
+//! Start over: `ppo-tutor reset diag_gaussian_log_prob` (restores this whole file).
 
-/// How likely the policy was to take each action, on a log scale: the log of the density of
-/// a Normal distribution at the action, what PyTorch's
-/// `torch.distributions.Normal(mu, std).log_prob(actions)` returns, row by row.
+/// How likely a Gaussian policy was to take each action, on a log scale, when an action is
+/// not one torque but a vector of `dim` numbers (a robot arm with several joints, say),
+/// CleanRL's `ppo_continuous_action.py` policy.
 ///
-/// - Row `i` is one step. The policy's Normal has mean `mu[i]` (the book's μ = 2·tanh(·),
-///   in [−2, 2]) and standard deviation `std[i]` (σ = softplus(·), always > 0; torch's
-///   `scale`). `actions[i]` is the torque taken: any real number, near μ or far from it.
-/// - All three slices have the same length, possibly 0. Return one value per row, in f32.
-/// - This is a log-density: it can be above 0 (a narrow Normal has a density above 1 near
-///   its mean) and very negative for an action many σ away from μ.
+/// - The batch has `N` rows, one per step. `actions` and `mu` are `N × dim`, row-major:
+///   dimension `d` of row `i` is at `[i * dim + d]`. `mu` is the policy's mean for that row.
+/// - The policy draws each dimension from its own Normal, independently of the others. The
+///   spread does not depend on the state: `log_std[d]` (length `dim`) is the *log* of the
+///   standard deviation of dimension `d`, shared by every row, one learned number per
+///   dimension as in CleanRL.
+/// - `dim` is at least 1; `N` may be 0. Return one value per row (`N` values, not
+///   `N × dim`): the log-density of the row's whole action, in f32. PPO builds one ratio
+///   per step from it.
+/// - A log-density can be above 0 (a narrow Normal is denser than 1 near its mean) and very
+///   negative for an action many standard deviations away from the mean.
 ///
-/// Taught in lesson 16 (continuous-actions), step 3 "The log-density of a Normal".
-pub fn gaussian_log_prob(mu: &[f32], std: &[f32], actions: &[f32]) -> Vec<f32> {
-    // TODO: your code here.
+/// Taught in lesson 16 (continuous-actions), step 3 "The log-density of a Normal", for one
+/// dimension; the step's last paragraph says what changes with several.
+pub fn diag_gaussian_log_prob(
+    actions: &[f32],
+    mu: &[f32],
+    log_std: &[f32],
+    dim: usize,
+) -> Vec<f32> {
+    // TODO: the dimensions are independent. What does that make the density of the whole
+    // action, and what does the log do to it?
     todo!()
 }

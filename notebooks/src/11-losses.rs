@@ -44,7 +44,7 @@ println!("after epoch 10: {} of {} ratios outside [{:.1}, {:.1}]; ratios range f
     outside, last.ratio.len(), 1.0 - eps, 1.0 + eps);
 
 // %% exercise
-// Back to "The critic loss", now that `critic_loss` passes: in the first epoch
+// Back to "The critic loss", now that the exercises are graded: in the first epoch
 // V(s_t) − y_t = −δ_t, so the critic loss is the mean squared TD error.
 let mse = trace.td_delta.iter().map(|d| d * d).sum::<f32>() / n;
 println!("epoch 1 critic loss {:.6}, mean(td_delta²) {:.6}", first.critic_loss, mse);

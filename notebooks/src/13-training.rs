@@ -23,13 +23,8 @@ for bar in 0..10 {
 println!("returns[96..=104]   = {:?}", &snap.returns[96..=104]);
 println!("moving_average[100] = {:.4}", snap.moving_average[100]);
 
-// %% step: The edges: shrinking odd windows
-println!("first five: {:?}", &snap.moving_average[..5]);
-println!("returns:    {:?}", &snap.returns[..5]);
-
-// %% exercise
-// Back to "The middle", now that `moving_average` passes: rl_utils' prefix sums,
-// (cumsum[w:] − cumsum[:-w]) / w, centred, against the library's moving average.
+// rl_utils' prefix sums, (cumsum[w:] − cumsum[:-w]) / w, centred, against the library's
+// moving average.
 let w = 9;
 let mut cumsum = vec![0.0_f64];
 for r in &snap.returns {
@@ -41,3 +36,7 @@ for i in [0, 100, 400] {
     assert!((middle[i] - snap.moving_average[i + centre]).abs() < 1e-9);
 }
 println!("{} middle values match the library's moving average", middle.len());
+
+// %% step: The edges: shrinking odd windows
+println!("first five: {:?}", &snap.moving_average[..5]);
+println!("returns:    {:?}", &snap.returns[..5]);

@@ -36,7 +36,7 @@ impl TimeLimit {
 /// Arguments of `ppo-tutor grade`.
 #[derive(Debug, Args)]
 pub struct GradeArgs {
-    /// The exercise (its function name, e.g. td_target); all exercises when omitted.
+    /// The exercise (its function name, e.g. compute_advantage); all exercises when omitted.
     pub exercise: Option<String>,
     /// Grade this file instead of the starter's path (lessons/NN-slug/exercise.rs, or
     /// exercise_candle.rs for ppo_losses).

@@ -1159,6 +1159,7 @@ mod tests {
             name: "td_target".into(),
             also: vec![],
             hints: vec![],
+            ideas: vec![],
         });
         let missing = cells_from_recipe(&l, "// %%\nx\n", "r.rs", root());
         assert!(
@@ -1174,6 +1175,7 @@ mod tests {
             name: "not_an_exercise".into(),
             also: vec![],
             hints: vec![],
+            ideas: vec![],
         });
         let err = cells_from_recipe(&l, "// %% exercise\n", "r.rs", root());
         assert!(

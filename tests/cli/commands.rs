@@ -405,13 +405,15 @@ fn the_cartpole_table_reads_in_chinese() -> TestResult {
 #[test]
 fn a_wrong_answer_is_graded_in_chinese_with_the_same_exit_code() -> TestResult {
     let dir = tempfile::tempdir()?;
-    let lesson = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/07-td-target");
-    // The classic mistake: the future is counted after the pole fell (no `1 - done`).
+    let lesson = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/08-gae");
+    // A classic mistake: each advantage is its own TD error, nothing of the steps after it.
     let starter = std::fs::read_to_string(lesson.join("exercise.rs"))?;
-    let at = starter.find("pub fn td_target(").ok_or("no td_target")?;
+    let at = starter
+        .find("pub fn compute_advantage(")
+        .ok_or("no compute_advantage")?;
     let todo = at + starter[at..].find("todo!()").ok_or("no todo!()")?;
     let wrong = format!(
-        "{}(0..rewards.len()).map(|i| rewards[i] + gamma * next_values[i]).collect(){}",
+        "{}td_delta.to_vec(){}",
         &starter[..todo],
         &starter[todo + "todo!()".len()..]
     );
@@ -420,7 +422,7 @@ fn a_wrong_answer_is_graded_in_chinese_with_the_same_exit_code() -> TestResult {
     let file = file.to_str().ok_or("path")?;
     let grade = |lang: &str| {
         sandboxed(dir.path())
-            .args(["--lang", lang, "grade", "td_target", "--file", file])
+            .args(["--lang", lang, "grade", "compute_advantage", "--file", file])
             .env("NO_COLOR", "1")
             .output()
     };
@@ -443,13 +445,13 @@ fn a_wrong_answer_is_graded_in_chinese_with_the_same_exit_code() -> TestResult {
         .and_then(toml::Value::as_array)
         .and_then(|all| {
             all.iter()
-                .find(|e| e.get("name").and_then(toml::Value::as_str) == Some("td_target"))
+                .find(|e| e.get("name").and_then(toml::Value::as_str) == Some("compute_advantage"))
         })
-        .and_then(|e| e.get("mistakes")?.get("missing_done_mask")?.as_str())
-        .ok_or("no Chinese hint for missing_done_mask")?;
+        .and_then(|e| e.get("mistakes")?.get("no_recursion")?.as_str())
+        .ok_or("no Chinese hint for no_recursion")?;
     assert!(zh.contains("提示：") && zh.contains(hint), "{zh}");
     assert!(
-        zh.contains("✗ 只有一步") && zh.contains("项检查通过"),
+        zh.contains("✗ 负的 TD 误差") && zh.contains("项检查通过"),
         "{zh}"
     );
     assert!(
@@ -595,7 +597,7 @@ fn a_missing_candle_file_builds_nothing_and_time_limit_0_is_refused() -> TestRes
         );
     }
     for cmd in ["grade", "watch"] {
-        let out = run(&[cmd, "td_target", "--time-limit", "0"])?;
+        let out = run(&[cmd, "compute_advantage", "--time-limit", "0"])?;
         let err = String::from_utf8(out.stderr)?;
         assert_eq!(out.status.code(), Some(2), "{cmd}: {err}");
         assert!(
@@ -710,8 +712,8 @@ fn init_writes_every_starter_outside_the_clone() -> TestResult {
         "{said}"
     );
     // A second init keeps the learner's files.
-    let td = course.join("lessons/07-td-target/exercise.rs");
-    let solution = std::fs::read_to_string(repo.join("lessons/07-td-target/solution.rs"))?;
+    let td = course.join("lessons/08-gae/exercise.rs");
+    let solution = std::fs::read_to_string(repo.join("lessons/08-gae/solution.rs"))?;
     std::fs::write(&td, &solution)?;
     let said = String::from_utf8(ppo(&["init", "course"], dir.path())?.stdout)?;
     assert!(
@@ -720,11 +722,11 @@ fn init_writes_every_starter_outside_the_clone() -> TestResult {
     );
     assert_eq!(std::fs::read_to_string(&td)?, solution);
     // Graded from there: a pass shows the reference itself (no solution.rs outside the clone).
-    let out = ppo(&["grade", "td_target"], &course)?;
+    let out = ppo(&["grade", "compute_advantage"], &course)?;
     let said = String::from_utf8(out.stdout)?;
     assert_eq!(out.status.code(), Some(0), "{said}");
     assert!(
-        said.contains("The reference solution:") && said.contains("pub fn td_target("),
+        said.contains("The reference solution:") && said.contains("pub fn compute_advantage("),
         "{said}"
     );
     // `init` into a file is a usage error.

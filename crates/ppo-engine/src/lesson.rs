@@ -93,6 +93,9 @@ pub struct Exercise {
     pub also: Vec<String>,
     /// Hints, from gentle to nearly the answer.
     pub hints: Vec<String>,
+    /// The idea each function tests, in the order of [`Exercise::names`] (shown once the
+    /// lesson's exercise is passed).
+    pub ideas: Vec<String>,
 }
 
 impl Exercise {

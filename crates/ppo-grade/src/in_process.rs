@@ -1,7 +1,7 @@
 //! Grading a function that lives in the running program: a notebook cell.
 //!
 //! The notebooks cannot hand the grader a file (a cell's text is not visible to the code it
-//! defines), so the learner passes the function itself: `grade::in_process::td_target(td_target)`.
+//! defines), so the learner passes the function itself: `grade::in_process::approx_kl(approx_kl)`.
 //! It runs on exactly the cases of `ppo-tutor grade`, is compared with the same reference
 //! and tolerance by the same judge, and a failure gets the same diagnosis and hint; only the
 //! compile step is the notebook's own. Each case runs on a worker thread: a panic is caught
@@ -16,11 +16,12 @@
 //! ```
 //! use ppo_grade::in_process;
 //!
-//! fn critic_loss(values: &[f32], td_target: &[f32]) -> f32 {
-//!     let n = values.len() as f32;
-//!     values.iter().zip(td_target).map(|(v, y)| (v - y) * (v - y)).sum::<f32>() / n
+//! fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+//!     let rows = old_log_probs.iter().zip(log_probs);
+//!     let total: f32 = rows.map(|(o, l)| ((l - o).exp() - 1.0) - (l - o)).sum();
+//!     total / old_log_probs.len() as f32
 //! }
-//! let report = in_process::critic_loss(critic_loss);
+//! let report = in_process::approx_kl(approx_kl);
 //! assert!(report.passed(), "{}", report.render());
 //! ```
 

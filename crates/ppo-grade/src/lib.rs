@@ -1,7 +1,7 @@
 //! Graded exercises: the learner writes PPO's pieces in Rust and the tutor grades them.
 //!
-//! Every exercise is one function of the seed's update (`td_target`, `compute_advantage`,
-//! `actor_loss`, ...) with a starter in its lesson folder (`todo!()` and TODO comments) and
+//! Every exercise is one function that applies an idea of its lesson (`n_step_target`,
+//! `compute_advantage`, `kl_early_stop`, ...) with a starter in its lesson folder (`todo!()` and TODO comments) and
 //! a reference solution beside it. The exercises are listed once, in course order, in the
 //! [`exercises`] registry; every face (the terminal app, `ppo-tutor grade`/`reset`, the
 //! notebooks, the tests) iterates it and none names a particular exercise.
@@ -24,16 +24,16 @@
 //! episodes, edge cases); the judge compares each answer with the reference's within a
 //! tolerance, keeps the first failure of each check with its input, expected and actual
 //! results, and names the likely mistake from the exercise's catalogue of typical wrong
-//! variants (GAE run forwards, a missing `(1 - done)`, max instead of min, ...), whose hint
+//! variants (GAE run forwards, a sum across an episode's end, min instead of max, ...), whose hint
 //! comes from the lesson's `exercise.toml`. Panics are caught per case and reported with
 //! their message; a run past the time limit is killed and reported as never returning.
 //! The grader itself returns errors, never panics.
 //!
 //! ```
-//! let exercise = ppo_grade::find("td_target")?;
+//! let exercise = ppo_grade::find("approx_kl")?;
 //! assert_eq!(
 //!     exercise.signature(),
-//!     "pub fn td_target(rewards: &[f32], next_values: &[f32], dones: &[bool], gamma: f32) -> Vec<f32>"
+//!     "pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32"
 //! );
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

@@ -388,6 +388,47 @@ const PHRASES: &[(&str, &str)] = &[
 ];
 
 const CHECK_NAMES: &[(&str, &str)] = &[
+    ("n = 1 is the TD target", "n = 1 就是 TD 目标"),
+    (
+        "no done at all: bootstrap at the rollout's end",
+        "没有一步结束：在采样段末尾自举",
+    ),
+    ("an episode ends inside the window", "回合在窗口之内结束"),
+    (
+        "the same policy: every weight is 1",
+        "同一个策略：每个权重都是 1",
+    ),
+    ("a rare action: a large weight", "罕见的动作：很大的权重"),
+    ("six actions per row", "每行六个动作"),
+    (
+        "values within eps of old: the plain half MSE",
+        "新旧价值相差不超过 eps：就是普通的半均方误差",
+    ),
+    ("every value moved beyond eps", "每个价值都移动超过了 eps"),
+    (
+        "never stops: moves both ways that cancel",
+        "从不停止：两个方向的变化相互抵消",
+    ),
+    (
+        "every sampled action made more likely",
+        "每个采样到的动作都变得更可能",
+    ),
+    (
+        "passes target_kl one epoch before 1.5 × target_kl",
+        "越过 target_kl 比越过 1.5 × target_kl 早一轮",
+    ),
+    ("stops before the first step", "在第一步之前就停止"),
+    ("dim = 1: the one-dimensional density", "dim = 1：一维密度"),
+    ("a single row of six dimensions", "只有一行，六个维度"),
+    ("actions many σ from μ", "离 μ 有许多个 σ 的动作"),
+    (
+        "log σ = 0 in every dimension (CleanRL's initial policy)",
+        "每个维度 log σ = 0（CleanRL 的初始策略）",
+    ),
+    (
+        "PyTorch's Normal.log_prob, recorded: each case one row of its dimensions",
+        "录制的 PyTorch Normal.log_prob：每个用例是一行，含其各个维度",
+    ),
     ("a single step", "只有一步"),
     ("a single row", "只有一行"),
     ("a single value", "只有一个值"),

@@ -24,10 +24,6 @@ pub mod losses;
 #[path = "../../../lessons/11-losses/solution_candle.rs"]
 pub mod losses_candle;
 
-#[allow(clippy::needless_range_loop)]
-#[path = "../../../lessons/13-training/solution.rs"]
-pub mod training;
-
 #[path = "../../../lessons/12-clip-lab/solution.rs"]
 pub mod clip_lab;
 

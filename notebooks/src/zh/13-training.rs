@@ -23,13 +23,7 @@ for bar in 0..10 {
 println!("returns[96..=104]   = {:?}", &snap.returns[96..=104]);
 println!("moving_average[100] = {:.4}", snap.moving_average[100]);
 
-// %% step: The edges: shrinking odd windows
-println!("前五个移动平均：{:?}", &snap.moving_average[..5]);
-println!("对应的回报：    {:?}", &snap.returns[..5]);
-
-// %% exercise
-// `moving_average` 通过测试了，现在回到“中段”一节：把 rl_utils 的前缀和算法
-// (cumsum[w:] − cumsum[:-w]) / w 居中对齐，与库里的移动平均比较。
+// 把 rl_utils 的前缀和算法 (cumsum[w:] − cumsum[:-w]) / w 居中对齐，与库里的移动平均比较。
 let w = 9;
 let mut cumsum = vec![0.0_f64];
 for r in &snap.returns {
@@ -41,3 +35,7 @@ for i in [0, 100, 400] {
     assert!((middle[i] - snap.moving_average[i + centre]).abs() < 1e-9);
 }
 println!("中段的 {} 个值与库里的移动平均一致", middle.len());
+
+// %% step: The edges: shrinking odd windows
+println!("前五个移动平均：{:?}", &snap.moving_average[..5]);
+println!("对应的回报：    {:?}", &snap.returns[..5]);

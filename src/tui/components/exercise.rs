@@ -254,6 +254,16 @@ impl ExercisePanel {
             }
         }
         if done(ctx.lesson, ctx.progress) {
+            if let Some(exercise) = ctx.lesson.and_then(|l| l.exercise.as_ref()) {
+                lines.push(Line::raw(""));
+                lines.push(Line::styled(
+                    t(" What it tested", " 这个练习考查的思想"),
+                    theme.title(),
+                ));
+                for (name, idea) in exercise.names().iter().zip(&exercise.ideas) {
+                    lines.push(Line::raw(format!(" {name}: {idea}")));
+                }
+            }
             let mut solutions: Vec<&str> = names
                 .iter()
                 .filter_map(|n| crate::grade::solution(n))

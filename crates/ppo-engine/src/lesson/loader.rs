@@ -105,6 +105,10 @@ struct FrontMatter {
 pub struct ExerciseText {
     /// The function's name.
     pub name: String,
+    /// The idea the exercise tests, in one line (both languages): what the learner must
+    /// have understood from the lesson to solve it in a situation the lesson did not show.
+    #[serde(default)]
+    pub idea: Option<String>,
     /// Hints revealed one by one (`h` in the tutor), from gentle to nearly the answer.
     #[serde(default)]
     pub hints: Vec<String>,
@@ -156,6 +160,13 @@ pub fn check_reveals(dir: &str, texts: &[ExerciseText]) -> Result<(), LessonErro
         })
     };
     for t in texts {
+        if t.idea.as_deref().is_none_or(|i| i.trim().is_empty()) {
+            return bad(format!(
+                "exercise `{}` has no `idea`: state in one line the idea of the lesson it \
+                 tests (`idea = \"...\"`)",
+                t.name
+            ));
+        }
         let Some(reveals) = &t.reveals else {
             return bad(format!(
                 "exercise `{}` has no `reveals`: list the code anchors that compute what it \
@@ -243,6 +254,9 @@ fn same_exercises(dir: &str, en: &[ExerciseText], zh: &[ExerciseText]) -> Result
                 e.name
             ));
         }
+        if z.idea.as_deref().is_none_or(|i| i.trim().is_empty()) {
+            return bad(format!("{}: no `idea`; translate exercise.toml's", e.name));
+        }
         if e.hints.len() != z.hints.len() {
             return bad(format!(
                 "{}: {} hints, but exercise.toml has {}",
@@ -276,6 +290,10 @@ fn lesson_exercise(texts: &[ExerciseText]) -> Option<Exercise> {
         name: first.name.clone(),
         also: rest.iter().map(|t| t.name.clone()).collect(),
         hints: texts.iter().flat_map(|t| t.hints.iter().cloned()).collect(),
+        ideas: texts
+            .iter()
+            .map(|t| t.idea.clone().unwrap_or_default())
+            .collect(),
     })
 }
 

@@ -43,8 +43,10 @@ pub const RENUMBERED: &[(QuestionAt, QuestionAt)] = &[
 
 /// Questions replaced in place at numbering 2 (issue 27, section 3): the fixed-fact
 /// predictions that asked again what another lesson asks ("every ratio is 1 in epoch 1",
-/// one done per batch) or that a question depending on the run now asks better. An answer
-/// saved before belongs to the old question, and is forgotten.
+/// one done per batch) or that a question depending on the run now asks better; and
+/// (section 5) the hyper-parameter recap's questions on the critic's rate and on epochs and
+/// ε, now questions on that lesson's own one-knob experiments. An answer saved before
+/// belongs to the old question, and is forgotten.
 pub const REPLACED: &[QuestionAt] = &[
     ("what-is-ppo", 3),
     ("policy-gradient", 4),
@@ -52,6 +54,8 @@ pub const REPLACED: &[QuestionAt] = &[
     ("ratio", 2),
     ("clipping", 5),
     ("losses", 1),
+    ("hyperparameters", 3),
+    ("hyperparameters", 4),
     ("beyond-the-seed", 3),
     ("continuous-actions", 3),
     ("pendulum", 2),
@@ -359,14 +363,19 @@ mod tests {
         ]
         .into();
         assert_eq!((p.quiz, p.quiz_numbering), (kept, QUIZ_NUMBERING));
-        // Every replaced question exists, and asks about the run (its prompt shows givens).
+        // Every replaced question exists. Section 3's ask about the run (their prompts show
+        // givens); section 5's, lesson 14's, about that lesson's experiments.
         let course = Course::embedded_in(crate::i18n::Lang::En)?;
         for (id, n) in REPLACED {
             let q = course
                 .get(id)
                 .and_then(|l| l.quiz.get(n - 1))
                 .ok_or(format!("{id}#{n}"))?;
-            assert!(q.prompt.contains("{{"), "{id}#{n}: {}", q.prompt);
+            if *id == "hyperparameters" {
+                assert!(q.prompt.contains("five seeds"), "{id}#{n}: {}", q.prompt);
+            } else {
+                assert!(q.prompt.contains("{{"), "{id}#{n}: {}", q.prompt);
+            }
         }
         Ok(())
     }
@@ -383,11 +392,11 @@ mod tests {
         p.lessons_done.insert("no-such-lesson".into());
         p.lessons_done.insert(first.id.clone());
         p.exercises_done.insert("no_such_exercise".into());
-        p.exercises_done.insert("td_target".into());
+        p.exercises_done.insert("n_step_target".into());
         p.record_quiz("no-such-lesson", 1, true);
         p.record_quiz(&first.id, first.quiz.len() + 1, true);
         p.record_quiz(&first.id, 1, true);
-        assert_eq!(p.retain_known(&course, Some(&["td_target"])), 4);
+        assert_eq!(p.retain_known(&course, Some(&["n_step_target"])), 4);
         assert_eq!(p.lessons_done.len(), 1);
         assert_eq!(p.exercises_done.len(), 1);
         assert_eq!(p.quiz.len(), 1);

@@ -4,8 +4,8 @@
 //! Every `[[exercise]]` of a lesson's `exercise.toml` declares `reveals`, the code anchors
 //! that compute what it asks. Where the answer is a few lines of a bigger anchor, those
 //! lines are wrapped in a nested anchor and only it is declared, so the rest stays
-//! visible. A region declared by several exercises (the candle ratio is both `ratio`'s and
-//! `ppo_losses`'s answer) opens once all of them are passed.
+//! visible. A region declared by several exercises (the candle ratio is part of both
+//! `importance_weighted_mean`'s and `ppo_losses`'s answers) opens once all of them are passed.
 //!
 //! A face that shows a step's anchor asks [`listing`] with what the learner has passed.
 //! Each declared region not yet open becomes one placeholder row that names the exercises
@@ -17,15 +17,17 @@
 //! ```
 //! use ppo_engine::lesson::reveal::{Row, listing};
 //!
-//! // Nothing passed: the TD target's line is a note, the critic's line stays.
-//! let before = listing("td_target", &|_| false).ok_or("no anchor")?;
-//! assert!(before.text().contains("next_values"));
-//! assert!(!before.text().contains("td_target = "));
-//! assert!(matches!(&before.rows[1], Row::Hidden { by, .. } if by[0].exercise == "td_target"));
-//! // Once `td_target` is passed, the whole anchor shows.
-//! let after = listing("td_target", &|e| e == "td_target").ok_or("no anchor")?;
-//! assert!(after.text().contains("let td_target = "));
-//! assert_eq!(after.shown[0].exercise, "td_target");
+//! // Nothing passed: GAE's backward loop is a note, the function's signature stays.
+//! let before = listing("compute_advantage", &|_| false).ok_or("no anchor")?;
+//! assert!(before.text().contains("pub fn compute_advantage"));
+//! assert!(!before.text().contains("coef * adv"));
+//! assert!(before.rows.iter().any(
+//!     |r| matches!(r, Row::Hidden { by, .. } if by[0].exercise == "compute_advantage")
+//! ));
+//! // Once `compute_advantage` is passed, the whole anchor shows.
+//! let after = listing("compute_advantage", &|e| e == "compute_advantage").ok_or("no anchor")?;
+//! assert!(after.text().contains("adv = coef * adv + delta"));
+//! assert_eq!(after.shown[0].exercise, "compute_advantage");
 //! # Ok::<(), &str>(())
 //! ```
 
@@ -38,11 +40,11 @@ use crate::i18n::Lang;
 /// An exercise, as a gate on the code it gives away.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Gate {
-    /// The exercise's name (`td_target`).
+    /// The exercise's name (`compute_advantage`).
     pub exercise: String,
-    /// The order of the lesson that asks it (7).
+    /// The order of the lesson that asks it (8).
     pub lesson: u32,
-    /// That lesson's folder (`07-td-target`).
+    /// That lesson's folder (`08-gae`).
     pub folder: String,
 }
 
@@ -213,7 +215,7 @@ pub fn listing(name: &str, passed: &dyn Fn(&str) -> bool) -> Option<Listing> {
     Some(Listing { path, rows, shown })
 }
 
-/// What a hidden region says instead of its code: "solve exercise `td_target` (lesson 7)
+/// What a hidden region says instead of its code: "solve exercise `compute_advantage` (lesson 8)
 /// to see the crate's version", in the current language.
 #[must_use]
 pub fn note(by: &[Gate]) -> String {
@@ -248,11 +250,12 @@ mod tests {
             .iter()
             .map(|g| g.exercise.as_str())
             .collect();
-        assert_eq!(gates, ["ratio", "ppo_losses"]);
-        let only_ratio = listing("ratio", &|e| e == "ratio").ok_or("no anchor")?;
-        assert_eq!(only_ratio.rows.len(), 1);
-        assert_eq!(only_ratio.hidden()[0].exercise, "ppo_losses");
-        let both = listing("ratio", &|e| e == "ratio" || e == "ppo_losses").ok_or("no anchor")?;
+        assert_eq!(gates, ["importance_weighted_mean", "ppo_losses"]);
+        let first = "importance_weighted_mean";
+        let only_first = listing("ratio", &|e| e == first).ok_or("no anchor")?;
+        assert_eq!(only_first.rows.len(), 1);
+        assert_eq!(only_first.hidden()[0].exercise, "ppo_losses");
+        let both = listing("ratio", &|e| e == first || e == "ppo_losses").ok_or("no anchor")?;
         assert!(both.text().contains(".exp()"), "{}", both.text());
         assert!(both.hidden().is_empty());
         Ok(())
@@ -284,18 +287,18 @@ mod tests {
             folder: String::new(),
         };
         assert_eq!(
-            note(&[gate("td_target", 7)]),
-            "solve exercise `td_target` (lesson 7) to see the crate's version"
+            note(&[gate("n_step_target", 7)]),
+            "solve exercise `n_step_target` (lesson 7) to see the crate's version"
         );
         assert_eq!(
-            note(&[gate("actor_loss", 10), gate("ppo_losses", 11)]),
-            "solve exercises `actor_loss` (lesson 10) and `ppo_losses` (lesson 11) to see the \
-             crate's version"
+            note(&[gate("zero_gradient_rows", 10), gate("ppo_losses", 11)]),
+            "solve exercises `zero_gradient_rows` (lesson 10) and `ppo_losses` (lesson 11) to \
+             see the crate's version"
         );
         let _zh = Lang::Zh.scoped();
         assert_eq!(
-            note(&[gate("td_target", 7)]),
-            "完成练习 `td_target`（第 7 课）后即可看到本库的写法"
+            note(&[gate("n_step_target", 7)]),
+            "完成练习 `n_step_target`（第 7 课）后即可看到本库的写法"
         );
     }
 }

@@ -1,0 +1,14 @@
+pub fn diag_gaussian_log_prob(actions: &[f32], mu: &[f32], log_std: &[f32], dim: usize) -> Vec<f32> {
+    let n = actions.len() / dim;
+    let mut out = Vec::new();
+    for i in 0..n {
+        let mut total = 0.0;
+        for d in 0..dim {
+            let var = log_std[d].exp() * log_std[d].exp();
+            let diff = actions[i * dim + d] - mu[i * dim + d];
+            total += -(diff * diff) / (2.0 * var) - var.ln() - 0.918_938_5;
+        }
+        out.push(total);
+    }
+    out
+}
