@@ -640,10 +640,11 @@ fn the_entropy_starts_at_even_odds_and_falls() -> TestResult {
     Ok(())
 }
 
-/// Every clip-lab experiment over seeds 0–4, 500 episodes each (the lab caches runs, so the
-/// base arm trains once for all five).
+/// Every clip-lab experiment (lessons 4 and 12) over seeds 0–4, 500 episodes each (the lab
+/// caches runs, so the base arm trains once for all five).
 fn lab_runs() -> Result<Vec<LabResult>, String> {
-    Experiment::ALL
+    use Experiment::{ActorLr, Epochs, Eps, Reinforce, TargetKl};
+    [Eps, Epochs, ActorLr, TargetKl, Reinforce]
         .iter()
         .map(|&e| {
             lab::run(e, &PpoConfig::default(), &[0, 1, 2, 3, 4], 2, |_, _| {})
@@ -661,7 +662,7 @@ fn first_500(arm: &ArmResult) -> Vec<usize> {
         .collect()
 }
 
-/// Lessons 4, 12 and 14 and the README: what every experiment of the clip lab shows.
+/// Lessons 4 and 12 and the README: what every experiment of the clip lab shows.
 #[test]
 #[cfg_attr(
     not(feature = "full-tests"),
@@ -921,44 +922,6 @@ fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
         pg_text,
         pg_file,
         &format!("between episode {rl} and {rh} on the five seeds, PPO's between {pl} and {ph}"),
-    );
-
-    // Lesson 14's recap quotes the same runs.
-    let hp_file = "lessons/14-hyperparameters/lesson.md";
-    let hp = include_str!("../lessons/14-hyperparameters/lesson.md");
-    let ms = |a: &ArmResult| {
-        let (m, s) = a.final_mean_std();
-        format!("{m:.1} ± {s:.1}")
-    };
-    says(
-        hp,
-        hp_file,
-        &format!(
-            "five seeds at {} over their last 50 episodes, one of them at {:.1}, against {} at the seed's rate",
-            ms(big),
-            big.worst_final(),
-            ms(base)
-        ),
-    );
-    says(
-        hp,
-        hp_file,
-        &format!(
-            "1 epoch ended at {} and 40 epochs at {}, against {} for ten",
-            ms(one),
-            ms(forty),
-            ms(ten)
-        ),
-    );
-    says(
-        hp,
-        hp_file,
-        &format!(
-            "ε = 0.05 ended at {} and no clip at {}, against {} for 0.2",
-            ms(narrow),
-            ms(none),
-            ms(base)
-        ),
     );
     Ok(())
 }
@@ -1327,5 +1290,288 @@ fn the_pendulum_lesson_shows_the_seed_that_fell_behind() -> TestResult {
         ),
     );
     assert!(*sigma < others_sigma.0, "the lowest of the five");
+    Ok(())
+}
+
+// ---- Lesson 14 (hyperparameters): one knob at a time, predicted before each run. ----
+
+/// The hyper-parameter lesson's experiments over seeds 0–4, 500 episodes each, base first.
+fn knob_runs() -> Result<Vec<LabResult>, String> {
+    use Experiment::{CriticLr, Gamma, HiddenDim, Lmbda};
+    [CriticLr, HiddenDim, Gamma, Lmbda]
+        .iter()
+        .map(|&e| {
+            lab::run(e, &PpoConfig::default(), &[0, 1, 2, 3, 4], 2, |_, _| {})
+                .map_err(|err| err.to_string())
+        })
+        .collect()
+}
+
+/// Weights and biases of the actor (4 → h → 2) and the critic (4 → h → 1).
+fn parameters(h: usize) -> (usize, usize) {
+    (4 * h + h + h * 2 + 2, 4 * h + h + h + 1)
+}
+
+/// The lowest and the highest of `v`.
+fn span_of(v: &[usize]) -> (usize, usize) {
+    (
+        v.iter().copied().min().unwrap_or(0),
+        v.iter().copied().max().unwrap_or(0),
+    )
+}
+
+/// Over the last 50 episodes of seeds 0–4 with discount `gamma`: how many ended with the cart
+/// past the edge of the track (|x| > 2.4), and how many episodes that is.
+fn cart_exits_at_the_end(gamma: f64) -> Result<(usize, usize), Box<dyn std::error::Error>> {
+    let (mut exits, mut episodes) = (0, 0);
+    for seed in 0..SEEDS {
+        let config = PpoConfig {
+            gamma,
+            ..PpoConfig::default()
+        };
+        let last = config.num_episodes - 50;
+        let mut trainer = Trainer::new(config, seed)?;
+        while let Some(report) = trainer.next_episode()? {
+            if report.episode < last {
+                continue;
+            }
+            episodes += 1;
+            let ended = report.terminated.last().copied().unwrap_or(false);
+            let x = report.trace.next_states.last().map_or(0.0, |s| s[0]);
+            if ended && x.abs() > 2.4 {
+                exits += 1;
+            }
+        }
+    }
+    Ok((exits, episodes))
+}
+
+/// Lesson 14: what changing critic_lr, hidden_dim, gamma or lmbda alone does over seeds 0–4,
+/// 500 episodes each (every arm's summary, and the figures each step's folded results and
+/// the quiz quote); and that each step's prediction has the answer the lesson gives.
+#[test]
+#[cfg_attr(
+    not(feature = "full-tests"),
+    ignore = "full tier (cargo test --features full-tests): four one-knob experiments over five seeds, about 40 s"
+)]
+fn the_hyperparameter_lesson_states_what_each_knob_does() -> TestResult {
+    let labs = knob_runs()?;
+    let file = "lessons/14-hyperparameters/lesson.md";
+    let text = include_str!("../lessons/14-hyperparameters/lesson.md");
+    let quiz_file = "lessons/14-hyperparameters/quiz.toml";
+    let quiz = include_str!("../lessons/14-hyperparameters/quiz.toml");
+    for l in &labs {
+        for arm in &l.arms {
+            says(text, file, &arm.summary());
+        }
+    }
+    let [critic, hidden, gamma, lmbda] = &labs[..] else {
+        return Err("four experiments".into());
+    };
+    let top = |a: &ArmResult| a.final_mean_std();
+    let level = |a: &ArmResult, b: &ArmResult| (top(a).0 - top(b).0).abs() < top(a).1 + top(b).1;
+    let later =
+        |a: &ArmResult, b: &ArmResult| first_500(a).iter().zip(first_500(b)).all(|(x, y)| *x > y);
+    let every_reached_500 = |a: &ArmResult| a.returns.iter().all(|r| r.iter().any(|&x| x >= 500.0));
+    let mean_ms = |a: &ArmResult| format!("{:.1} ± {:.1}", top(a).0, top(a).1);
+
+    // critic_lr / 10: (b) more slowly, and level at the end; the actor's steps unchanged.
+    let [base, slow] = &critic.arms[..] else {
+        return Err("critic-lr has two arms".into());
+    };
+    assert!(later(slow, base) && level(slow, base) && every_reached_500(slow));
+    let (b, s) = (span_of(&first_500(base)), span_of(&first_500(slow)));
+    let against = format!(
+        "between episode {} and {}, against {} and {}",
+        s.0, s.1, b.0, b.1
+    );
+    says(text, file, &against);
+    says(quiz, quiz_file, &against);
+    let (bu, su) = (base.mean_updates(), slow.mean_updates());
+    says(
+        text,
+        file,
+        &format!(
+            "approx_kl is {:.4} against {:.4}",
+            su.approx_kl, bu.approx_kl
+        ),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!("approx_kl {:.4} against {:.4}", su.approx_kl, bu.approx_kl),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!("ended at {:.1} or above", slow.worst_final()),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!(
+            "reached 400 at episode {} instead of {}",
+            slow.first_reaching(400.0)
+                .ok_or("critic_lr 1e-3 reaches 400")?,
+            base.first_reaching(400.0).ok_or("the seed reaches 400")?
+        ),
+    );
+
+    // hidden_dim = 16: (c) still 500, later on every seed; each update moves the policy less.
+    let [wide, narrow] = &hidden.arms[..] else {
+        return Err("hidden-dim has two arms".into());
+    };
+    let ((aw, cw), (an, cn)) = (
+        parameters(wide.config.hidden_dim),
+        parameters(narrow.config.hidden_dim),
+    );
+    says(
+        text,
+        file,
+        &format!(
+            "With 128 the actor has {aw} weights and biases and the critic {cw}; with 16 they have {an} and {cn}"
+        ),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!("({an} actor parameters instead of {aw})"),
+    );
+    assert!(every_reached_500(narrow) && later(narrow, wide));
+    let (w, n) = (span_of(&first_500(wide)), span_of(&first_500(narrow)));
+    says(
+        text,
+        file,
+        &format!(
+            "between episode {} and {}, but every one later than with 128 ({} to {})",
+            n.0, n.1, w.0, w.1
+        ),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!(
+            "(between episode {} and {}, against {} and {})",
+            n.0, n.1, w.0, w.1
+        ),
+    );
+    let (wu, nu) = (wide.mean_updates(), narrow.mean_updates());
+    assert!(nu.approx_kl < 0.5 * wu.approx_kl);
+    says(
+        text,
+        file,
+        &format!(
+            "approx_kl is {:.4} against {:.4}, and its largest |r − 1| {:.3} against {:.3}",
+            nu.approx_kl, wu.approx_kl, nu.max_ratio_deviation, wu.max_ratio_deviation
+        ),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!(
+            "approx_kl {:.4} against {:.4}, the largest |r − 1| {:.3} against {:.3}",
+            nu.approx_kl, wu.approx_kl, nu.max_ratio_deviation, wu.max_ratio_deviation
+        ),
+    );
+    says(quiz, quiz_file, &format!("ended at {}", mean_ms(narrow)));
+
+    // gamma: (b) 0.9 reaches 500 on every seed but holds it on none; 0.999 level with 0.98.
+    let [seed_gamma, short, long] = &gamma.arms[..] else {
+        return Err("gamma has three arms".into());
+    };
+    let horizon = |g: f64| format!("{:.0}", 1.0 / (1.0 - g));
+    says(
+        text,
+        file,
+        &format!(
+            "γ = {}, a horizon of {} steps, and γ = {}, a horizon of {} steps",
+            short.config.gamma,
+            horizon(short.config.gamma),
+            long.config.gamma,
+            horizon(long.config.gamma)
+        ),
+    );
+    assert!(every_reached_500(short) && short.finals.iter().all(|&f| f < 400.0));
+    assert!(level(long, seed_gamma) && !level(short, seed_gamma));
+    let sg = span_of(&first_500(short));
+    says(
+        text,
+        file,
+        &format!("the first between episode {} and {}", sg.0, sg.1),
+    );
+    let (reach_long, reach_seed) = (
+        long.first_reaching(400.0).ok_or("γ = 0.999 reaches 400")?,
+        seed_gamma
+            .first_reaching(400.0)
+            .ok_or("the seed reaches 400")?,
+    );
+    assert!(reach_long < reach_seed, "γ = 0.999 reaches 400 earlier");
+    // Why 0.9 falls back: the cart runs off the track, which the seed's γ never lets happen.
+    let ((exits, episodes), (seed_exits, _)) = (
+        cart_exits_at_the_end(short.config.gamma)?,
+        cart_exits_at_the_end(seed_gamma.config.gamma)?,
+    );
+    assert!(exits > 9 * episodes / 10, "{exits} of {episodes}");
+    says(
+        text,
+        file,
+        &format!(
+            "{exits} of the {episodes} ended with the cart past the edge of the track (|x| > 2.4), against {seed_exits} with γ = 0.98"
+        ),
+    );
+    says(
+        text,
+        file,
+        &format!("(0.9^30 ≈ {:.2})", short.config.gamma.powi(30)),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!("they ended at {}", mean_ms(short)),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!(
+            "γ = 0.999 ended at {}, level with 0.98, and its mean curve reached 400 earlier (episode {reach_long} against {reach_seed})",
+            mean_ms(long)
+        ),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!("({} against {})", mean_ms(long), mean_ms(seed_gamma)),
+    );
+
+    // lmbda: (a) 0.5 ends lowest and widest; 1 costs less; both below 0.95.
+    let [seed_lmbda, half, one] = &lmbda.arms[..] else {
+        return Err("lmbda has three arms".into());
+    };
+    assert!(top(half).0 < top(one).0 && top(one).0 < top(seed_lmbda).0);
+    assert!(top(half).1 > top(one).1 && top(one).1 > top(seed_lmbda).1);
+    let (hu, su) = (half.mean_updates(), seed_lmbda.mean_updates());
+    let times = hu.approx_kl / su.approx_kl;
+    assert!((2.5..3.5).contains(&times), "about three times: {times}");
+    says(
+        text,
+        file,
+        &format!(
+            "(approx_kl {:.4} against {:.4}, clip fraction {:.3} against {:.3})",
+            hu.approx_kl, su.approx_kl, hu.clip_fraction, su.clip_fraction
+        ),
+    );
+    says(
+        quiz,
+        quiz_file,
+        &format!("approx_kl {:.4} against {:.4}", hu.approx_kl, su.approx_kl),
+    );
+    for arm in [half, one] {
+        says(
+            quiz,
+            quiz_file,
+            &format!("{}, worst seed {:.1}", mean_ms(arm), arm.worst_final()),
+        );
+    }
+    says(quiz, quiz_file, &format!("0.95's {}", mean_ms(seed_lmbda)));
     Ok(())
 }

@@ -21,7 +21,8 @@ use crate::tr;
 /// Arguments of `ppo-tutor lab`.
 #[derive(Debug, Args)]
 pub struct LabArgs {
-    /// The experiment: eps, epochs, actor-lr, target-kl or reinforce (omit to list them).
+    /// The experiment: eps, epochs, actor-lr, target-kl, reinforce, critic-lr, hidden-dim,
+    /// gamma or lmbda (omit to list them).
     #[arg(value_parser = parse_experiment)]
     pub experiment: Option<Experiment>,
     /// The seeds every setting runs: numbers and ranges, e.g. 0-4 or 0,3,7.

@@ -367,8 +367,8 @@ pub fn snapshot(
     Ok(Session::run(config, seed, episodes)?)
 }
 
-/// Runs the clip-lab experiment called `name` (`eps`, `epochs`, `actor-lr`, `target-kl`,
-/// `reinforce`: see [`crate::ppo::lab::Experiment`]) with the seed's settings, `episodes`
+/// Runs the lab experiment called `name` (`eps`, `epochs`, `actor-lr`, `target-kl`,
+/// `reinforce`, and lesson 14's `critic-lr`, `hidden-dim`, `gamma`, `lmbda`: see [`crate::ppo::lab::Experiment`]) with the seed's settings, `episodes`
 /// per run, once per seed of `seeds`, on every core: what `ppo-tutor lab NAME` and the
 /// terminal app's `x` run. Shown in a notebook as its table and its figure.
 ///

@@ -1,6 +1,8 @@
 //! The clip lab: one of PPO's knobs changed at a time, every arm trained over the same
 //! seeds, so that a difference between arms is a difference between settings and not the
-//! luck of one seed.
+//! luck of one seed. Lesson 12 runs the experiments on the clip and the actor's steps,
+//! lesson 4 the comparison with REINFORCE, and lesson 14 one experiment per remaining
+//! setting (critic_lr, hidden_dim, gamma, lmbda), each predicted before it runs.
 //!
 //! An [`Experiment`] lists its arms; the first is always the base configuration (the seed's
 //! settings unless the caller changed them). [`run`] trains every `(arm, seed)` pair on a
@@ -33,7 +35,8 @@ use super::train::{EpisodeReport, mean_last};
 /// The returns each seed's final score averages.
 pub const LAST: usize = 50;
 
-/// The experiments of the clip lab, and the policy-gradient lesson's comparison.
+/// The experiments of the clip lab, the policy-gradient lesson's comparison, and the
+/// hyper-parameter lesson's one-knob runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Experiment {
@@ -49,6 +52,14 @@ pub enum Experiment {
     TargetKl,
     /// PPO (the seed) against REINFORCE with a baseline.
     Reinforce,
+    /// The critic's learning rate: 1e-2 (the seed) and a tenth of that.
+    CriticLr,
+    /// The width of both networks' hidden layer: 128 (the seed) and 16.
+    HiddenDim,
+    /// The discount factor γ: 0.98 (the seed), 0.9 and 0.999.
+    Gamma,
+    /// GAE's λ: 0.95 (the seed), 0.5 and 1.
+    Lmbda,
 }
 
 /// One setting of an experiment.
@@ -62,16 +73,20 @@ pub struct Arm {
 
 impl Experiment {
     /// Every experiment, in the order the lessons use them.
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 9] = [
         Self::Eps,
         Self::Epochs,
         Self::ActorLr,
         Self::TargetKl,
         Self::Reinforce,
+        Self::CriticLr,
+        Self::HiddenDim,
+        Self::Gamma,
+        Self::Lmbda,
     ];
 
     /// The name on the command line and in lessons (`eps`, `epochs`, `actor-lr`,
-    /// `target-kl`, `reinforce`).
+    /// `target-kl`, `reinforce`, `critic-lr`, `hidden-dim`, `gamma`, `lmbda`).
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -80,6 +95,10 @@ impl Experiment {
             Self::ActorLr => "actor-lr",
             Self::TargetKl => "target-kl",
             Self::Reinforce => "reinforce",
+            Self::CriticLr => "critic-lr",
+            Self::HiddenDim => "hidden-dim",
+            Self::Gamma => "gamma",
+            Self::Lmbda => "lmbda",
         }
     }
 
@@ -112,6 +131,22 @@ impl Experiment {
             Self::Reinforce => t(
                 "What do the ratio, the clip and the epochs buy over REINFORCE?",
                 "与 REINFORCE 相比，比率、截断和多轮训练带来了什么？",
+            ),
+            Self::CriticLr => t(
+                "What does a ten times smaller critic step do to the actor's learning?",
+                "价值网络的步长缩小到十分之一，策略网络的学习会怎样？",
+            ),
+            Self::HiddenDim => t(
+                "Does CartPole need 128 hidden units, or do 16 do?",
+                "车杆任务需要 128 个隐藏单元吗？16 个够不够？",
+            ),
+            Self::Gamma => t(
+                "What does the horizon 1/(1 − γ) do, shorter or longer than the seed's 50 steps?",
+                "视野 1/(1 − γ) 比原教程代码的 50 步更短或更长，会怎样？",
+            ),
+            Self::Lmbda => t(
+                "What does GAE's λ change: trusting the critic more, or less?",
+                "GAE 的 λ 改变了什么：更信任价值网络，还是更不信任？",
             ),
         }
     }
@@ -185,6 +220,27 @@ impl Experiment {
                     t("REINFORCE + baseline", "REINFORCE + 基线").into(),
                     with(&|c| c.algorithm = Algorithm::Reinforce),
                 ),
+            ],
+            Self::CriticLr => vec![
+                first(format!("critic_lr = {:.0e}", base.critic_lr)),
+                arm(
+                    format!("critic_lr = {:.0e}", base.critic_lr / 10.0),
+                    with(&|c| c.critic_lr /= 10.0),
+                ),
+            ],
+            Self::HiddenDim => vec![
+                first(format!("hidden_dim = {}", base.hidden_dim)),
+                arm("hidden_dim = 16".into(), with(&|c| c.hidden_dim = 16)),
+            ],
+            Self::Gamma => vec![
+                first(format!("gamma = {}", base.gamma)),
+                arm("gamma = 0.9".into(), with(&|c| c.gamma = 0.9)),
+                arm("gamma = 0.999".into(), with(&|c| c.gamma = 0.999)),
+            ],
+            Self::Lmbda => vec![
+                first(format!("lmbda = {}", base.lmbda)),
+                arm("lmbda = 0.5".into(), with(&|c| c.lmbda = 0.5)),
+                arm("lmbda = 1".into(), with(&|c| c.lmbda = 1.0)),
             ],
         }
     }
