@@ -44,89 +44,98 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(14);
-        /// The TD target of each step: what state `s_i` turned out to be worth, judged one step
-        /// later. It combines the one reward actually received with the critic's own estimate of
-        /// what follows, so it is better informed than the critic's prediction `V(s_i)`. It is the
-        /// number the critic is trained towards (lesson 11), and the seed's `td_target`.
+        /// The n-step target of each step of a rollout: what state `s_t` turned out to be worth,
+        /// judged `n` steps later instead of one. The seed's TD target waits one step: one real
+        /// reward, then the critic's guess. Here you wait up to `n` steps, collecting the real
+        /// rewards on the way, and only then hand over to the critic. With `n = 1` your function
+        /// gives the seed's `td_target`; with `n` as long as the rollout, the critic only speaks for
+        /// what lies beyond the rollout's last step.
         ///
-        /// - `rewards[i]` is the reward received on step `i` (1.0 in CartPole; the grader also uses
-        ///   other values, negative ones included).
-        /// - `next_values[i]` is the critic's estimate `V(s_{i+1})` for the state that step `i`
-        ///   landed in.
-        /// - `dones[i]` is true when the episode ended on step `i`. Then nothing comes after the
-        ///   step, whatever `next_values[i]` says. In the seed only the last step is done; the
-        ///   grader also tries episodes where every step is done.
+        /// - `rewards[t]` is the reward received on step `t`, for `t` in `0..T` (1.0 in CartPole;
+        ///   the grader also uses other values, negative ones included).
+        /// - `values` has `T + 1` entries: `values[t]` is the critic's estimate `V(s_t)` of the state
+        ///   step `t` started in, and `values[T]` is its estimate of the state after the last step,
+        ///   for a rollout that stops in the middle of an episode.
+        /// - `dones[t]` is true when the episode *terminated* on step `t`: nothing follows it, and
+        ///   the next row, if any, is the first step of a new episode. A rollout may hold several
+        ///   episodes; the grader also tries rollouts where every step is done, and ones with no done
+        ///   at all.
         /// - `gamma` is the discount factor γ (0.98 in the seed).
+        /// - `n >= 1` is how many real rewards a target may collect at most. It can be larger than
+        ///   the rollout: near the rollout's end fewer steps remain, and a target uses what there is.
         ///
-        /// The three slices have the same length, one row per step, at least one. Return one target
-        /// per row, in the same order. The grader compares in f32, to about 1e-5.
+        /// `rewards` and `dones` have the same length `T >= 1`. Return one target per step, `T` in
+        /// all, in order. A target never mixes two episodes: what happens after a termination
+        /// belongs to someone else's return. The grader compares in f32, to about 1e-5.
         ///
-        /// Taught in lesson 7 (td-target), step 2 "The TD target"; step 3 explains the done flag.
-        pub fn td_target(rewards: &[f32], next_values: &[f32], dones: &[bool], gamma: f32) -> Vec<f32> {
+        /// Taught in lesson 7 (td-target), step 2 "The TD target" and step 3 on the done flag.
+        pub fn n_step_target(
+            rewards: &[f32],
+            values: &[f32],
+            dones: &[bool],
+            gamma: f32,
+            n: usize,
+        ) -> Vec<f32> {
             // TODO: your code here; `h` in the tutor reveals hints one by one.
-            // What is the future worth once the pole has fallen?
-            todo!()
-        }
-
-        /// The TD error of each step: how much better step `i` went than the critic expected from
-        /// state `s_i`. Positive means a pleasant surprise (a good action, or a critic that
-        /// undervalues `s_i`); negative means things went worse than predicted. Lesson 8 builds the
-        /// advantages from these numbers. It is the seed's `td_delta`.
-        ///
-        /// - `td_target[i]` is the TD target of step `i`, the better-informed estimate that
-        ///   `td_target` above computes.
-        /// - `values[i]` is the critic's prediction `V(s_i)` for the state step `i` started in.
-        ///
-        /// Both slices have the same length, at least one. Return one error per row, in the same
-        /// order. Mind the sign: it must be positive when the step went better than predicted.
-        ///
-        /// Taught in lesson 7 (td-target), step 4 "The TD error".
-        pub fn td_delta(td_target: &[f32], values: &[f32]) -> Vec<f32> {
-            // TODO: your code here. Of the two numbers in a row, which one knows more?
+            // Standing at step t, how many real rewards can you collect before you must stop:
+            // because you have collected n, because the rollout ends, or because the episode does?
             todo!()
         }
         nb.cell(15);
-        nb.show((&Shown(&(ppo_grade::in_process::td_target(td_target)))).outputs());
-        nb.cell(16);
-        nb.show((&Shown(&(ppo_grade::in_process::td_delta(td_delta)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::n_step_target(n_step_target)))).outputs());
     }
-    nb.cell(19);
+    nb.cell(17);
     use ppo_engine::lesson::quiz;
-    nb.cell(21);
+    nb.cell(19);
     nb.show((&Shown(&(quiz::predict("td-target", 1, "?", &snap)))).outputs());
-    nb.cell(23);
+    nb.cell(21);
     nb.show((&Shown(&(quiz::answer("td-target", 2, '?')))).outputs());
-    nb.cell(25);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::answer("td-target", 3, '?')))).outputs());
-    nb.cell(27);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::answer("td-target", 4, '?')))).outputs());
-    nb.cell(29);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::ask("td-target", 5, &snap)))).outputs());
-    nb.cell(30);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::predict("td-target", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `td_target[i] = rewards[i] + gamma * next_values[i] * (1 - dones[i])`.
-        pub fn td_target(rewards: &[f32], next_values: &[f32], dones: &[bool], gamma: f32) -> Vec<f32> {
-            rewards
-                .iter()
-                .zip(next_values)
-                .zip(dones)
-                .map(|((&r, &v), &done)| {
-                    let not_done = if done { 0.0 } else { 1.0 };
-                    r + gamma * v * not_done
-                })
-                .collect()
+        /// For each step `t`: up to `n` real rewards from `t` on, each discounted once per step it
+        /// lies ahead, then the critic's `V` of the state reached, discounted once more per step,
+        /// unless the episode terminated on the way (then the sum stops after that step's reward,
+        /// and nothing is bootstrapped). The rollout's end shortens the window to what remains.
+        pub fn n_step_target(
+            rewards: &[f32],
+            values: &[f32],
+            dones: &[bool],
+            gamma: f32,
+            n: usize,
+        ) -> Vec<f32> {
+            let steps = rewards.len();
+            let mut targets = Vec::with_capacity(steps);
+            for t in 0..steps {
+                let window = n.min(steps - t);
+                let mut target = 0.0_f32;
+                let mut discount = 1.0_f32;
+                let mut terminated = false;
+                for k in 0..window {
+                    target += discount * rewards[t + k];
+                    discount *= gamma;
+                    if dones[t + k] {
+                        terminated = true;
+                        break;
+                    }
+                }
+                if !terminated {
+                    // `discount` is now γ^window: the state reached lies `window` steps ahead.
+                    target += discount * values[t + window];
+                }
+                targets.push(target);
+            }
+            targets
         }
-
-        /// `td_delta[i] = td_target[i] - values[i]`: how much better the step went than the critic
-        /// predicted.
-        pub fn td_delta(td_target: &[f32], values: &[f32]) -> Vec<f32> {
-            td_target.iter().zip(values).map(|(t, v)| t - v).collect()
-        }
-        nb.passed("td_target", ppo_grade::in_process::td_target(td_target).passed());
-        nb.passed("td_delta", ppo_grade::in_process::td_delta(td_delta).passed());
+        nb.passed("n_step_target", ppo_grade::in_process::n_step_target(n_step_target).passed());
     }
     Ok(())
 }

@@ -57,82 +57,83 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(16);
-        /// The log-probability of the action actually taken on each step, under the policy that
-        /// produced `probs`. The ratio below, and with it PPO's loss, is built from these numbers.
-        /// Computed once before the epochs, they are the seed's `old_log_probs`; inside the epochs,
-        /// its `log_probs`.
+        /// The mean return the *new* policy would get, estimated from steps the *old* policy played.
         ///
-        /// - `probs[i]` is `π(·|s_i)`, the actor's output for state `s_i`: the probabilities of
-        ///   CartPole's two actions, 0 (push left) and 1 (push right).
-        /// - `actions[i]` is the action taken on step `i`, 0 or 1.
+        /// The old policy visited some states and, in each, drew an action from its own
+        /// probabilities; you observed the return that followed. The new policy would pick those
+        /// same actions more or less often. Averaging the returns as they are answers for the old
+        /// policy, not the new one. Use the importance ratio of lesson 9 to correct the average, so
+        /// that it estimates the new policy's mean return on these states. (The states stay those
+        /// the old policy visited: only the choice of action is corrected.)
         ///
-        /// Both slices have the same length, at least one. Return one value per row, in the same
-        /// order. Every value is at most 0, since a probability is at most 1. "Log" means the natural
-        /// logarithm here, as in PyTorch. The grader includes near-certain and near-impossible actions
-        /// and compares in f32, to about 1e-5.
+        /// - `probs` holds the new policy's probabilities, row-major: `N` rows of `n_actions`
+        ///   entries, row `i` being `π_new(·|s_i)` for the state of sample `i`. `n_actions` is 2 in
+        ///   CartPole; the grader also uses up to 6.
+        /// - `actions[i]` is the action the old policy took in sample `i`, in `0..n_actions`.
+        /// - `old_log_probs[i]` is `log π_old(a_i|s_i)`, the old policy's log-probability of that
+        ///   action (natural logarithm), as the seed records it.
+        /// - `returns[i]` is the return observed after sample `i`'s action.
         ///
-        /// Taught in lesson 9 (ratio), step 1 "Log-probability of the action taken".
-        pub fn log_prob_of_actions(probs: &[[f32; 2]], actions: &[usize]) -> Vec<f32> {
+        /// `actions`, `old_log_probs` and `returns` have the same length `N >= 1`, and `probs` has
+        /// `N * n_actions` entries. Return a single number. When the new policy equals the old one,
+        /// the answer is the plain mean of the returns. The grader tries rare actions (a small old
+        /// probability) and compares to 1e-5 absolute and 1e-4 relative.
+        ///
+        /// Taught in lesson 9 (ratio), step 1 "Log-probability of the action taken" and step 3
+        /// "The ratio".
+        pub fn importance_weighted_mean(
+            probs: &[f32],
+            n_actions: usize,
+            actions: &[usize],
+            old_log_probs: &[f32],
+            returns: &[f32],
+        ) -> f32 {
             // TODO: your code here; `h` in the tutor reveals hints one by one.
-            // Each row holds two probabilities: which one belongs to this step?
-            todo!()
-        }
-
-        /// The importance ratio of each step: how much more likely (above 1) or less likely (below 1)
-        /// the current policy makes the action taken than the old policy that played the episode did.
-        /// A ratio of exactly 1 means no change for that row. PPO's clip works on this number
-        /// (lesson 10).
-        ///
-        /// - `log_probs[i]` is `log π_θ(a_i|s_i)`, the current policy's log-probability of the action
-        ///   taken on step `i`.
-        /// - `old_log_probs[i]` is `log π_θ_old(a_i|s_i)`, the same for the policy that played the
-        ///   episode; it stays fixed during the epochs.
-        ///
-        /// Both slices have the same length, at least one. Return one ratio per row, in the same
-        /// order; every ratio is positive. In the first epoch the two inputs are identical, and then
-        /// every ratio must come out as 1. The grader compares in f32, to about 1e-5.
-        ///
-        /// Taught in lesson 9 (ratio), step 3 "The ratio".
-        pub fn ratio(log_probs: &[f32], old_log_probs: &[f32]) -> Vec<f32> {
-            // TODO: your code here. You are given logarithms, but the ratio is between
-            // probabilities: what does a difference of two logarithms say about their numbers?
+            // An action the old policy took rarely but the new one likes: should its return count
+            // for more or for less than the others in your average?
             todo!()
         }
         nb.cell(17);
-        nb.show((&Shown(&(ppo_grade::in_process::ratio(ratio)))).outputs());
-        nb.cell(18);
-        nb.show((&Shown(&(ppo_grade::in_process::log_prob_of_actions(log_prob_of_actions)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::importance_weighted_mean(importance_weighted_mean)))).outputs());
     }
-    nb.cell(21);
+    nb.cell(20);
     use ppo_engine::lesson::quiz;
-    nb.cell(23);
+    nb.cell(22);
     nb.show((&Shown(&(quiz::predict("ratio", 1, "?", &snap)))).outputs());
-    nb.cell(25);
+    nb.cell(24);
     nb.show((&Shown(&(quiz::ask("ratio", 2, &snap)))).outputs());
-    nb.cell(26);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::predict("ratio", 2, "?", &snap)))).outputs());
-    nb.cell(28);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("ratio", 3, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("ratio", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `log(probs[i][actions[i]])`: the log-probability of the action taken in each row.
-        pub fn log_prob_of_actions(probs: &[[f32; 2]], actions: &[usize]) -> Vec<f32> {
-            probs.iter().zip(actions).map(|(p, &a)| p[a].ln()).collect()
-        }
-
-        /// `exp(log_probs[i] - old_log_probs[i])`: `π(a|s) / π_old(a|s)` per row.
-        pub fn ratio(log_probs: &[f32], old_log_probs: &[f32]) -> Vec<f32> {
-            log_probs
-                .iter()
+        /// `mean_i( π_new(a_i|s_i) / π_old(a_i|s_i) · returns[i] )`, with `π_new(a_i|s_i)` read from
+        /// row `i` of `probs` (row-major, `n_actions` columns) and `π_old(a_i|s_i)` given as a log.
+        pub fn importance_weighted_mean(
+            probs: &[f32],
+            n_actions: usize,
+            actions: &[usize],
+            old_log_probs: &[f32],
+            returns: &[f32],
+        ) -> f32 {
+            let rows = probs
+                .chunks(n_actions)
+                .zip(actions)
                 .zip(old_log_probs)
-                .map(|(new, old)| (new - old).exp())
-                .collect()
+                .zip(returns);
+            let mut weighted_sum = 0.0_f32;
+            for (((row, &action), &log_old), &ret) in rows {
+                let log_new = row[action].ln();
+                let weight = (log_new - log_old).exp();
+                weighted_sum += weight * ret;
+            }
+            weighted_sum / actions.len() as f32
         }
-        nb.passed("ratio", ppo_grade::in_process::ratio(ratio).passed());
-        nb.passed("log_prob_of_actions", ppo_grade::in_process::log_prob_of_actions(log_prob_of_actions).passed());
+        nb.passed("importance_weighted_mean", ppo_grade::in_process::importance_weighted_mean(importance_weighted_mean).passed());
     }
     Ok(())
 }

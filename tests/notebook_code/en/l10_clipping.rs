@@ -65,39 +65,11 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(17);
-        /// PPO's actor loss: the one number the optimizer minimises to improve the policy, the
-        /// seed's `actor_loss`.
-        ///
-        /// It rewards making actions with a positive advantage more likely and actions with a
-        /// negative advantage less likely, but only up to a band around a ratio of 1, `[1 − ε, 1 + ε]`.
-        /// Once a row's ratio has left the band in the direction its advantage wants, that row earns
-        /// no further credit. A row that moved the wrong way keeps its full penalty: the objective is
-        /// pessimistic.
-        ///
-        /// - `ratio[i]` is `π_θ(a_i|s_i) / π_old(a_i|s_i)` (lesson 9): above 1 when the current
-        ///   policy makes the action taken more likely than the policy that played it.
-        /// - `advantage[i]` is `Â_i`, how much better the action of step `i` turned out than
-        ///   expected (lesson 8); either sign.
-        /// - `eps` is the clip range ε (0.2 in the seed).
-        ///
-        /// Both slices have the same length, at least one. Return a single number. PPO maximises its
-        /// objective while the optimizer minimises, so mind the sign: a better policy gives a lower
-        /// loss. Like the seed's, the loss must not grow with the number of rows. The grader tries a
-        /// single step, only negative advantages and ratios outside the band, and compares to 1e-5
-        /// absolute and 1e-4 relative.
-        ///
-        /// Taught in lesson 10 (clipping), step 3 "Taking the minimum", after step 1 "Two
-        /// surrogates" and step 2 on the band around 1.
-        pub fn actor_loss(ratio: &[f32], advantage: &[f32], eps: f32) -> f32 {
-            // TODO: your code here; `h` in the tutor reveals hints one by one.
-            // A row with a positive advantage has a ratio of 1.5: how much credit should it get?
-            todo!()
-        }
-
         /// Which rows the clipped objective has stopped pushing on.
         ///
-        /// Each row contributes one term to the clipped surrogate PPO maximises (the term your
-        /// `actor_loss` averages, sign flipped). Return, for each row, `true` when that term's
+        /// Each row contributes one term to the clipped surrogate PPO maximises,
+        /// `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)` (the seed's actor loss is the mean of these terms,
+        /// sign flipped). Return, for each row, `true` when that term's
         /// derivative with respect to the row's ratio is zero, so that the update no longer moves
         /// the policy's probability of that row's action, and `false` when the gradient still flows.
         ///
@@ -116,11 +88,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             todo!()
         }
         nb.cell(18);
-        nb.show((&Shown(&(ppo_grade::in_process::actor_loss(actor_loss)))).outputs());
-        nb.cell(19);
         nb.show((&Shown(&(ppo_grade::in_process::zero_gradient_rows(zero_gradient_rows)))).outputs());
     }
-    nb.cell(21);
+    nb.cell(19);
     // Back to "Taking the minimum", now that your functions pass: min picks surr2 only where
     // surr2 < surr1, where the ratio left the band in the direction its advantage favours. Where
     // it left the band the other way, surr1 < surr2 and min keeps surr1.
@@ -128,34 +98,23 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let kept_surr1 = last.surr1.iter().zip(&last.surr2).filter(|(a, b)| a < b).count();
     println!("min(surr1, surr2) picked surr2 on {picked_surr2} of {} rows", last.surr1.len());
     println!("on {kept_surr1} other rows the ratio left the band against its advantage: min kept surr1");
-    nb.cell(23);
+    nb.cell(21);
     use ppo_engine::lesson::quiz;
-    nb.cell(25);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::answer("clipping", 1, '?')))).outputs());
-    nb.cell(27);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::answer("clipping", 2, '?')))).outputs());
-    nb.cell(29);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("clipping", 3, '?')))).outputs());
-    nb.cell(31);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("clipping", 4, '?')))).outputs());
-    nb.cell(33);
+    nb.cell(31);
     nb.show((&Shown(&(quiz::ask("clipping", 5, &snap)))).outputs());
-    nb.cell(34);
+    nb.cell(32);
     nb.show((&Shown(&(quiz::answer_live("clipping", 5, '?', &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `mean_i -min(ratio[i] * advantage[i], clamp(ratio[i], 1 - eps, 1 + eps) * advantage[i])`.
-        pub fn actor_loss(ratio: &[f32], advantage: &[f32], eps: f32) -> f32 {
-            let mut total = 0.0_f32;
-            for (&r, &a) in ratio.iter().zip(advantage) {
-                let surr1 = r * a;
-                let surr2 = r.clamp(1.0 - eps, 1.0 + eps) * a;
-                total += -surr1.min(surr2);
-            }
-            total / ratio.len() as f32
-        }
-
         /// Whether each row's term `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)` has zero derivative with
         /// respect to `r`, following PyTorch's autograd: `clamp` passes the gradient at its bounds,
         /// and `min` of two equal values passes half to each.
@@ -171,7 +130,6 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
                 })
                 .collect()
         }
-        nb.passed("actor_loss", ppo_grade::in_process::actor_loss(actor_loss).passed());
         nb.passed("zero_gradient_rows", ppo_grade::in_process::zero_gradient_rows(zero_gradient_rows).passed());
     }
     Ok(())

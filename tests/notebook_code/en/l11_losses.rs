@@ -61,27 +61,36 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(15);
-        /// The critic's loss: one number that says how far the critic's predictions are from their
-        /// TD targets over the whole episode. The critic learns by regression, and minimising this
-        /// number moves each prediction `V(s_i)` towards its target. It is the seed's `critic_loss`.
+        /// The critic's loss as CleanRL computes it when `clip_vloss` is on (its default): the
+        /// regression of lesson 11, with PPO's clip turned on the critic.
         ///
-        /// - `values[i]` is the critic's prediction `V(s_i)` for the state of step `i`.
-        /// - `td_target[i]` is the TD target of step `i` (lesson 7), a fixed number here: only the
-        ///   prediction depends on the critic's weights.
+        /// The seed lets each epoch move a prediction as far towards its target as the gradient
+        /// takes it. CleanRL treats the critic as PPO treats the actor: a prediction that moves more
+        /// than `eps` away from the one the critic made before the update gets no credit for the
+        /// extra distance, and, as in the actor's clipped objective, the loss stays pessimistic: the
+        /// clip may never make a row look better than it is. Work out what that means row by row.
         ///
-        /// Both slices have the same length, at least one. Return a single number: 0 when every
-        /// prediction hits its target, larger the further off they are, and not growing with the
-        /// number of rows. Use the same loss as the seed: the grader checks its exact scale, with
-        /// errors of both signs and a single step, to 1e-5 absolute and 1e-4 relative.
+        /// - `values[i]` is the current critic's prediction `V(s_i)`, the only input that depends on
+        ///   the weights being trained.
+        /// - `old_values[i]` is the prediction made for the same state before the update started
+        ///   (CleanRL's `b_values`), fixed during the update.
+        /// - `returns[i]` is the row's regression target (CleanRL's `b_returns`), fixed too.
+        /// - `eps` is the clip range (CleanRL reuses the actor's `clip_coef`, 0.2), in the units
+        ///   of the values.
         ///
-        /// Taught in lesson 11 (losses), step 2 "The critic loss".
-        pub fn critic_loss(values: &[f32], td_target: &[f32]) -> f32 {
+        /// All three slices have the same length, at least one. Return one number at CleanRL's scale:
+        /// its `v_loss` keeps a factor ½ in front of the mean over the rows. The grader tries
+        /// predictions inside and outside the range, targets on either side, and a single row, to
+        /// 1e-5 absolute and 1e-4 relative.
+        ///
+        /// Taught in lesson 11 (losses), step 2 "The critic loss", with lesson 10's clip.
+        pub fn clipped_value_loss(values: &[f32], old_values: &[f32], returns: &[f32], eps: f32) -> f32 {
             // TODO: your code here; `h` in the tutor reveals hints one by one.
-            // Should a miss of −2 cost as much as a miss of +2? And more than a miss of 1?
+            // A prediction moved 3·eps closer to its target: how much of that move should count?
             todo!()
         }
         nb.cell(16);
-        nb.show((&Shown(&(ppo_grade::in_process::critic_loss(critic_loss)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::clipped_value_loss(clipped_value_loss)))).outputs());
         nb.cell(18);
         use ppo_engine::candle_core::{Result, Tensor};
 
@@ -134,7 +143,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.show((&Shown(&(ppo_grade::in_process::ppo_losses(ppo_losses)))).outputs());
     }
     nb.cell(21);
-    // Back to "The critic loss", now that `critic_loss` passes: in the first epoch
+    // Back to "The critic loss", now that the exercises are graded: in the first epoch
     // V(s_t) − y_t = −δ_t, so the critic loss is the mean squared TD error.
     let mse = trace.td_delta.iter().map(|d| d * d).sum::<f32>() / n;
     println!("epoch 1 critic loss {:.6}, mean(td_delta²) {:.6}", first.critic_loss, mse);
@@ -154,13 +163,19 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `mean_i (values[i] - td_target[i])²`: the mean squared error.
-        pub fn critic_loss(values: &[f32], td_target: &[f32]) -> f32 {
+        /// `0.5 · mean_i max((v_i − R_i)², (v̂_i − R_i)²)` with
+        /// `v̂_i = old_i + clamp(v_i − old_i, −ε, ε)`: the prediction held within ε of the one made
+        /// before the update. The max keeps the worse of the two errors, so the clip only takes the
+        /// gradient away from a row whose move past ε brought it closer to its target.
+        pub fn clipped_value_loss(values: &[f32], old_values: &[f32], returns: &[f32], eps: f32) -> f32 {
             let mut total = 0.0_f32;
-            for (&v, &t) in values.iter().zip(td_target) {
-                total += (v - t) * (v - t);
+            for ((&v, &old), &ret) in values.iter().zip(old_values).zip(returns) {
+                let unclipped = (v - ret) * (v - ret);
+                let v_clipped = old + (v - old).clamp(-eps, eps);
+                let clipped = (v_clipped - ret) * (v_clipped - ret);
+                total += unclipped.max(clipped);
             }
-            total / values.len() as f32
+            0.5 * (total / values.len() as f32)
         }
         use ppo_engine::candle_core::{Result, Tensor};
 
@@ -193,7 +208,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             let critic_loss = (values - td_target.detach())?.sqr()?.mean_all()?;
             Ok((actor_loss, critic_loss))
         }
-        nb.passed("critic_loss", ppo_grade::in_process::critic_loss(critic_loss).passed());
+        nb.passed("clipped_value_loss", ppo_grade::in_process::clipped_value_loss(clipped_value_loss).passed());
         nb.passed("ppo_losses", ppo_grade::in_process::ppo_losses(ppo_losses).passed());
     }
     Ok(())

@@ -84,23 +84,35 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             todo!()
         }
 
-        /// How much of the batch the clip is acting on: CleanRL's `clipfracs`.
+        /// How many gradient steps an update takes under Spinning Up's early stopping.
         ///
-        /// - `ratio[i]` is `π_θ(a_i|s_i) / π_old(a_i|s_i)`, at least one row; `eps` is the clip
-        ///   range ε.
-        /// - Return the share of rows (between 0 and 1) whose ratio is further than ε from 1,
-        ///   measured as CleanRL measures it, in float32.
+        /// The clip does not stop the policy drifting away from the one that collected the batch
+        /// (lesson 12, experiment 4). Spinning Up's PPO adds a guard: before each epoch's gradient
+        /// step it estimates how far the policy has moved, and if the estimate has passed its margin
+        /// above `target_kl` it ends the update there, without taking that step. Apply its rule, with
+        /// its estimator, to an update whose log-probabilities you are given epoch by epoch.
         ///
-        /// Taught in lesson 12 (clip-lab), step 1 "What to watch in every update", and lesson 10
-        /// (clipping), step 6 "How much is being clipped".
-        pub fn clip_fraction(ratio: &[f32], eps: f32) -> f32 {
-            // TODO: your code here.
+        /// - `old_log_probs[i]` is `log π_old(a_i|s_i)`, fixed before the update; `N` rows, at
+        ///   least 1.
+        /// - `log_probs_per_epoch` holds `E` rows of `N` numbers one after the other (row-major,
+        ///   `E = log_probs_per_epoch.len() / N`, at least 1): row `e` is `log π(a_i|s_i)` under the
+        ///   policy at the *start* of epoch `e`, before that epoch's step.
+        /// - `target_kl` is Spinning Up's `target_kl` (0.01 by default).
+        ///
+        /// Return how many of the `E` epochs took their gradient step: `E` when the guard never
+        /// fires. The estimates are means over the rows, in float32.
+        ///
+        /// Taught in lesson 12 (clip-lab), step 5 "Experiment 4: stopping early at a target KL".
+        pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {
+            // TODO: your code here; `h` in the tutor reveals hints one by one.
+            // Which estimate of the KL divergence does Spinning Up test, and what happens to the step
+            // of the epoch where it is first too large?
             todo!()
         }
         nb.cell(19);
         nb.show((&Shown(&(ppo_grade::in_process::approx_kl(approx_kl)))).outputs());
         nb.cell(20);
-        nb.show((&Shown(&(ppo_grade::in_process::clip_fraction(clip_fraction)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::kl_early_stop(kl_early_stop)))).outputs());
     }
     nb.cell(22);
     use ppo_engine::lesson::quiz;
@@ -131,14 +143,26 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             total / old_log_probs.len() as f32
         }
 
-        /// CleanRL's `((ratio - 1.0).abs() > clip_coef).float().mean()`: the fraction of rows whose
-        /// ratio lies outside `[1 − ε, 1 + ε]`, computed in float32.
-        pub fn clip_fraction(ratio: &[f32], eps: f32) -> f32 {
-            let clipped = ratio.iter().filter(|&&r| (r - 1.0).abs() > eps).count();
-            clipped as f32 / ratio.len() as f32
+        /// Spinning Up's early stopping (`spinup/algos/pytorch/ppo/ppo.py`): before the step of
+        /// epoch `e`, `kl = mean_i(old_log_probs[i] − log_probs[e][i])` (the plain k1 estimate, not
+        /// `approx_kl`'s), and `if kl > 1.5 * target_kl` the update ends without that step. Returns
+        /// the number of steps taken: the first such `e`, or every epoch when none is.
+        pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {
+            let n = old_log_probs.len();
+            for (epoch, log_probs) in log_probs_per_epoch.chunks(n).enumerate() {
+                let mut total = 0.0_f32;
+                for (&old, &new) in old_log_probs.iter().zip(log_probs) {
+                    total += old - new;
+                }
+                let kl = total / n as f32;
+                if kl > 1.5 * target_kl {
+                    return epoch;
+                }
+            }
+            log_probs_per_epoch.len() / n
         }
         nb.passed("approx_kl", ppo_grade::in_process::approx_kl(approx_kl).passed());
-        nb.passed("clip_fraction", ppo_grade::in_process::clip_fraction(clip_fraction).passed());
+        nb.passed("kl_early_stop", ppo_grade::in_process::kl_early_stop(kl_early_stop).passed());
     }
     Ok(())
 }

@@ -35,43 +35,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // Check a row in the middle: moving_average[100] is the mean of returns[96..=104].
     println!("returns[96..=104]   = {:?}", &snap.returns[96..=104]);
     println!("moving_average[100] = {:.4}", snap.moving_average[100]);
-    nb.cell(13);
-    println!("first five: {:?}", &snap.moving_average[..5]);
-    println!("returns:    {:?}", &snap.returns[..5]);
-    // The exercise as the learner first meets it: starters and grading.
-    {
-        nb.cell(15);
-        /// Smooths the return curve for plotting, as the seed's
-        /// `rl_utils.moving_average(a, window_size)` does.
-        ///
-        /// Each point is replaced by the average of the returns in a window centred on it, so the
-        /// scatter between neighbouring episodes fades and the trend stays. A centred window does not
-        /// lag behind the data, and the smoothed curve keeps one point per episode, so it can share an
-        /// x axis with the raw one.
-        ///
-        /// - `a` holds the returns, one per episode, in order (at least one value).
-        /// - `window_size` is the width of the full window: odd (9 in the seed), and at most
-        ///   `a.len() + 1`.
-        ///
-        /// Return exactly one value per input value, in the same order. Near both ends a full window
-        /// does not fit; the seed still keeps every window centred there, and so must you. A check that
-        /// always holds: the first value equals the first return, and the last the last. The grader
-        /// compares with numpy's results to 1e-9, and also tries a single value and windows as long
-        /// as the input or one longer.
-        ///
-        /// Taught in lesson 13 (training), step 3 "Why smooth, and how much", step 4 "The middle: a
-        /// sum that slides" and step 5 "The edges: shrinking odd windows".
-        pub fn moving_average(a: &[f64], window_size: usize) -> Vec<f64> {
-            // TODO: your code here; `h` in the tutor reveals hints one by one.
-            // How many returns lie to the left of index 2? How wide can a window centred there be?
-            todo!()
-        }
-        nb.cell(16);
-        nb.show((&Shown(&(ppo_grade::in_process::moving_average(moving_average)))).outputs());
-    }
-    nb.cell(18);
-    // Back to "The middle", now that `moving_average` passes: rl_utils' prefix sums,
-    // (cumsum[w:] − cumsum[:-w]) / w, centred, against the library's moving average.
+
+    // rl_utils' prefix sums, (cumsum[w:] − cumsum[:-w]) / w, centred, against the library's
+    // moving average.
     let w = 9;
     let mut cumsum = vec![0.0_f64];
     for r in &snap.returns {
@@ -83,60 +49,22 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         assert!((middle[i] - snap.moving_average[i + centre]).abs() < 1e-9);
     }
     println!("{} middle values match the library's moving average", middle.len());
-    nb.cell(20);
+    nb.cell(13);
+    println!("first five: {:?}", &snap.moving_average[..5]);
+    println!("returns:    {:?}", &snap.returns[..5]);
+    nb.cell(15);
     use ppo_engine::lesson::quiz;
-    nb.cell(22);
+    nb.cell(17);
     nb.show((&Shown(&(quiz::answer("training", 1, '?')))).outputs());
-    nb.cell(24);
+    nb.cell(19);
     nb.show((&Shown(&(quiz::answer("training", 2, '?')))).outputs());
-    nb.cell(26);
+    nb.cell(21);
     nb.show((&Shown(&(quiz::answer("training", 3, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::answer("training", 4, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::ask("training", 5, &snap)))).outputs());
-    nb.cell(31);
+    nb.cell(26);
     nb.show((&Shown(&(quiz::predict("training", 5, "?", &snap)))).outputs());
-    // The reference solutions, graded in place: each must pass.
-    nb.solutions();
-    {
-        /// A centred mean over `window_size` (odd, at most `a.len() + 1`) values, with windows of
-        /// 1, 3, 5, ... at both ends so the output is as long as the input.
-        pub fn moving_average(a: &[f64], window_size: usize) -> Vec<f64> {
-            let n = a.len();
-            let w = window_size;
-            // cumulative_sum = np.cumsum(np.insert(a, 0, 0))
-            let mut cumulative_sum = vec![0.0; n + 1];
-            for i in 0..n {
-                cumulative_sum[i + 1] = cumulative_sum[i] + a[i];
-            }
-            // begin = np.cumsum(a[:window_size-1])[::2] / r, with r = 1, 3, 5, ...
-            let mut out = Vec::with_capacity(n);
-            let mut sum = 0.0;
-            for (i, &x) in a[..w - 1].iter().enumerate() {
-                sum += x;
-                if i % 2 == 0 {
-                    out.push(sum / (i + 1) as f64);
-                }
-            }
-            // middle = (cumulative_sum[window_size:] - cumulative_sum[:-window_size]) / window_size
-            for i in 0..(n + 1).saturating_sub(w) {
-                out.push((cumulative_sum[i + w] - cumulative_sum[i]) / w as f64);
-            }
-            // end = (np.cumsum(a[:-window_size:-1])[::2] / r)[::-1]
-            let mut end = Vec::new();
-            sum = 0.0;
-            for (i, &x) in a[n + 1 - w..].iter().rev().enumerate() {
-                sum += x;
-                if i % 2 == 0 {
-                    end.push(sum / (i + 1) as f64);
-                }
-            }
-            end.reverse();
-            out.extend(end);
-            out
-        }
-        nb.passed("moving_average", ppo_grade::in_process::moving_average(moving_average).passed());
-    }
     Ok(())
 }

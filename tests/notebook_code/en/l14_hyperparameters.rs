@@ -13,6 +13,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::lesson::Snapshot;
     use ppo_engine::notebook::snapshot;
     use ppo_engine::ppo::PpoConfig;
+    const LAB_EPISODES: usize = 500;
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
     nb.cell(4);
@@ -23,58 +24,72 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(snap.show(&["hyper"])))).outputs());
     nb.cell(7);
     println!(
-        "actor_lr = {}, critic_lr = {}: the critic's steps are {} times the actor's",
-        config.actor_lr,
+        "critic_lr = {} (the seed's) against {}, the actor's own rate {}",
         config.critic_lr,
-        config.critic_lr / config.actor_lr
+        config.critic_lr / 10.0,
+        config.actor_lr
     );
-    nb.cell(9);
+    nb.cell(8);
+    // This step's experiment, as `ppo-tutor lab critic-lr` runs it in a terminal:
+    // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
+    let lab = ppo_engine::notebook::lab("critic-lr", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
+    nb.show((&Shown(&(lab))).outputs());
+    nb.cell(10);
     // Parameters of the two networks: 4 -> hidden_dim -> 2 and 4 -> hidden_dim -> 1.
-    let h = config.hidden_dim;
+    nb.show((&Shown(&(for h in [config.hidden_dim, 16] {
     let actor = 4 * h + h + h * 2 + 2;
     let critic = 4 * h + h + h + 1;
-    println!("actor: {actor} parameters, critic: {critic}, trained for {} episodes", config.num_episodes);
-    nb.cell(10);
-    nb.show((&Shown(&(snap.return_plot("PPO on CartPole-v1")?))).outputs());
-    nb.cell(12);
-    let gl = config.gamma * config.lmbda;
-    println!("γ = {}, λ = {}, γλ = {gl:.4}: a TD error k steps ahead weighs γλ^k", config.gamma, config.lmbda);
-    nb.show((&Shown(&(for k in [1, 10, 50, 100] {
-    println!("  k = {k:3}: γλ^k = {:.4}", gl.powi(k));
+    println!("hidden_dim = {h:3}: actor {actor} parameters, critic {critic}");
 }))).outputs());
+    nb.cell(11);
+    // This step's experiment, as `ppo-tutor lab hidden-dim` runs it in a terminal:
+    // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
+    let lab = ppo_engine::notebook::lab("hidden-dim", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
+    nb.show((&Shown(&(lab))).outputs());
     nb.cell(13);
-    // This step's live values, from the training run `snap`:
-    nb.show((&Shown(&(snap.show(&["advantage"])))).outputs());
-    nb.cell(15);
-    println!(
-        "each episode is used for {} gradient steps; the ratio is clipped to [{}, {}]",
-        config.epochs,
-        1.0 - config.eps,
-        1.0 + config.eps
-    );
+    nb.show((&Shown(&(for gamma in [0.9, config.gamma, 0.999] {
+    println!("γ = {gamma}: horizon 1/(1 − γ) = {:.0} steps", 1.0 / (1.0 - gamma));
+}))).outputs());
+    nb.cell(14);
+    // This step's experiment, as `ppo-tutor lab gamma` runs it in a terminal:
+    // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
+    let lab = ppo_engine::notebook::lab("gamma", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
+    nb.show((&Shown(&(lab))).outputs());
     nb.cell(16);
-    // This step's live values, from the training run `snap`:
-    nb.show((&Shown(&(snap.show(&["ratio"])))).outputs());
-    nb.cell(18);
+    // A TD error l steps ahead weighs (γλ)^l: the weight halves every ln 0.5 / ln(γλ) steps.
+    nb.show((&Shown(&(for lmbda in [0.5, config.lmbda, 1.0] {
+    let gl = config.gamma * lmbda;
+    println!("λ = {lmbda}: γλ = {gl:.3}, the weight halves every {:.1} steps", 0.5f64.ln() / gl.ln());
+}))).outputs());
+    nb.cell(17);
+    // This step's experiment, as `ppo-tutor lab lmbda` runs it in a terminal:
+    // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
+    let lab = ppo_engine::notebook::lab("lmbda", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
+    nb.show((&Shown(&(lab))).outputs());
+    nb.cell(19);
     use ppo_engine::env::EnvId;
     nb.show((&Shown(&(for id in EnvId::ALL {
     println!("{}: an episode is cut at {} steps", id.as_str(), id.max_episode_steps());
 }))).outputs());
-    nb.cell(19);
+    nb.cell(20);
     nb.show((&Shown(&(snap.cartpole()))).outputs());
-    nb.cell(21);
+    nb.cell(22);
     use ppo_engine::lesson::quiz;
-    nb.cell(23);
+    nb.cell(24);
     nb.show((&Shown(&(quiz::answer("hyperparameters", 1, '?')))).outputs());
-    nb.cell(25);
+    nb.cell(26);
     nb.show((&Shown(&(quiz::predict("hyperparameters", 2, "?", &snap)))).outputs());
-    nb.cell(27);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::answer("hyperparameters", 3, '?')))).outputs());
-    nb.cell(29);
+    nb.cell(30);
     nb.show((&Shown(&(quiz::answer("hyperparameters", 4, '?')))).outputs());
-    nb.cell(31);
-    nb.show((&Shown(&(quiz::ask("hyperparameters", 5, &snap)))).outputs());
     nb.cell(32);
+    nb.show((&Shown(&(quiz::ask("hyperparameters", 5, &snap)))).outputs());
+    nb.cell(33);
     nb.show((&Shown(&(quiz::predict("hyperparameters", 5, "?", &snap)))).outputs());
+    nb.cell(35);
+    nb.show((&Shown(&(quiz::answer("hyperparameters", 6, '?')))).outputs());
+    nb.cell(37);
+    nb.show((&Shown(&(quiz::answer("hyperparameters", 7, '?')))).outputs());
     Ok(())
 }

@@ -74,24 +74,36 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(20);
-        /// How likely the policy was to take each action, on a log scale: the log of the density of
-        /// a Normal distribution at the action, what PyTorch's
-        /// `torch.distributions.Normal(mu, std).log_prob(actions)` returns, row by row.
+        /// How likely a Gaussian policy was to take each action, on a log scale, when an action is
+        /// not one torque but a vector of `dim` numbers (a robot arm with several joints, say),
+        /// CleanRL's `ppo_continuous_action.py` policy.
         ///
-        /// - Row `i` is one step. The policy's Normal has mean `mu[i]` (the book's μ = 2·tanh(·),
-        ///   in [−2, 2]) and standard deviation `std[i]` (σ = softplus(·), always > 0; torch's
-        ///   `scale`). `actions[i]` is the torque taken: any real number, near μ or far from it.
-        /// - All three slices have the same length, possibly 0. Return one value per row, in f32.
-        /// - This is a log-density: it can be above 0 (a narrow Normal has a density above 1 near
-        ///   its mean) and very negative for an action many σ away from μ.
+        /// - The batch has `N` rows, one per step. `actions` and `mu` are `N × dim`, row-major:
+        ///   dimension `d` of row `i` is at `[i * dim + d]`. `mu` is the policy's mean for that row.
+        /// - The policy draws each dimension from its own Normal, independently of the others. The
+        ///   spread does not depend on the state: `log_std[d]` (length `dim`) is the *log* of the
+        ///   standard deviation of dimension `d`, shared by every row, one learned number per
+        ///   dimension as in CleanRL.
+        /// - `dim` is at least 1; `N` may be 0. Return one value per row (`N` values, not
+        ///   `N × dim`): the log-density of the row's whole action, in f32. PPO builds one ratio
+        ///   per step from it.
+        /// - A log-density can be above 0 (a narrow Normal is denser than 1 near its mean) and very
+        ///   negative for an action many standard deviations away from the mean.
         ///
-        /// Taught in lesson 16 (continuous-actions), step 3 "The log-density of a Normal".
-        pub fn gaussian_log_prob(mu: &[f32], std: &[f32], actions: &[f32]) -> Vec<f32> {
-            // TODO: your code here.
+        /// Taught in lesson 16 (continuous-actions), step 3 "The log-density of a Normal", for one
+        /// dimension; the step's last paragraph says what changes with several.
+        pub fn diag_gaussian_log_prob(
+            actions: &[f32],
+            mu: &[f32],
+            log_std: &[f32],
+            dim: usize,
+        ) -> Vec<f32> {
+            // TODO: the dimensions are independent. What does that make the density of the whole
+            // action, and what does the log do to it?
             todo!()
         }
         nb.cell(21);
-        nb.show((&Shown(&(ppo_grade::in_process::gaussian_log_prob(gaussian_log_prob)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::diag_gaussian_log_prob(diag_gaussian_log_prob)))).outputs());
     }
     nb.cell(24);
     use ppo_engine::lesson::quiz;
@@ -108,23 +120,33 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `log N(a; μ, σ) = −(a − μ)²/(2σ²) − log σ − log √(2π)` for each row, in PyTorch's order of
-        /// operations: `var = σ²`, then `−((a − μ)²) / (2·var) − log σ − log √(2π)`, the constant
-        /// computed in f64 and rounded to f32 (as PyTorch rounds a Python float against a float
-        /// tensor).
-        pub fn gaussian_log_prob(mu: &[f32], std: &[f32], actions: &[f32]) -> Vec<f32> {
+        /// For each row `i` of the `N × dim` batch (row-major: row `i`, dimension `d` at
+        /// `i * dim + d`), the sum over the dimensions of the one-dimensional log-density
+        /// `−(a − μ)²/(2σ²) − log σ − log √(2π)`, with `σ = exp(log_std[d])` shared by every row.
+        /// The dimensions are independent, so the joint density is their product and its log is
+        /// the sum: one log-probability per action, not one per dimension.
+        pub fn diag_gaussian_log_prob(
+            actions: &[f32],
+            mu: &[f32],
+            log_std: &[f32],
+            dim: usize,
+        ) -> Vec<f32> {
             let log_sqrt_2pi = (2.0 * std::f64::consts::PI).sqrt().ln() as f32;
-            mu.iter()
-                .zip(std)
-                .zip(actions)
-                .map(|((&mu, &std), &action)| {
+            let rows = actions.len() / dim;
+            let mut out = Vec::with_capacity(rows);
+            for i in 0..rows {
+                let mut total = 0.0_f32;
+                for d in 0..dim {
+                    let std = log_std[d].exp();
                     let var = std * std;
-                    let diff = action - mu;
-                    -(diff * diff) / (2.0 * var) - std.ln() - log_sqrt_2pi
-                })
-                .collect()
+                    let diff = actions[i * dim + d] - mu[i * dim + d];
+                    total += -(diff * diff) / (2.0 * var) - log_std[d] - log_sqrt_2pi;
+                }
+                out.push(total);
+            }
+            out
         }
-        nb.passed("gaussian_log_prob", ppo_grade::in_process::gaussian_log_prob(gaussian_log_prob).passed());
+        nb.passed("diag_gaussian_log_prob", ppo_grade::in_process::diag_gaussian_log_prob(diag_gaussian_log_prob).passed());
     }
     Ok(())
 }

@@ -44,85 +44,94 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(14);
-        /// 每一步的 TD 目标：一步之后回头看，状态 `s_i` 实际值多少。它把实际得到的那一个奖励
-        /// 与价值网络自己对后续的估计结合起来，因此比价值网络的预测 `V(s_i)` 信息更充分。
-        /// 价值网络就是朝这个数训练的（第 11 课）；它对应原教程代码中的 `td_target`。
+        /// 一段采样数据中每一步的 n 步目标：等 `n` 步而不是一步之后，回头看状态 `s_t` 实际值多少。
+        /// 原教程代码的 TD 目标只等一步：一个真实奖励，然后是价值网络的估计。这里你最多等 `n`
+        /// 步，一路收集真实奖励，然后才交给价值网络。`n = 1` 时，你的函数给出的就是原教程代码
+        /// 中的 `td_target`；`n` 与这段数据一样长时，价值网络只需估计数据最后一步之后的部分。
         ///
-        /// - `rewards[i]` 是第 `i` 步得到的奖励（车杆中为 1.0；评分器也会用其他值，包括负值）。
-        /// - `next_values[i]` 是价值网络对第 `i` 步落到的状态的估计 `V(s_{i+1})`。
-        /// - 回合在第 `i` 步结束时，`dones[i]` 为 true。此时这一步之后什么都没有，不管
-        ///   `next_values[i]` 是多少。原教程代码中只有最后一步是 done；评分器还会测试每一步都是
-        ///   done 的回合。
+        /// - `rewards[t]` 是第 `t` 步得到的奖励，`t` 取 `0..T`（车杆中为 1.0；评分器也会用其他
+        ///   值，包括负值）。
+        /// - `values` 有 `T + 1` 项：`values[t]` 是价值网络对第 `t` 步起始状态的估计 `V(s_t)`；
+        ///   `values[T]` 是它对最后一步之后那个状态的估计，供在回合中途停下的数据使用。
+        /// - 回合在第 `t` 步*终止*时，`dones[t]` 为 true：它之后什么都没有，下一行（如果有）
+        ///   是一个新回合的第一步。一段数据可以包含好几个回合；评分器还会测试每一步都是 done
+        ///   的数据，以及一个 done 都没有的数据。
         /// - `gamma` 是折扣因子 γ（原教程代码中为 0.98）。
+        /// - `n >= 1` 是一个目标最多收集的真实奖励个数。它可以比整段数据还长：接近数据末尾时，
+        ///   剩下的步数不够，目标就用剩下的那些。
         ///
-        /// 三个切片长度相同，每步一行，至少一行。按相同顺序，每行返回一个目标。评分器以 f32
+        /// `rewards` 和 `dones` 长度相同，为 `T >= 1`。按顺序每步返回一个目标，共 `T` 个。
+        /// 一个目标绝不混合两个回合：终止之后发生的事，属于另一个回合的回报。评分器以 f32
         /// 比较，精度约 1e-5。
         ///
-        /// 讲解见第 7 课（td-target）第 2 节“TD 目标”；第 3 节“为什么要乘以 (1 − done)”解释了
-        /// done 标志。
-        pub fn td_target(rewards: &[f32], next_values: &[f32], dones: &[bool], gamma: f32) -> Vec<f32> {
+        /// 讲解见第 7 课（td-target）第 2 节“TD 目标”和第 3 节关于 done 标志的内容。
+        pub fn n_step_target(
+            rewards: &[f32],
+            values: &[f32],
+            dones: &[bool],
+            gamma: f32,
+            n: usize,
+        ) -> Vec<f32> {
             // TODO：在这里写代码；在教程中按 `h` 可逐条显示提示。
-            // 杆倒下之后，未来值多少？
-            todo!()
-        }
-
-        /// 每一步的 TD 误差：第 `i` 步的结果比价值网络在状态 `s_i` 处的预期好多少。正值表示
-        /// 惊喜（动作好，或者价值网络低估了 `s_i`）；负值表示结果比预测的差。第 8 课用这些数
-        /// 构造优势值。它对应原教程代码中的 `td_delta`。
-        ///
-        /// - `td_target[i]` 是第 `i` 步的 TD 目标，即上面的 `td_target` 算出的、信息更充分的估计。
-        /// - `values[i]` 是价值网络对第 `i` 步起始状态的预测 `V(s_i)`。
-        ///
-        /// 两个切片长度相同，至少一行。按相同顺序，每行返回一个误差。注意符号：这一步比预测
-        /// 的好时，误差必须为正。
-        ///
-        /// 讲解见第 7 课（td-target）第 4 节“TD 误差”。
-        pub fn td_delta(td_target: &[f32], values: &[f32]) -> Vec<f32> {
-            // TODO：在这里写代码。一行中的两个数，哪一个知道得更多？
+            // 站在第 t 步，你最多能收集几个真实奖励才必须停下：因为已经收集了 n 个，
+            // 因为数据到头了，还是因为回合结束了？
             todo!()
         }
         nb.cell(15);
-        nb.show((&Shown(&(ppo_grade::in_process::td_target(td_target)))).outputs());
-        nb.cell(16);
-        nb.show((&Shown(&(ppo_grade::in_process::td_delta(td_delta)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::n_step_target(n_step_target)))).outputs());
     }
-    nb.cell(19);
+    nb.cell(17);
     use ppo_engine::lesson::quiz;
-    nb.cell(21);
+    nb.cell(19);
     nb.show((&Shown(&(quiz::predict("td-target", 1, "?", &snap)))).outputs());
-    nb.cell(23);
+    nb.cell(21);
     nb.show((&Shown(&(quiz::answer("td-target", 2, '?')))).outputs());
-    nb.cell(25);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::answer("td-target", 3, '?')))).outputs());
-    nb.cell(27);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::answer("td-target", 4, '?')))).outputs());
-    nb.cell(29);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::ask("td-target", 5, &snap)))).outputs());
-    nb.cell(30);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::predict("td-target", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `td_target[i] = rewards[i] + gamma * next_values[i] * (1 - dones[i])`.
-        pub fn td_target(rewards: &[f32], next_values: &[f32], dones: &[bool], gamma: f32) -> Vec<f32> {
-            rewards
-                .iter()
-                .zip(next_values)
-                .zip(dones)
-                .map(|((&r, &v), &done)| {
-                    let not_done = if done { 0.0 } else { 1.0 };
-                    r + gamma * v * not_done
-                })
-                .collect()
+        /// For each step `t`: up to `n` real rewards from `t` on, each discounted once per step it
+        /// lies ahead, then the critic's `V` of the state reached, discounted once more per step,
+        /// unless the episode terminated on the way (then the sum stops after that step's reward,
+        /// and nothing is bootstrapped). The rollout's end shortens the window to what remains.
+        pub fn n_step_target(
+            rewards: &[f32],
+            values: &[f32],
+            dones: &[bool],
+            gamma: f32,
+            n: usize,
+        ) -> Vec<f32> {
+            let steps = rewards.len();
+            let mut targets = Vec::with_capacity(steps);
+            for t in 0..steps {
+                let window = n.min(steps - t);
+                let mut target = 0.0_f32;
+                let mut discount = 1.0_f32;
+                let mut terminated = false;
+                for k in 0..window {
+                    target += discount * rewards[t + k];
+                    discount *= gamma;
+                    if dones[t + k] {
+                        terminated = true;
+                        break;
+                    }
+                }
+                if !terminated {
+                    // `discount` is now γ^window: the state reached lies `window` steps ahead.
+                    target += discount * values[t + window];
+                }
+                targets.push(target);
+            }
+            targets
         }
-
-        /// `td_delta[i] = td_target[i] - values[i]`: how much better the step went than the critic
-        /// predicted.
-        pub fn td_delta(td_target: &[f32], values: &[f32]) -> Vec<f32> {
-            td_target.iter().zip(values).map(|(t, v)| t - v).collect()
-        }
-        nb.passed("td_target", ppo_grade::in_process::td_target(td_target).passed());
-        nb.passed("td_delta", ppo_grade::in_process::td_delta(td_delta).passed());
+        nb.passed("n_step_target", ppo_grade::in_process::n_step_target(n_step_target).passed());
     }
     Ok(())
 }

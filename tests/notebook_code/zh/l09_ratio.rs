@@ -57,77 +57,78 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(16);
-        /// 在产生 `probs` 的策略下，每个时间步实际所选动作的对数概率。下面的比率，以及由它构成的
-        /// PPO 损失，都由这些数值算出。在各轮次之前算一次，它们就是原教程代码中的 `old_log_probs`；
-        /// 在轮次之内算，就是其中的 `log_probs`。
+        /// 用*旧*策略玩出的各步，估计*新*策略能得到的平均回报。
         ///
-        /// - `probs[i]` 是 `π(·|s_i)`，即策略网络对状态 `s_i` 的输出：车杆（CartPole）两个动作的
-        ///   概率，0（向左推）和 1（向右推）。
-        /// - `actions[i]` 是第 `i` 步所选的动作，0 或 1。
+        /// 旧策略访问了一些状态，在每个状态按自己的概率抽取一个动作；你观察到了随后的回报。
+        /// 新策略选择这些动作的频率会高一些或低一些。把回报原样求平均，回答的是旧策略的问题，
+        /// 而不是新策略的。用第 9 课的重要性采样比率修正这个平均值，使它估计新策略在这些状态上
+        /// 的平均回报。（状态仍是旧策略访问过的那些：修正的只是动作的选择。）
         ///
-        /// 两个切片长度相同，至少为 1。每行返回一个值，顺序不变。每个值都不大于 0，因为概率不大于
-        /// 1。这里的“对数”指自然对数，与 PyTorch 一致。评分器的测试中包括几乎必然和几乎不可能的
-        /// 动作，并以 f32 比较，精度约为 1e-5。
+        /// - `probs` 按行存放新策略的概率：`N` 行，每行 `n_actions` 项，第 `i` 行是样本 `i`
+        ///   所在状态的 `π_new(·|s_i)`。车杆中 `n_actions` 为 2；评分器也会用到 6。
+        /// - `actions[i]` 是旧策略在样本 `i` 中采取的动作，取值在 `0..n_actions`。
+        /// - `old_log_probs[i]` 是 `log π_old(a_i|s_i)`，即旧策略对这个动作的对数概率（自然对数），
+        ///   与原教程代码记录的一样。
+        /// - `returns[i]` 是样本 `i` 的动作之后观察到的回报。
         ///
-        /// 讲解见第 9 课（ratio）第 1 节“所选动作的对数概率”。
-        pub fn log_prob_of_actions(probs: &[[f32; 2]], actions: &[usize]) -> Vec<f32> {
-            // TODO：在这里写代码；在 ppo-tutor 中按 `h` 可逐条显示提示。
-            // 每一行有两个概率：哪一个属于这个时间步？
-            todo!()
-        }
-
-        /// 每个时间步的重要性采样比率：与玩这一回合的旧策略相比，当前策略让所选动作变得更可能
-        /// （大于 1）或更不可能（小于 1）了多少。比率恰好为 1 表示这一行没有变化。PPO 的截断就作用
-        /// 在这个数上（第 10 课）。
+        /// `actions`、`old_log_probs` 和 `returns` 长度相同，为 `N >= 1`；`probs` 有
+        /// `N * n_actions` 项。返回单个数。新策略与旧策略相同时，答案就是回报的普通平均值。
+        /// 评分器会测试罕见的动作（旧概率很小），比较时允许绝对误差 1e-5、相对误差 1e-4。
         ///
-        /// - `log_probs[i]` 是 `log π_θ(a_i|s_i)`，即当前策略下第 `i` 步所选动作的对数概率。
-        /// - `old_log_probs[i]` 是 `log π_θ_old(a_i|s_i)`，即玩这一回合的策略下的同一个量；它在各
-        ///   轮次中保持不变。
-        ///
-        /// 两个切片长度相同，至少为 1。每行返回一个比率，顺序不变；每个比率都是正数。第一轮时两个
-        /// 输入完全相同，这时每个比率都必须恰好算出 1。评分器以 f32 比较，精度约为 1e-5。
-        ///
-        /// 讲解见第 9 课（ratio）第 3 节“比率”。
-        pub fn ratio(log_probs: &[f32], old_log_probs: &[f32]) -> Vec<f32> {
-            // TODO：在这里写代码。给你的是对数，但比率是概率之比：两个对数之差
-            // 说明了它们原来的数之间有什么关系？
+        /// 讲解见第 9 课（ratio）第 1 节“所选动作的对数概率”和第 3 节“比率”。
+        pub fn importance_weighted_mean(
+            probs: &[f32],
+            n_actions: usize,
+            actions: &[usize],
+            old_log_probs: &[f32],
+            returns: &[f32],
+        ) -> f32 {
+            // TODO：在这里写代码；在教程中按 `h` 可逐条显示提示。
+            // 一个旧策略很少采取、而新策略偏爱的动作：在你的平均值里，它的回报应该比其他的
+            // 分量更重，还是更轻？
             todo!()
         }
         nb.cell(17);
-        nb.show((&Shown(&(ppo_grade::in_process::ratio(ratio)))).outputs());
-        nb.cell(18);
-        nb.show((&Shown(&(ppo_grade::in_process::log_prob_of_actions(log_prob_of_actions)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::importance_weighted_mean(importance_weighted_mean)))).outputs());
     }
-    nb.cell(21);
+    nb.cell(20);
     use ppo_engine::lesson::quiz;
-    nb.cell(23);
+    nb.cell(22);
     nb.show((&Shown(&(quiz::predict("ratio", 1, "?", &snap)))).outputs());
-    nb.cell(25);
+    nb.cell(24);
     nb.show((&Shown(&(quiz::ask("ratio", 2, &snap)))).outputs());
-    nb.cell(26);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::predict("ratio", 2, "?", &snap)))).outputs());
-    nb.cell(28);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("ratio", 3, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("ratio", 4, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `log(probs[i][actions[i]])`: the log-probability of the action taken in each row.
-        pub fn log_prob_of_actions(probs: &[[f32; 2]], actions: &[usize]) -> Vec<f32> {
-            probs.iter().zip(actions).map(|(p, &a)| p[a].ln()).collect()
-        }
-
-        /// `exp(log_probs[i] - old_log_probs[i])`: `π(a|s) / π_old(a|s)` per row.
-        pub fn ratio(log_probs: &[f32], old_log_probs: &[f32]) -> Vec<f32> {
-            log_probs
-                .iter()
+        /// `mean_i( π_new(a_i|s_i) / π_old(a_i|s_i) · returns[i] )`, with `π_new(a_i|s_i)` read from
+        /// row `i` of `probs` (row-major, `n_actions` columns) and `π_old(a_i|s_i)` given as a log.
+        pub fn importance_weighted_mean(
+            probs: &[f32],
+            n_actions: usize,
+            actions: &[usize],
+            old_log_probs: &[f32],
+            returns: &[f32],
+        ) -> f32 {
+            let rows = probs
+                .chunks(n_actions)
+                .zip(actions)
                 .zip(old_log_probs)
-                .map(|(new, old)| (new - old).exp())
-                .collect()
+                .zip(returns);
+            let mut weighted_sum = 0.0_f32;
+            for (((row, &action), &log_old), &ret) in rows {
+                let log_new = row[action].ln();
+                let weight = (log_new - log_old).exp();
+                weighted_sum += weight * ret;
+            }
+            weighted_sum / actions.len() as f32
         }
-        nb.passed("ratio", ppo_grade::in_process::ratio(ratio).passed());
-        nb.passed("log_prob_of_actions", ppo_grade::in_process::log_prob_of_actions(log_prob_of_actions).passed());
+        nb.passed("importance_weighted_mean", ppo_grade::in_process::importance_weighted_mean(importance_weighted_mean).passed());
     }
     Ok(())
 }

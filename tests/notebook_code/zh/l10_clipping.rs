@@ -65,35 +65,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(17);
-        /// PPO 的策略网络损失：优化器为改进策略而最小化的那一个数，即原教程代码中的
-        /// `actor_loss`。
-        ///
-        /// 它鼓励让优势值为正的动作更可能、优势值为负的动作更不可能，但只限于比率 1 附近的一个
-        /// 区间 `[1 − ε, 1 + ε]` 之内。一行的比率一旦朝其优势值希望的方向离开区间，这一行就不再
-        /// 获得更多收益。朝错误方向移动的行则保有完整的惩罚：这个目标是悲观的。
-        ///
-        /// - `ratio[i]` 是 `π_θ(a_i|s_i) / π_old(a_i|s_i)`（第 9 课）：当前策略让所选动作比玩这一
-        ///   回合的策略更可能时，它大于 1。
-        /// - `advantage[i]` 是 `Â_i`，即第 `i` 步的动作比预期好了多少（第 8 课）；正负皆可。
-        /// - `eps` 是截断范围 ε（原教程代码中为 0.2）。
-        ///
-        /// 两个切片长度相同，至少为 1。返回单个数。PPO 最大化它的目标，而优化器做最小化，所以要
-        /// 注意符号：策略越好，损失越低。与原教程代码一样，损失不能随行数增加而变大。评分器的测试
-        /// 包括只有一个时间步、优势值全为负、比率全在区间之外等情况，比较时允许绝对误差 1e-5、
-        /// 相对误差 1e-4。
-        ///
-        /// 讲解见第 10 课（clipping）第 3 节“取最小值”，前面还有第 1 节“两个替代目标”和
-        /// 第 2 节“clamp：以 1 为中心的区间”。
-        pub fn actor_loss(ratio: &[f32], advantage: &[f32], eps: f32) -> f32 {
-            // TODO：在这里写代码；在 ppo-tutor 中按 `h` 可逐条显示提示。
-            // 一行的优势值为正，比率为 1.5：它应该获得多少收益？
-            todo!()
-        }
-
         /// 截断后的目标已经不再推动哪些行。
         ///
-        /// 每一行为 PPO 所最大化的截断替代目标贡献一项（也就是你的 `actor_loss` 取相反数后求平均的
-        /// 那一项）。对每一行，当该项对这一行比率的导数为零、因而这次更新不再改变策略选择该行动作
+        /// 每一行为 PPO 所最大化的截断替代目标贡献一项 `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)`
+        /// （原教程代码的策略网络损失就是这些项取相反数后的平均）。对每一行，当该项对这一行比率的导数为零、因而这次更新不再改变策略选择该行动作
         /// 的概率时，返回 `true`；梯度仍在流动时返回 `false`。
         ///
         /// - `ratio[i]` 是 `π_θ(a_i|s_i) / π_old(a_i|s_i)`，`advantage[i]` 是 `Â_i`，两者长度相同；
@@ -109,11 +84,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             todo!()
         }
         nb.cell(18);
-        nb.show((&Shown(&(ppo_grade::in_process::actor_loss(actor_loss)))).outputs());
-        nb.cell(19);
         nb.show((&Shown(&(ppo_grade::in_process::zero_gradient_rows(zero_gradient_rows)))).outputs());
     }
-    nb.cell(21);
+    nb.cell(19);
     // 你的函数通过测试了，现在回到“取最小值”一节：只有在 surr2 < surr1 的地方 min 才选 surr2，
     // 也就是比率朝着其优势值所偏好的方向离开区间的地方。比率朝另一个方向离开区间时，
     // surr1 < surr2，min 保留 surr1。
@@ -121,34 +94,23 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let kept_surr1 = last.surr1.iter().zip(&last.surr2).filter(|(a, b)| a < b).count();
     println!("min(surr1, surr2) 在 {picked_surr2} 行上选了 surr2（共 {} 行）", last.surr1.len());
     println!("另有 {kept_surr1} 行的比率逆着优势值的方向离开了区间：min 保留了 surr1");
-    nb.cell(23);
+    nb.cell(21);
     use ppo_engine::lesson::quiz;
-    nb.cell(25);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::answer("clipping", 1, '?')))).outputs());
-    nb.cell(27);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::answer("clipping", 2, '?')))).outputs());
-    nb.cell(29);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("clipping", 3, '?')))).outputs());
-    nb.cell(31);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("clipping", 4, '?')))).outputs());
-    nb.cell(33);
+    nb.cell(31);
     nb.show((&Shown(&(quiz::ask("clipping", 5, &snap)))).outputs());
-    nb.cell(34);
+    nb.cell(32);
     nb.show((&Shown(&(quiz::answer_live("clipping", 5, '?', &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `mean_i -min(ratio[i] * advantage[i], clamp(ratio[i], 1 - eps, 1 + eps) * advantage[i])`.
-        pub fn actor_loss(ratio: &[f32], advantage: &[f32], eps: f32) -> f32 {
-            let mut total = 0.0_f32;
-            for (&r, &a) in ratio.iter().zip(advantage) {
-                let surr1 = r * a;
-                let surr2 = r.clamp(1.0 - eps, 1.0 + eps) * a;
-                total += -surr1.min(surr2);
-            }
-            total / ratio.len() as f32
-        }
-
         /// Whether each row's term `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)` has zero derivative with
         /// respect to `r`, following PyTorch's autograd: `clamp` passes the gradient at its bounds,
         /// and `min` of two equal values passes half to each.
@@ -164,7 +126,6 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
                 })
                 .collect()
         }
-        nb.passed("actor_loss", ppo_grade::in_process::actor_loss(actor_loss).passed());
         nb.passed("zero_gradient_rows", ppo_grade::in_process::zero_gradient_rows(zero_gradient_rows).passed());
     }
     Ok(())

@@ -61,26 +61,32 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(15);
-        /// 价值网络的损失：用一个数说明，在整个回合上，价值网络的预测离它们的 TD 目标有多远。
-        /// 价值网络靠回归来学习，最小化这个数会把每个预测 `V(s_i)` 推向它的目标。
-        /// 它就是原教程代码中的 `critic_loss`。
+        /// CleanRL 在打开 `clip_vloss`（它的默认设置）时计算的价值网络损失：仍是第 11 课的回归，
+        /// 只是把 PPO 的截断也用在了价值网络上。
         ///
-        /// - `values[i]` 是价值网络对第 `i` 步状态的预测 `V(s_i)`。
-        /// - `td_target[i]` 是第 `i` 步的 TD 目标（第 7 课），在这里是一个固定的数：只有预测
-        ///   依赖价值网络的权重。
+        /// 原教程代码让每一轮都能把预测沿着梯度推向目标，推多远都行。CleanRL 对待价值网络的方式
+        /// 与 PPO 对待策略网络相同：预测离更新开始前价值网络给出的那个预测超过 `eps` 之后，多走的
+        /// 那一段不算功劳；而且和策略网络的截断目标一样，损失保持悲观：截断绝不能让某一行显得比
+        /// 实际更好。请逐行想清楚这意味着什么。
         ///
-        /// 两个切片长度相同，至少有一个元素。返回一个数：每个预测都命中目标时为 0，偏得越远越大，
-        /// 并且不随行数增长。请使用与原教程代码相同的损失：评分程序会检查它的精确尺度，包括两种符号的
-        /// 误差和只有一步的情形，容差为绝对误差 1e-5、相对误差 1e-4。
+        /// - `values[i]` 是当前价值网络的预测 `V(s_i)`，也是唯一依赖正在训练的权重的输入。
+        /// - `old_values[i]` 是更新开始之前对同一状态给出的预测（CleanRL 的 `b_values`），
+        ///   在更新期间固定不变。
+        /// - `returns[i]` 是这一行的回归目标（CleanRL 的 `b_returns`），同样固定不变。
+        /// - `eps` 是截断范围（CleanRL 沿用策略网络的 `clip_coef`，即 0.2），单位与价值相同。
         ///
-        /// 讲解见第 11 课（losses）第 2 节“价值网络的损失”。
-        pub fn critic_loss(values: &[f32], td_target: &[f32]) -> f32 {
+        /// 三个切片长度相同，至少有一个元素。返回一个数，尺度与 CleanRL 相同：它的 `v_loss`
+        /// 在对所有行求的均值前面乘了系数 ½。评分程序会尝试落在范围内和范围外的预测、位于两侧的
+        /// 目标，以及只有一行的情形，容差为绝对误差 1e-5、相对误差 1e-4。
+        ///
+        /// 讲解见第 11 课（losses）第 2 节“价值网络的损失”，并用到第 10 课的截断。
+        pub fn clipped_value_loss(values: &[f32], old_values: &[f32], returns: &[f32], eps: f32) -> f32 {
             // TODO：在这里写代码；在 tutor 中按 `h` 可逐条显示提示。
-            // 偏差 −2 的代价应该和偏差 +2 一样吗？又是否应该比偏差 1 更大？
+            // 某个预测朝目标走近了 3·eps：这一步中有多少应当算数？
             todo!()
         }
         nb.cell(16);
-        nb.show((&Shown(&(ppo_grade::in_process::critic_loss(critic_loss)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::clipped_value_loss(clipped_value_loss)))).outputs());
         nb.cell(18);
         use ppo_engine::candle_core::{Result, Tensor};
 
@@ -130,7 +136,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.show((&Shown(&(ppo_grade::in_process::ppo_losses(ppo_losses)))).outputs());
     }
     nb.cell(21);
-    // `critic_loss` 通过测试了，现在回到“价值网络的损失”一节：第一轮中
+    // 练习评完了，现在回到“价值网络的损失”一节：第一轮中
     // V(s_t) − y_t = −δ_t，所以价值网络的损失就是 TD 误差平方的均值。
     let mse = trace.td_delta.iter().map(|d| d * d).sum::<f32>() / n;
     println!("第 1 轮价值网络损失 {:.6}，mean(td_delta²) {:.6}", first.critic_loss, mse);
@@ -150,13 +156,19 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `mean_i (values[i] - td_target[i])²`: the mean squared error.
-        pub fn critic_loss(values: &[f32], td_target: &[f32]) -> f32 {
+        /// `0.5 · mean_i max((v_i − R_i)², (v̂_i − R_i)²)` with
+        /// `v̂_i = old_i + clamp(v_i − old_i, −ε, ε)`: the prediction held within ε of the one made
+        /// before the update. The max keeps the worse of the two errors, so the clip only takes the
+        /// gradient away from a row whose move past ε brought it closer to its target.
+        pub fn clipped_value_loss(values: &[f32], old_values: &[f32], returns: &[f32], eps: f32) -> f32 {
             let mut total = 0.0_f32;
-            for (&v, &t) in values.iter().zip(td_target) {
-                total += (v - t) * (v - t);
+            for ((&v, &old), &ret) in values.iter().zip(old_values).zip(returns) {
+                let unclipped = (v - ret) * (v - ret);
+                let v_clipped = old + (v - old).clamp(-eps, eps);
+                let clipped = (v_clipped - ret) * (v_clipped - ret);
+                total += unclipped.max(clipped);
             }
-            total / values.len() as f32
+            0.5 * (total / values.len() as f32)
         }
         use ppo_engine::candle_core::{Result, Tensor};
 
@@ -189,7 +201,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             let critic_loss = (values - td_target.detach())?.sqr()?.mean_all()?;
             Ok((actor_loss, critic_loss))
         }
-        nb.passed("critic_loss", ppo_grade::in_process::critic_loss(critic_loss).passed());
+        nb.passed("clipped_value_loss", ppo_grade::in_process::clipped_value_loss(clipped_value_loss).passed());
         nb.passed("ppo_losses", ppo_grade::in_process::ppo_losses(ppo_losses).passed());
     }
     Ok(())

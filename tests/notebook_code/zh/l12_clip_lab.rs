@@ -84,22 +84,32 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             todo!()
         }
 
-        /// 截断作用在批次中多大的比例上：即 CleanRL 的 `clipfracs`。
+        /// 在 Spinning Up 的提前停止之下，一次更新执行了多少个梯度步。
         ///
-        /// - `ratio[i]` 是 `π_θ(a_i|s_i) / π_old(a_i|s_i)`，至少有一行；`eps` 是截断范围 ε。
-        /// - 返回比率离 1 超过 ε 的行所占的比例（介于 0 和 1 之间），按 CleanRL 的方式测量，
-        ///   用 float32 计算。
+        /// 截断并不能阻止策略离收集这批数据的那个策略越来越远（第 12 课实验 4）。Spinning Up 的
+        /// PPO 加了一道防线：在每一轮执行梯度步之前，先估计策略已经移动了多远；如果估计值超过了
+        /// `target_kl` 之上的那道界限，就在那里结束本次更新，这一步也不再执行。请用它的估计量、
+        /// 按它的规则，处理一次逐轮给出对数概率的更新。
         ///
-        /// 讲解见第 12 课（clip-lab）第 1 节“每次更新都要看什么”，以及第 10 课（clipping）
-        /// 第 6 节“有多少行被截断”。
-        pub fn clip_fraction(ratio: &[f32], eps: f32) -> f32 {
-            // TODO：在这里写代码。
+        /// - `old_log_probs[i]` 是 `log π_old(a_i|s_i)`，在更新之前就已固定；共 `N` 行，至少 1 行。
+        /// - `log_probs_per_epoch` 依次存放 `E` 行、每行 `N` 个数（按行优先排列，
+        ///   `E = log_probs_per_epoch.len() / N`，至少为 1）：第 `e` 行是第 `e` 轮*开始*时、
+        ///   也就是这一轮的梯度步之前，策略给出的 `log π(a_i|s_i)`。
+        /// - `target_kl` 就是 Spinning Up 的 `target_kl`（默认 0.01）。
+        ///
+        /// 返回 `E` 轮中有多少轮执行了梯度步：防线从未触发时返回 `E`。各个估计值都是对所有行
+        /// 求的均值，用 float32 计算。
+        ///
+        /// 讲解见第 12 课（clip-lab）第 5 节“实验 4：在目标 KL 处提前停止”。
+        pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {
+            // TODO：在这里写代码；在 tutor 中按 `h` 可逐条显示提示。
+            // Spinning Up 检验的是 KL 散度的哪一种估计？估计值第一次过大的那一轮，它的梯度步会怎样？
             todo!()
         }
         nb.cell(19);
         nb.show((&Shown(&(ppo_grade::in_process::approx_kl(approx_kl)))).outputs());
         nb.cell(20);
-        nb.show((&Shown(&(ppo_grade::in_process::clip_fraction(clip_fraction)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::kl_early_stop(kl_early_stop)))).outputs());
     }
     nb.cell(22);
     use ppo_engine::lesson::quiz;
@@ -130,14 +140,26 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             total / old_log_probs.len() as f32
         }
 
-        /// CleanRL's `((ratio - 1.0).abs() > clip_coef).float().mean()`: the fraction of rows whose
-        /// ratio lies outside `[1 − ε, 1 + ε]`, computed in float32.
-        pub fn clip_fraction(ratio: &[f32], eps: f32) -> f32 {
-            let clipped = ratio.iter().filter(|&&r| (r - 1.0).abs() > eps).count();
-            clipped as f32 / ratio.len() as f32
+        /// Spinning Up's early stopping (`spinup/algos/pytorch/ppo/ppo.py`): before the step of
+        /// epoch `e`, `kl = mean_i(old_log_probs[i] − log_probs[e][i])` (the plain k1 estimate, not
+        /// `approx_kl`'s), and `if kl > 1.5 * target_kl` the update ends without that step. Returns
+        /// the number of steps taken: the first such `e`, or every epoch when none is.
+        pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {
+            let n = old_log_probs.len();
+            for (epoch, log_probs) in log_probs_per_epoch.chunks(n).enumerate() {
+                let mut total = 0.0_f32;
+                for (&old, &new) in old_log_probs.iter().zip(log_probs) {
+                    total += old - new;
+                }
+                let kl = total / n as f32;
+                if kl > 1.5 * target_kl {
+                    return epoch;
+                }
+            }
+            log_probs_per_epoch.len() / n
         }
         nb.passed("approx_kl", ppo_grade::in_process::approx_kl(approx_kl).passed());
-        nb.passed("clip_fraction", ppo_grade::in_process::clip_fraction(clip_fraction).passed());
+        nb.passed("kl_early_stop", ppo_grade::in_process::kl_early_stop(kl_early_stop).passed());
     }
     Ok(())
 }

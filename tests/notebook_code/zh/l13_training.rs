@@ -35,41 +35,8 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 检查中段的一行：moving_average[100] 是 returns[96..=104] 的均值。
     println!("returns[96..=104]   = {:?}", &snap.returns[96..=104]);
     println!("moving_average[100] = {:.4}", snap.moving_average[100]);
-    nb.cell(13);
-    println!("前五个移动平均：{:?}", &snap.moving_average[..5]);
-    println!("对应的回报：    {:?}", &snap.returns[..5]);
-    // The exercise as the learner first meets it: starters and grading.
-    {
-        nb.cell(15);
-        /// 为画图平滑回报曲线，做法与原教程代码的
-        /// `rl_utils.moving_average(a, window_size)` 相同。
-        ///
-        /// 每个点被替换为以它为中心的窗口内各回报的平均，这样相邻回合之间的波动减弱，
-        /// 而趋势得以保留。居中窗口不会落后于数据；平滑后的曲线每个回合仍保留一个点，
-        /// 因此可以与原始曲线共用一条横轴。
-        ///
-        /// - `a` 按顺序存放回报，每个回合一个（至少一个值）。
-        /// - `window_size` 是完整窗口的宽度：奇数（原教程代码中为 9），且不超过
-        ///   `a.len() + 1`。
-        ///
-        /// 对每个输入值恰好返回一个值，顺序不变。靠近两端时放不下完整窗口；原教程代码在那里
-        /// 仍让每个窗口保持居中，你也必须如此。一个总成立的检验：第一个值等于第一个回报，
-        /// 最后一个值等于最后一个回报。评分器与 numpy 的结果比较，容差为 1e-9，还会测试
-        /// 只有一个值的输入，以及窗口与输入等长或比输入长一的情况。
-        ///
-        /// 讲解见第 13 课（training）第 3 节“为什么要平滑，平滑多少”、第 4 节“中段：滑动的和”
-        /// 和第 5 节“两端：逐渐收窄的奇数窗口”。
-        pub fn moving_average(a: &[f64], window_size: usize) -> Vec<f64> {
-            // TODO：在这里写代码；在 tutor 中按 `h` 可逐条显示提示。
-            // 下标 2 的左边有几个回报？以它为中心的窗口最宽能有多宽？
-            todo!()
-        }
-        nb.cell(16);
-        nb.show((&Shown(&(ppo_grade::in_process::moving_average(moving_average)))).outputs());
-    }
-    nb.cell(18);
-    // `moving_average` 通过测试了，现在回到“中段”一节：把 rl_utils 的前缀和算法
-    // (cumsum[w:] − cumsum[:-w]) / w 居中对齐，与库里的移动平均比较。
+
+    // 把 rl_utils 的前缀和算法 (cumsum[w:] − cumsum[:-w]) / w 居中对齐，与库里的移动平均比较。
     let w = 9;
     let mut cumsum = vec![0.0_f64];
     for r in &snap.returns {
@@ -81,60 +48,22 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         assert!((middle[i] - snap.moving_average[i + centre]).abs() < 1e-9);
     }
     println!("中段的 {} 个值与库里的移动平均一致", middle.len());
-    nb.cell(20);
+    nb.cell(13);
+    println!("前五个移动平均：{:?}", &snap.moving_average[..5]);
+    println!("对应的回报：    {:?}", &snap.returns[..5]);
+    nb.cell(15);
     use ppo_engine::lesson::quiz;
-    nb.cell(22);
+    nb.cell(17);
     nb.show((&Shown(&(quiz::answer("training", 1, '?')))).outputs());
-    nb.cell(24);
+    nb.cell(19);
     nb.show((&Shown(&(quiz::answer("training", 2, '?')))).outputs());
-    nb.cell(26);
+    nb.cell(21);
     nb.show((&Shown(&(quiz::answer("training", 3, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(23);
     nb.show((&Shown(&(quiz::answer("training", 4, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(25);
     nb.show((&Shown(&(quiz::ask("training", 5, &snap)))).outputs());
-    nb.cell(31);
+    nb.cell(26);
     nb.show((&Shown(&(quiz::predict("training", 5, "?", &snap)))).outputs());
-    // The reference solutions, graded in place: each must pass.
-    nb.solutions();
-    {
-        /// A centred mean over `window_size` (odd, at most `a.len() + 1`) values, with windows of
-        /// 1, 3, 5, ... at both ends so the output is as long as the input.
-        pub fn moving_average(a: &[f64], window_size: usize) -> Vec<f64> {
-            let n = a.len();
-            let w = window_size;
-            // cumulative_sum = np.cumsum(np.insert(a, 0, 0))
-            let mut cumulative_sum = vec![0.0; n + 1];
-            for i in 0..n {
-                cumulative_sum[i + 1] = cumulative_sum[i] + a[i];
-            }
-            // begin = np.cumsum(a[:window_size-1])[::2] / r, with r = 1, 3, 5, ...
-            let mut out = Vec::with_capacity(n);
-            let mut sum = 0.0;
-            for (i, &x) in a[..w - 1].iter().enumerate() {
-                sum += x;
-                if i % 2 == 0 {
-                    out.push(sum / (i + 1) as f64);
-                }
-            }
-            // middle = (cumulative_sum[window_size:] - cumulative_sum[:-window_size]) / window_size
-            for i in 0..(n + 1).saturating_sub(w) {
-                out.push((cumulative_sum[i + w] - cumulative_sum[i]) / w as f64);
-            }
-            // end = (np.cumsum(a[:-window_size:-1])[::2] / r)[::-1]
-            let mut end = Vec::new();
-            sum = 0.0;
-            for (i, &x) in a[n + 1 - w..].iter().rev().enumerate() {
-                sum += x;
-                if i % 2 == 0 {
-                    end.push(sum / (i + 1) as f64);
-                }
-            }
-            end.reverse();
-            out.extend(end);
-            out
-        }
-        nb.passed("moving_average", ppo_grade::in_process::moving_average(moving_average).passed());
-    }
     Ok(())
 }

@@ -74,23 +74,33 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(20);
-        /// 策略采取每个动作的可能性有多大，以对数尺度表示：正态分布在该动作处密度的对数，
-        /// 即 PyTorch 的 `torch.distributions.Normal(mu, std).log_prob(actions)` 逐行返回的值。
+        /// 当动作不再是一个力矩，而是由 `dim` 个数组成的向量时（比如有好几个关节的机械臂），
+        /// 高斯策略采取每个动作的可能性有多大，以对数尺度表示；这就是 CleanRL 的
+        /// `ppo_continuous_action.py` 中的策略。
         ///
-        /// - 第 `i` 行是一个时间步。策略的正态分布均值为 `mu[i]`（书中的 μ = 2·tanh(·)，
-        ///   在 [−2, 2] 内），标准差为 `std[i]`（σ = softplus(·)，总是 > 0；即 torch 的
-        ///   `scale`）。`actions[i]` 是所采取的力矩：任意实数，可能离 μ 很近，也可能很远。
-        /// - 三个切片长度相同，可能为 0。每一行返回一个值，类型为 f32。
-        /// - 这是对数密度：它可以大于 0（窄正态分布在均值附近的密度大于 1），对于离 μ 好几个 σ
-        ///   的动作，它也可以是很大的负数。
+        /// - 这批数据有 `N` 行，每个时间步一行。`actions` 和 `mu` 都是 `N × dim`，按行存放：
+        ///   第 `i` 行的第 `d` 维位于 `[i * dim + d]`。`mu` 是策略在该行给出的均值。
+        /// - 策略对每一维各用一个正态分布独立地抽样，各维之间互不相关。分布的宽度与状态无关：
+        ///   `log_std[d]`（长度为 `dim`）是第 `d` 维标准差的*对数*，所有行共用，和 CleanRL
+        ///   一样，每一维一个可学习的数。
+        /// - `dim` 至少为 1；`N` 可以为 0。每一行返回一个值（共 `N` 个，不是 `N × dim` 个）：
+        ///   该行整个动作的对数密度，类型为 f32。PPO 用它为每个时间步构造一个比率。
+        /// - 对数密度可以大于 0（窄正态分布在均值附近的密度大于 1），对于离均值好几个标准差的
+        ///   动作，它也可以是很大的负数。
         ///
-        /// 讲解见第 16 课（continuous-actions）第 3 节“正态分布的对数密度”。
-        pub fn gaussian_log_prob(mu: &[f32], std: &[f32], actions: &[f32]) -> Vec<f32> {
-            // TODO：在这里写代码。
+        /// 讲解见第 16 课（continuous-actions）第 3 节“正态分布的对数密度”，那里讲的是一维的
+        /// 情形；该节最后一段说明了维度多了之后有什么变化。
+        pub fn diag_gaussian_log_prob(
+            actions: &[f32],
+            mu: &[f32],
+            log_std: &[f32],
+            dim: usize,
+        ) -> Vec<f32> {
+            // TODO：各维之间相互独立。这让整个动作的密度成了什么？取对数之后又会怎样？
             todo!()
         }
         nb.cell(21);
-        nb.show((&Shown(&(ppo_grade::in_process::gaussian_log_prob(gaussian_log_prob)))).outputs());
+        nb.show((&Shown(&(ppo_grade::in_process::diag_gaussian_log_prob(diag_gaussian_log_prob)))).outputs());
     }
     nb.cell(24);
     use ppo_engine::lesson::quiz;
@@ -107,23 +117,33 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `log N(a; μ, σ) = −(a − μ)²/(2σ²) − log σ − log √(2π)` for each row, in PyTorch's order of
-        /// operations: `var = σ²`, then `−((a − μ)²) / (2·var) − log σ − log √(2π)`, the constant
-        /// computed in f64 and rounded to f32 (as PyTorch rounds a Python float against a float
-        /// tensor).
-        pub fn gaussian_log_prob(mu: &[f32], std: &[f32], actions: &[f32]) -> Vec<f32> {
+        /// For each row `i` of the `N × dim` batch (row-major: row `i`, dimension `d` at
+        /// `i * dim + d`), the sum over the dimensions of the one-dimensional log-density
+        /// `−(a − μ)²/(2σ²) − log σ − log √(2π)`, with `σ = exp(log_std[d])` shared by every row.
+        /// The dimensions are independent, so the joint density is their product and its log is
+        /// the sum: one log-probability per action, not one per dimension.
+        pub fn diag_gaussian_log_prob(
+            actions: &[f32],
+            mu: &[f32],
+            log_std: &[f32],
+            dim: usize,
+        ) -> Vec<f32> {
             let log_sqrt_2pi = (2.0 * std::f64::consts::PI).sqrt().ln() as f32;
-            mu.iter()
-                .zip(std)
-                .zip(actions)
-                .map(|((&mu, &std), &action)| {
+            let rows = actions.len() / dim;
+            let mut out = Vec::with_capacity(rows);
+            for i in 0..rows {
+                let mut total = 0.0_f32;
+                for d in 0..dim {
+                    let std = log_std[d].exp();
                     let var = std * std;
-                    let diff = action - mu;
-                    -(diff * diff) / (2.0 * var) - std.ln() - log_sqrt_2pi
-                })
-                .collect()
+                    let diff = actions[i * dim + d] - mu[i * dim + d];
+                    total += -(diff * diff) / (2.0 * var) - log_std[d] - log_sqrt_2pi;
+                }
+                out.push(total);
+            }
+            out
         }
-        nb.passed("gaussian_log_prob", ppo_grade::in_process::gaussian_log_prob(gaussian_log_prob).passed());
+        nb.passed("diag_gaussian_log_prob", ppo_grade::in_process::diag_gaussian_log_prob(diag_gaussian_log_prob).passed());
     }
     Ok(())
 }
