@@ -17,8 +17,8 @@ pub const STATE_FILE: &str = ".ppo-tutor-state.json";
 /// The numbering of quiz questions that [`Progress::quiz`] keys follow now. A progress file
 /// written before a numbering existed (with no `quiz_numbering`) is 0, and loading it moves
 /// its answers by [`RENUMBERED`]; one written before numbering 2 forgets its answers to the
-/// questions in [`REPLACED`].
-pub const QUIZ_NUMBERING: u32 = 2;
+/// questions in [`REPLACED`], and one written before numbering 3 those in [`REPLACED_3`].
+pub const QUIZ_NUMBERING: u32 = 3;
 
 /// A quiz question by lesson id and number (from 1), as in [`Progress::quiz_key`].
 pub type QuestionAt = (&'static str, usize);
@@ -43,10 +43,8 @@ pub const RENUMBERED: &[(QuestionAt, QuestionAt)] = &[
 
 /// Questions replaced in place at numbering 2 (issue 27, section 3): the fixed-fact
 /// predictions that asked again what another lesson asks ("every ratio is 1 in epoch 1",
-/// one done per batch) or that a question depending on the run now asks better; and
-/// (section 5) the hyper-parameter recap's questions on the critic's rate and on epochs and
-/// ε, now questions on that lesson's own one-knob experiments. An answer saved before
-/// belongs to the old question, and is forgotten.
+/// one done per batch) or that a question depending on the run now asks better. An answer
+/// saved before belongs to the old question, and is forgotten.
 pub const REPLACED: &[QuestionAt] = &[
     ("what-is-ppo", 3),
     ("policy-gradient", 4),
@@ -54,11 +52,21 @@ pub const REPLACED: &[QuestionAt] = &[
     ("ratio", 2),
     ("clipping", 5),
     ("losses", 1),
-    ("hyperparameters", 3),
-    ("hyperparameters", 4),
     ("beyond-the-seed", 3),
     ("continuous-actions", 3),
     ("pendulum", 2),
+];
+
+/// Questions replaced in place at numbering 3 (issue 27, section 5): the hyper-parameter
+/// recap's questions on the critic's rate and on epochs and ε, now questions on that
+/// lesson's own one-knob experiments, and the training lesson's questions on the smoothed
+/// curve's first value and on centred windows, now questions on what seeds show. An answer
+/// saved before belongs to the old question, and is forgotten.
+pub const REPLACED_3: &[QuestionAt] = &[
+    ("training", 2),
+    ("training", 3),
+    ("hyperparameters", 3),
+    ("hyperparameters", 4),
 ];
 
 /// The learner's progress.
@@ -126,8 +134,13 @@ impl Progress {
                 self.quiz.entry(moved.unwrap_or(key)).or_insert(right);
             }
         }
+        let replaced: Vec<&QuestionAt> = if self.quiz_numbering < 2 {
+            REPLACED.iter().chain(REPLACED_3).collect()
+        } else {
+            REPLACED_3.iter().collect()
+        };
         self.quiz.retain(|key, _| {
-            !REPLACED
+            !replaced
                 .iter()
                 .any(|(id, n)| *key == Self::quiz_key(id, *n))
         });
@@ -363,19 +376,36 @@ mod tests {
         ]
         .into();
         assert_eq!((p.quiz, p.quiz_numbering), (kept, QUIZ_NUMBERING));
+        // Numbering 2: only the questions replaced since (section 5) are forgotten.
+        std::fs::write(
+            &path,
+            r#"{"quiz":{"ratio#2":true,"training#1":true,"training#2":true,"training#3":false,
+                "hyperparameters#4":true,"hyperparameters#5":true},"quiz_numbering":2}"#,
+        )?;
+        let (p, _) = Progress::load(&path);
+        let kept: BTreeMap<String, bool> = [
+            ("ratio#2".to_string(), true),
+            ("training#1".to_string(), true),
+            ("hyperparameters#5".to_string(), true),
+        ]
+        .into();
+        assert_eq!((p.quiz, p.quiz_numbering), (kept, QUIZ_NUMBERING));
         // Every replaced question exists. Section 3's ask about the run (their prompts show
-        // givens); section 5's, lesson 14's, about that lesson's experiments.
+        // givens); section 5's about seeds, lesson 14's about its experiments.
         let course = Course::embedded_in(crate::i18n::Lang::En)?;
         for (id, n) in REPLACED {
             let q = course
                 .get(id)
                 .and_then(|l| l.quiz.get(n - 1))
                 .ok_or(format!("{id}#{n}"))?;
-            if *id == "hyperparameters" {
-                assert!(q.prompt.contains("five seeds"), "{id}#{n}: {}", q.prompt);
-            } else {
-                assert!(q.prompt.contains("{{"), "{id}#{n}: {}", q.prompt);
-            }
+            assert!(q.prompt.contains("{{"), "{id}#{n}: {}", q.prompt);
+        }
+        for (id, n) in REPLACED_3 {
+            let q = course
+                .get(id)
+                .and_then(|l| l.quiz.get(n - 1))
+                .ok_or(format!("{id}#{n}"))?;
+            assert!(q.prompt.contains("five seeds"), "{id}#{n}: {}", q.prompt);
         }
         Ok(())
     }
