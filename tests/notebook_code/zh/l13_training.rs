@@ -12,10 +12,38 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(2);
     use ppo_engine::lesson::Snapshot;
     use ppo_engine::notebook::snapshot;
+    use ppo_engine::plot::smoothed_returns;
     use ppo_engine::ppo::PpoConfig;
+    use ppo_engine::ppo::seeds::{SeedRun, mean_std, train_seeds};
     // 原教程代码的完整训练：500 个回合（几秒钟）。
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 500)?;
+    let threads: usize = std::thread::available_parallelism().map_or(1, |n| n.get());
+    // 把下标换成回合编号（从 1 数起），没有则为“从未”。
+    fn episode(index: Option<usize>) -> String {
+        index.map_or("从未".to_string(), |i| (i + 1).to_string())
+    }
+    // 逐个随机种子打印：第一个 500 步的回合，移动平均首次达到 450 的回合，
+    // 第一个 500 之后移动平均的最低值，以及最后 50 个回报的均值。
+    fn describe(runs: &[SeedRun]) {
+        println!("随机种子  首个 500  移动平均 >= 450  之后最低  最后 50");
+        for run in runs {
+            let returns = &run.summary.returns;
+            let smooth = smoothed_returns(returns);
+            let first = returns.iter().position(|&r| r >= 500.0);
+            let at_450 = smooth.iter().position(|&m| m >= 450.0);
+            let lowest = first.map_or("-".to_string(), |f| {
+                format!("{:.0}", smooth[f..].iter().copied().fold(f64::INFINITY, f64::min))
+            });
+            println!("{:4}  {:>9}  {:>14}  {:>12}  {:7.1}", run.seed, episode(first), episode(at_450), lowest, run.summary.mean_last(50));
+        }
+    }
+    // 一次训练的后期回落：第一个 500 步的回合之后，回报低于 250 的回合。
+    fn late_falls(run: &SeedRun) -> usize {
+        let returns = &run.summary.returns;
+        let first = returns.iter().position(|&r| r >= 500.0).unwrap_or(returns.len());
+        returns[first..].iter().filter(|&&r| r < 250.0).count()
+    }
     nb.cell(4);
     // 原教程代码在每个进度条结束时打印最后十个回合的平均回报。
     nb.show((&Shown(&(for bar in 0..10 {
@@ -27,11 +55,27 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["returns"])))).outputs());
     nb.cell(7);
+    // 每次训练都成立的两点：最初的回合很短，回报不会超过 500。
+    let highest: f64 = snap.returns.iter().copied().fold(0.0, f64::max);
+    println!("前五个回报：{:?}", &snap.returns[..5]);
+    println!("最高回报：{highest}，共 {} 个回合", snap.returns.len());
+    nb.cell(8);
     nb.show((&Shown(&(snap.return_plot("CartPole-v1 上的 PPO")?))).outputs());
-    nb.cell(9);
-    // 本节的实时数值，来自训练运行 `snap`：
-    nb.show((&Shown(&(snap.show(&["moving_average"])))).outputs());
-    nb.cell(11);
+    nb.cell(10);
+    // 原教程代码的设置，随机种子 0–4，各 500 个回合。
+    let seeds_0_4: Vec<SeedRun> = train_seeds(&config, &[0, 1, 2, 3, 4], threads, |_, _| {})?;
+    describe(&seeds_0_4);
+    nb.cell(12);
+    // 同一套设置换成随机种子 5–9：抽两次、每次五个随机种子，其他什么都不改。
+    let seeds_5_9: Vec<SeedRun> = train_seeds(&config, &[5, 6, 7, 8, 9], threads, |_, _| {})?;
+    describe(&seeds_5_9);
+    nb.show((&Shown(&(for (name, runs) in [("随机种子 0–4", &seeds_0_4), ("随机种子 5–9", &seeds_5_9)] {
+    let ends: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(50)).collect();
+    let (mean, std) = mean_std(&ends);
+    let falls: usize = runs.iter().map(late_falls).sum();
+    println!("{name}：最后 50 个回合均值 {mean:.1} ± {std:.1}，第一个 500 之后有 {falls} 个回合低于 250");
+}))).outputs());
+    nb.cell(14);
     // 检查中段的一行：moving_average[100] 是 returns[96..=104] 的均值。
     println!("returns[96..=104]   = {:?}", &snap.returns[96..=104]);
     println!("moving_average[100] = {:.4}", snap.moving_average[100]);
@@ -48,22 +92,28 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         assert!((middle[i] - snap.moving_average[i + centre]).abs() < 1e-9);
     }
     println!("中段的 {} 个值与库里的移动平均一致", middle.len());
-    nb.cell(13);
+
+    // 两端：下标 0 到 3 处的窗口宽度依次为 1、3、5、7。
     println!("前五个移动平均：{:?}", &snap.moving_average[..5]);
     println!("对应的回报：    {:?}", &snap.returns[..5]);
     nb.cell(15);
-    use ppo_engine::lesson::quiz;
+    // 本节的实时数值，来自训练运行 `snap`：
+    nb.show((&Shown(&(snap.show(&["moving_average"])))).outputs());
     nb.cell(17);
-    nb.show((&Shown(&(quiz::answer("training", 1, '?')))).outputs());
+    use ppo_engine::lesson::quiz;
     nb.cell(19);
-    nb.show((&Shown(&(quiz::answer("training", 2, '?')))).outputs());
+    nb.show((&Shown(&(quiz::answer("training", 1, '?')))).outputs());
     nb.cell(21);
-    nb.show((&Shown(&(quiz::answer("training", 3, '?')))).outputs());
+    nb.show((&Shown(&(quiz::answer("training", 2, '?')))).outputs());
     nb.cell(23);
-    nb.show((&Shown(&(quiz::answer("training", 4, '?')))).outputs());
+    nb.show((&Shown(&(quiz::answer("training", 3, '?')))).outputs());
     nb.cell(25);
+    nb.show((&Shown(&(quiz::answer("training", 4, '?')))).outputs());
+    nb.cell(27);
     nb.show((&Shown(&(quiz::ask("training", 5, &snap)))).outputs());
-    nb.cell(26);
+    nb.cell(28);
     nb.show((&Shown(&(quiz::predict("training", 5, "?", &snap)))).outputs());
+    nb.cell(30);
+    nb.show((&Shown(&(quiz::answer("training", 6, '?')))).outputs());
     Ok(())
 }
