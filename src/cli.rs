@@ -305,6 +305,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     if uses_candle && let Some(done) = rerun_with_one_candle_thread() {
         return done;
     }
+    move_renumbered_lessons(&cli.command);
     match cli.command {
         Some(Command::Cartpole(args)) => cartpole::run(&args),
         Some(Command::Pendulum(args)) => pendulum::run(&args),
@@ -323,6 +324,22 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             crate::tui::run()?;
             Ok(ExitCode::SUCCESS)
         }
+    }
+}
+
+/// Before a command that reads or writes the learner's exercise files (the app, `show`,
+/// `grade`, `watch`, `reset`, `init`), moves lesson folders of an older numbering of the
+/// course to their current names and says so on stderr (see [`ppo_grade::renumber`]).
+fn move_renumbered_lessons(command: &Option<Command>) {
+    let root = match command {
+        None | Some(Command::Show(_) | Command::Grade(_) | Command::Watch(_) | Command::Reset(_)) => {
+            std::path::PathBuf::from(".")
+        }
+        Some(Command::Init(args)) => args.dir.clone().unwrap_or_else(|| ".".into()),
+        _ => return,
+    };
+    for moved in ppo_grade::renumber::move_renumbered(&root) {
+        eprintln!("{}", moved.message());
     }
 }
 

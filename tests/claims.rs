@@ -13,8 +13,8 @@ use ppo_tutor::ppo::{PpoConfig, Trainer, UpdateTrace};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
-const LOSSES: &str = include_str!("../lessons/11-losses/lesson.md");
-const TRAINING: &str = include_str!("../lessons/13-training/lesson.md");
+const LOSSES: &str = include_str!("../lessons/12-losses/lesson.md");
+const TRAINING: &str = include_str!("../lessons/14-training/lesson.md");
 
 /// `text` with every run of whitespace one space (lessons wrap lines anywhere).
 fn flat(text: &str) -> String {
@@ -97,7 +97,7 @@ fn count(config: &PpoConfig) -> Result<Updates, Box<dyn std::error::Error>> {
     Ok(u)
 }
 
-/// Lesson 11: the critic loss zigzags over the ten epochs at critic_lr 1e-2 though it ends
+/// Lesson 12: the critic loss zigzags over the ten epochs at critic_lr 1e-2 though it ends
 /// lower; at 1e-3 it rises less often and the returns climb more slowly. And the clip does
 /// not bound the ratio: last epochs leave ratios outside the band.
 #[test]
@@ -110,7 +110,7 @@ fn the_losses_lesson_states_what_the_runs_show() -> TestResult {
     let n = fast.updates;
     assert_eq!(n, SEEDS as usize * EPISODES);
     assert_eq!(slow.updates, n);
-    let file = "lessons/11-losses/lesson.md";
+    let file = "lessons/12-losses/lesson.md";
     says(
         LOSSES,
         file,
@@ -160,7 +160,7 @@ fn the_losses_lesson_states_what_the_runs_show() -> TestResult {
     Ok(())
 }
 
-/// Lesson 10: min(surr1, surr2) picks surr2 exactly on the rows whose ratio left the band
+/// Lesson 11: min(surr1, surr2) picks surr2 exactly on the rows whose ratio left the band
 /// in the direction the advantage favours; rows that left it the other way keep surr1
 /// (so counting rows where surr1 ≠ surr2 overcounts).
 #[test]
@@ -201,7 +201,7 @@ fn min_picks_surr2_only_where_the_advantage_favours_the_move() -> TestResult {
 }
 
 /// Lesson 8 quotes the λ-return's horizon 1/(1 − γλ) for the seed's settings twice, with one
-/// value; lesson 10 says a row below the band was made at least ε less likely.
+/// value; lesson 11 says a row below the band was made at least ε less likely.
 #[test]
 fn the_gae_and_clipping_lessons_quote_their_settings_one_way() -> TestResult {
     let config = PpoConfig::default();
@@ -218,8 +218,8 @@ fn the_gae_and_clipping_lessons_quote_their_settings_one_way() -> TestResult {
         "lessons/08-gae/lesson.md should write every 1/(1 − γλ) as {horizon:?}"
     );
     says(
-        include_str!("../lessons/10-clipping/lesson.md"),
-        "lessons/10-clipping/lesson.md",
+        include_str!("../lessons/11-clipping/lesson.md"),
+        "lessons/11-clipping/lesson.md",
         &format!(
             "has been made at least {:.0}% less likely already",
             100.0 * config.eps
@@ -272,7 +272,7 @@ mod inverted_ratio {
     include!("wrong_answers/approx_kl/inverted_ratio.rs");
 }
 
-/// Lesson 12's hint for an upside-down ratio: over actions from π_old, the mean of
+/// Lesson 13's hint for an upside-down ratio: over actions from π_old, the mean of
 /// (1/r − 1) + log r is χ²(π_old ‖ π_θ) − KL(π_old ‖ π_θ), the catalogue's answer computed
 /// row by row and weighted by π_old. It is close to the KL divergence for a small move and
 /// neither direction's KL divergence for a large one.
@@ -308,8 +308,8 @@ fn the_inverted_ratio_estimates_chi_squared_minus_kl() -> TestResult {
     let (e, k) = (expected(&even, &near), kl(&even, &near));
     assert!((e - k).abs() < 0.01 * k, "a small move: {e} vs KL {k}");
     says(
-        include_str!("../lessons/12-clip-lab/exercise.toml"),
-        "lessons/12-clip-lab/exercise.toml",
+        include_str!("../lessons/13-clip-lab/exercise.toml"),
+        "lessons/13-clip-lab/exercise.toml",
         "Reversed, each row is (1/r − 1) + log r, and its mean over actions from π_old estimates χ²(π_old ‖ π_θ) − KL(π_old ‖ π_θ): close to the KL divergence for small moves, but not the KL divergence in either direction.",
     );
     Ok(())
@@ -351,7 +351,7 @@ fn late_falls(runs: &[SeedRun]) -> usize {
     late_falls_of(runs).iter().sum()
 }
 
-/// Lessons 13 and 15: the truncation fix (and advantage normalisation, and both) against
+/// Lessons 14 and 16: the truncation fix (and advantage normalisation, and both) against
 /// the seed's rule over the same seeds 0–4, 500 episodes each: the runs are identical until
 /// their first 500-step episode; after it, how many episodes stay at 500 and how many fall
 /// below 250. About 15 runs on the plain path, a few seconds.
@@ -407,8 +407,8 @@ fn the_truncation_fix_is_measured_over_the_same_seeds() -> TestResult {
     );
     let fewer = fewer_than_seed(&fixed);
     says(
-        include_str!("../lessons/15-beyond-the-seed/lesson.md"),
-        "lessons/15-beyond-the-seed/lesson.md",
+        include_str!("../lessons/16-beyond-the-seed/lesson.md"),
+        "lessons/16-beyond-the-seed/lesson.md",
         &format!(
             "After it, {fixed_at} of the {seed_all} episodes reach 500, against {seed_at} with the \
              seed's `done`, and {fixed_falls} fall below 250, against {seed_falls}: fewer falls on \
@@ -416,7 +416,7 @@ fn the_truncation_fix_is_measured_over_the_same_seeds() -> TestResult {
             SEEDS as usize - fewer
         ),
     );
-    let file = "lessons/13-training/lesson.md";
+    let file = "lessons/14-training/lesson.md";
     says(
         TRAINING,
         file,
@@ -436,7 +436,7 @@ fn the_truncation_fix_is_measured_over_the_same_seeds() -> TestResult {
             "takes them to {norm_falls}, and both fixes together to {both_falls}, fewer on every seed"
         ),
     );
-    // Falls still happen with both: every seed's moving average (as lesson 13 counts its
+    // Falls still happen with both: every seed's moving average (as lesson 14 counts its
     // falls) dips below 450 after its first 500.
     let dips = both
         .iter()
@@ -457,7 +457,7 @@ fn the_truncation_fix_is_measured_over_the_same_seeds() -> TestResult {
     Ok(())
 }
 
-/// Lesson 13: over seeds 0–4, neither the entropy bonus nor gradient-norm clipping helps the
+/// Lesson 14: over seeds 0–4, neither the entropy bonus nor gradient-norm clipping helps the
 /// seed's update on CartPole.
 #[test]
 #[cfg_attr(
@@ -482,8 +482,8 @@ fn the_beyond_lesson_states_what_the_switches_do_over_five_seeds() -> TestResult
             format!("{m:.1} ± {s:.1}")
         })
         .collect();
-    let lesson = include_str!("../lessons/15-beyond-the-seed/lesson.md");
-    let file = "lessons/15-beyond-the-seed/lesson.md";
+    let lesson = include_str!("../lessons/16-beyond-the-seed/lesson.md");
+    let file = "lessons/16-beyond-the-seed/lesson.md";
     says(
         lesson,
         file,
@@ -505,7 +505,7 @@ fn the_beyond_lesson_states_what_the_switches_do_over_five_seeds() -> TestResult
     Ok(())
 }
 
-/// Lesson 13, step 3: how fast five seeds learn, and their falls after first reaching 500
+/// Lesson 14, step 3: how fast five seeds learn, and their falls after first reaching 500
 /// (the seed's settings, seeds 0–4, 500 episodes each, the cached default runs).
 #[test]
 fn the_training_lesson_states_what_five_seeds_show() -> TestResult {
@@ -540,7 +540,7 @@ fn the_training_lesson_states_what_five_seeds_show() -> TestResult {
     let (lo450, hi450) = range(&reached_450);
     let low = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
     let high = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let file = "lessons/13-training/lesson.md";
+    let file = "lessons/14-training/lesson.md";
     says(
         TRAINING,
         file,
@@ -597,7 +597,7 @@ fn the_training_lesson_states_what_five_seeds_show() -> TestResult {
     Ok(())
 }
 
-/// Lesson 13, step 4: the same setting on seeds 5–9 beside seeds 0–4. Two draws of five
+/// Lesson 14, step 4: the same setting on seeds 5–9 beside seeds 0–4. Two draws of five
 /// seeds differ in their late falls by more than the truncation fix changes them, and by
 /// less than half of what both fixes do.
 #[test]
@@ -625,7 +625,7 @@ fn the_training_lesson_states_what_a_second_draw_of_seeds_shows() -> TestResult 
     };
     let (a, b) = (late_falls(first), late_falls(&second));
     let gap = a.abs_diff(b);
-    let file = "lessons/13-training/lesson.md";
+    let file = "lessons/14-training/lesson.md";
     says(
         TRAINING,
         file,
@@ -673,7 +673,7 @@ fn the_training_lesson_states_what_a_second_draw_of_seeds_shows() -> TestResult 
     says(
         TRAINING,
         file,
-        "a change smaller than the gap between the two draws (lesson 15)",
+        "a change smaller than the gap between the two draws (lesson 16)",
     );
     assert!(
         both_change > 2 * gap,
@@ -724,7 +724,7 @@ fn ignoring_truncation_lets_a_return_exceed_500() -> TestResult {
     Ok(())
 }
 
-/// Lesson 13: the policy's entropy starts near ln 2 (even odds) and falls as it grows surer
+/// Lesson 14: the policy's entropy starts near ln 2 (even odds) and falls as it grows surer
 /// (seeds 0–4, the first and the last 50 of the first 150 updates).
 #[test]
 fn the_entropy_starts_at_even_odds_and_falls() -> TestResult {
@@ -745,16 +745,16 @@ fn the_entropy_starts_at_even_odds_and_falls() -> TestResult {
         let (early, late) = (mean(&first_epochs[..50]), mean(&first_epochs[100..]));
         assert!(late < early, "seed {seed}: {late} late vs {early} early");
     }
-    let lesson = include_str!("../lessons/15-beyond-the-seed/lesson.md");
+    let lesson = include_str!("../lessons/16-beyond-the-seed/lesson.md");
     says(
         lesson,
-        "lessons/15-beyond-the-seed/lesson.md",
+        "lessons/16-beyond-the-seed/lesson.md",
         "it starts near 0.69",
     );
     Ok(())
 }
 
-/// Every clip-lab experiment (lessons 4 and 12) over seeds 0–4, 500 episodes each (the lab
+/// Every clip-lab experiment (lessons 4 and 13) over seeds 0–4, 500 episodes each (the lab
 /// caches runs, so the base arm trains once for all five).
 fn lab_runs() -> Result<Vec<LabResult>, String> {
     use Experiment::{ActorLr, Epochs, Eps, Reinforce, TargetKl};
@@ -776,7 +776,7 @@ fn first_500(arm: &ArmResult) -> Vec<usize> {
         .collect()
 }
 
-/// Lessons 4 and 12 and the README: what every experiment of the clip lab shows.
+/// Lessons 4 and 13 and the README: what every experiment of the clip lab shows.
 #[test]
 #[cfg_attr(
     not(feature = "full-tests"),
@@ -792,8 +792,8 @@ fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
         get(Experiment::TargetKl)?,
         get(Experiment::Reinforce)?,
     );
-    let lab_file = "lessons/12-clip-lab/lesson.md";
-    let lab_text = include_str!("../lessons/12-clip-lab/lesson.md");
+    let lab_file = "lessons/13-clip-lab/lesson.md";
+    let lab_text = include_str!("../lessons/13-clip-lab/lesson.md");
     let pg_file = "lessons/04-policy-gradient/lesson.md";
     let pg_text = include_str!("../lessons/04-policy-gradient/lesson.md");
     let readme = include_str!("../README.md");
@@ -1066,12 +1066,12 @@ fn the_surrogate_gradient_is_the_policy_gradient_at_theta_old() -> TestResult {
     Ok(())
 }
 
-// ---- Lessons 16 (continuous-actions) and 17 (pendulum): the book's PPOContinuous. ----
+// ---- Lessons 17 (continuous-actions) and 17 (pendulum): the book's PPOContinuous. ----
 
-const CONTINUOUS: &str = include_str!("../lessons/16-continuous-actions/lesson.md");
-const PENDULUM: &str = include_str!("../lessons/17-pendulum/lesson.md");
+const CONTINUOUS: &str = include_str!("../lessons/17-continuous-actions/lesson.md");
+const PENDULUM: &str = include_str!("../lessons/18-pendulum/lesson.md");
 
-/// Lesson 16: how much of the last step's wrong TD error GAE carries ten steps back with the
+/// Lesson 17: how much of the last step's wrong TD error GAE carries ten steps back with the
 /// book's Pendulum settings, (γλ)¹⁰.
 #[test]
 fn the_continuous_lesson_states_how_fast_the_truncation_error_fades() -> TestResult {
@@ -1079,7 +1079,7 @@ fn the_continuous_lesson_states_how_fast_the_truncation_error_fades() -> TestRes
     let per_step = config.gamma * config.lmbda;
     says(
         CONTINUOUS,
-        "lessons/16-continuous-actions/lesson.md",
+        "lessons/17-continuous-actions/lesson.md",
         &format!(
             "with weight (γλ)^k = {per_step:.2}^k, so ten steps earlier {per_step:.2}¹⁰ ≈ {:.2} of it is left",
             per_step.powi(10)
@@ -1136,7 +1136,7 @@ fn the_continuous_lesson_states_what_the_first_episodes_show() -> TestResult {
          with a ratio outside [0.8, 1.2]",
         mu.0, mu.1, std.0, std.1
     );
-    let file = "lessons/16-continuous-actions/lesson.md";
+    let file = "lessons/17-continuous-actions/lesson.md";
     assert!(mu.0 < -1.7 && mu.1 > 1.7, "μ beyond ±1.7: {mu:?}");
     says(CONTINUOUS, file, "from below −1.7 to above 1.7");
     says(
@@ -1174,13 +1174,13 @@ fn the_pendulum_lesson_states_where_the_return_curve_starts() -> TestResult {
     }
     says(
         PENDULUM,
-        "lessons/17-pendulum/lesson.md",
+        "lessons/18-pendulum/lesson.md",
         "first 20 episodes average between about −1100 and −1500 (seeds 0 to 2)",
     );
     Ok(())
 }
 
-/// Lesson 17 and its quiz: where the motor can hold the rod still, found with the
+/// Lesson 18 and its quiz: where the motor can hold the rod still, found with the
 /// environment's own physics. From rest at θ (0 is upright), full torque against gravity
 /// holds the rod where the next θ̇ does not follow gravity: within asin(0.4) of upright and of
 /// hanging, and nowhere between.
@@ -1222,7 +1222,7 @@ fn the_pendulum_lesson_states_where_the_motor_can_hold_the_rod() -> TestResult {
         "{near_up} and {near_down}"
     );
     let (ratio, angle) = (motor / gravity, near_up);
-    let file = "lessons/17-pendulum/lesson.md";
+    let file = "lessons/18-pendulum/lesson.md";
     says(
         PENDULUM,
         file,
@@ -1231,8 +1231,8 @@ fn the_pendulum_lesson_states_where_the_motor_can_hold_the_rod() -> TestResult {
         ),
     );
     says(
-        include_str!("../lessons/17-pendulum/quiz.toml"),
-        "lessons/17-pendulum/quiz.toml",
+        include_str!("../lessons/18-pendulum/quiz.toml"),
+        "lessons/18-pendulum/quiz.toml",
         &format!(
             "the motor can hold the rod still only within about {angle:.1}° of upright or of hanging, never in between"
         ),
@@ -1245,7 +1245,7 @@ fn the_pendulum_lesson_states_where_the_motor_can_hold_the_rod() -> TestResult {
 /// σ has shrunk.
 #[test]
 fn the_pendulum_lesson_states_what_a_trained_map_shows() -> TestResult {
-    let file = "lessons/17-pendulum/lesson.md";
+    let file = "lessons/18-pendulum/lesson.md";
     for seed in [0, 1] {
         let mut session = pendulum_session(seed)?;
         let first = session.next_episode()?.ok_or("2000 episodes")?;
@@ -1297,7 +1297,7 @@ fn signed(x: f64, decimals: usize) -> String {
     format!("{x:.decimals$}").replace('-', "−")
 }
 
-/// Lesson 17: seed 2, the seed that ends far behind the others at the book's 2000 episodes,
+/// Lesson 18: seed 2, the seed that ends far behind the others at the book's 2000 episodes,
 /// is late, not broken. At episode 1000 it still plays like the untrained policy while the
 /// others have learned; its σ along the states it visits has not collapsed; 400 episodes
 /// past the book's budget its last 100 episodes are as good as the others'. Seeds 0, 1, 3
@@ -1370,7 +1370,7 @@ fn the_pendulum_lesson_shows_the_seed_that_fell_behind() -> TestResult {
     // Behind at 1000, still behind at 2000, caught up by 2400.
     assert!(at_1000 < others_1000.0 - 300.0 && at_2000 < -450.0 && at_2400 > -450.0);
     assert!(*sigma > 0.2, "σ did not collapse: {sigma}");
-    let file = "lessons/17-pendulum/lesson.md";
+    let file = "lessons/18-pendulum/lesson.md";
     says(
         PENDULUM,
         file,
@@ -1407,7 +1407,7 @@ fn the_pendulum_lesson_shows_the_seed_that_fell_behind() -> TestResult {
     Ok(())
 }
 
-// ---- Lesson 14 (hyperparameters): one knob at a time, predicted before each run. ----
+// ---- Lesson 15 (hyperparameters): one knob at a time, predicted before each run. ----
 
 /// The hyper-parameter lesson's experiments over seeds 0–4, 500 episodes each, base first.
 fn knob_runs() -> Result<Vec<LabResult>, String> {
@@ -1460,7 +1460,7 @@ fn cart_exits_at_the_end(gamma: f64) -> Result<(usize, usize), Box<dyn std::erro
     Ok((exits, episodes))
 }
 
-/// Lesson 14: what changing critic_lr, hidden_dim, gamma or lmbda alone does over seeds 0–4,
+/// Lesson 15: what changing critic_lr, hidden_dim, gamma or lmbda alone does over seeds 0–4,
 /// 500 episodes each (every arm's summary, and the figures each step's folded results and
 /// the quiz quote); and that each step's prediction has the answer the lesson gives.
 #[test]
@@ -1470,10 +1470,10 @@ fn cart_exits_at_the_end(gamma: f64) -> Result<(usize, usize), Box<dyn std::erro
 )]
 fn the_hyperparameter_lesson_states_what_each_knob_does() -> TestResult {
     let labs = knob_runs()?;
-    let file = "lessons/14-hyperparameters/lesson.md";
-    let text = include_str!("../lessons/14-hyperparameters/lesson.md");
-    let quiz_file = "lessons/14-hyperparameters/quiz.toml";
-    let quiz = include_str!("../lessons/14-hyperparameters/quiz.toml");
+    let file = "lessons/15-hyperparameters/lesson.md";
+    let text = include_str!("../lessons/15-hyperparameters/lesson.md");
+    let quiz_file = "lessons/15-hyperparameters/quiz.toml";
+    let quiz = include_str!("../lessons/15-hyperparameters/quiz.toml");
     for l in &labs {
         for arm in &l.arms {
             says(text, file, &arm.summary());

@@ -22,25 +22,25 @@ mod sol08;
 #[path = "../lessons/09-ratio/solution.rs"]
 mod sol09;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/10-clipping/solution.rs"]
+#[path = "../lessons/11-clipping/solution.rs"]
 mod sol10;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/11-losses/solution.rs"]
+#[path = "../lessons/12-losses/solution.rs"]
 mod sol11;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/11-losses/solution_candle.rs"]
+#[path = "../lessons/12-losses/solution_candle.rs"]
 mod sol11_candle;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/12-clip-lab/solution.rs"]
+#[path = "../lessons/13-clip-lab/solution.rs"]
 mod sol12;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/15-beyond-the-seed/solution.rs"]
+#[path = "../lessons/16-beyond-the-seed/solution.rs"]
 mod sol15;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/16-continuous-actions/solution.rs"]
+#[path = "../lessons/17-continuous-actions/solution.rs"]
 mod sol16;
 #[allow(unused, clippy::all, clippy::pedantic)]
-#[path = "../lessons/11-losses/exercise_candle.rs"]
+#[path = "../lessons/12-losses/exercise_candle.rs"]
 mod starter11_candle;
 
 #[allow(unused, clippy::all, clippy::pedantic)]
@@ -327,7 +327,7 @@ fn the_candle_exercise_grades_in_place_like_from_a_file() -> TestResult {
     assert_eq!(report.checks.len(), 5, "{}", report.render());
 
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let starter = root.join("lessons/11-losses/exercise_candle.rs");
+    let starter = root.join("lessons/12-losses/exercise_candle.rs");
     compare_candle(&starter, starter11_candle::ppo_losses, None)?;
     let wrong = root.join("tests/wrong_answers/ppo_losses");
     let answers: [(&str, LossesFn); 3] = [

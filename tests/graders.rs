@@ -346,8 +346,8 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     let (candle, _) = grade::starter("ppo_losses").ok_or("no candle starter")?;
     std::fs::remove_file(d.join(candle))?;
     std::fs::copy(
-        Path::new(ROOT).join("lessons/12-clip-lab/solution.rs"),
-        d.join("lessons/12-clip-lab/exercise.rs"),
+        Path::new(ROOT).join("lessons/13-clip-lab/solution.rs"),
+        d.join("lessons/13-clip-lab/exercise.rs"),
     )?;
     let (code, text) = ppo_tutor(d, &["grade", "approx_kl"])?;
     assert_eq!(code, 0, "{text}");
@@ -465,7 +465,7 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     assert!(app.exercise.grading);
 
     // The starter fails: no solution shown, nothing recorded.
-    let starter = Path::new(ROOT).join("lessons/12-clip-lab/exercise.rs");
+    let starter = Path::new(ROOT).join("lessons/13-clip-lab/exercise.rs");
     let graded = names
         .iter()
         .map(|n| Ok((n.clone(), Ok(grade_file(n, &starter)?))))
@@ -477,7 +477,7 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     assert!(!app.exercise_done());
 
     // The solution passes: recorded, shown, and the bar moves.
-    let solution = Path::new(ROOT).join("lessons/12-clip-lab/solution.rs");
+    let solution = Path::new(ROOT).join("lessons/13-clip-lab/solution.rs");
     let graded = names
         .iter()
         .map(|n| Ok((n.clone(), Ok(grade_file(n, &solution)?))))
@@ -520,7 +520,7 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
     let prose = Prose::of("ppo_losses")?;
     let ids = exercise.mistake_ids();
     let ten = Duration::from_secs(10);
-    let lesson = Path::new(ROOT).join("lessons/11-losses");
+    let lesson = Path::new(ROOT).join("lessons/12-losses");
 
     let report = grade_candle(
         &std::fs::read_to_string(lesson.join("solution_candle.rs"))?,
@@ -796,7 +796,7 @@ fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
         let first = read_until(&rx, "Watching")?;
         assert!(first.contains("todo!()"), "{first}");
         // A wrong answer, saved: graded without a key press, with its hint.
-        let file = d.join("lessons/12-clip-lab/exercise.rs");
+        let file = d.join("lessons/13-clip-lab/exercise.rs");
         std::fs::copy(
             Path::new(ROOT).join("tests/wrong_answers/approx_kl/naive_estimator.rs"),
             &file,
@@ -808,7 +808,7 @@ fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
         );
         // The solution, saved: it passes and the next exercise is graded at once.
         std::fs::copy(
-            Path::new(ROOT).join("lessons/12-clip-lab/solution.rs"),
+            Path::new(ROOT).join("lessons/13-clip-lab/solution.rs"),
             &file,
         )?;
         let passed = read_until(&rx, "passes. Next:")?;

@@ -350,8 +350,8 @@ fn a_lesson_s_exercise_comes_from_its_exercise_file() -> Result<(), Box<dyn std:
     let files = ppo_tutor::lesson::loader::embedded_exercises()?;
     let (_, texts) = files
         .iter()
-        .find(|(dir, _)| dir == "11-losses")
-        .ok_or("no 11-losses/exercise.toml")?;
+        .find(|(dir, _)| dir == "12-losses")
+        .ok_or("no 12-losses/exercise.toml")?;
     let hints: Vec<&String> = texts.iter().flat_map(|t| &t.hints).collect();
     assert_eq!(exercise.hints.iter().collect::<Vec<_>>(), hints);
     Ok(())

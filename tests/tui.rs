@@ -615,7 +615,7 @@ fn saving_the_exercise_file_grades_it_one_grading_at_a_time() -> TestResult {
     );
     assert_eq!(
         app.exercise_files(),
-        vec![std::path::PathBuf::from("lessons/12-clip-lab/exercise.rs")]
+        vec![std::path::PathBuf::from("lessons/13-clip-lab/exercise.rs")]
     );
     app.update(Action::Back);
     open(&mut app, "cartpole")?;

@@ -621,7 +621,7 @@ fn reset_restores_one_function_and_keeps_a_backup() -> TestResult {
     };
     let out = reset("gae_rollout")?;
     assert_eq!(out.status.code(), Some(0), "{out:?}");
-    let file = dir.path().join("lessons/15-beyond-the-seed/exercise.rs");
+    let file = dir.path().join("lessons/16-beyond-the-seed/exercise.rs");
     let starter = std::fs::read_to_string(&file)?;
     // The learner's work in two of the file's functions.
     let mut mine = String::new();
@@ -663,7 +663,7 @@ fn reset_restores_one_function_and_keeps_a_backup() -> TestResult {
     );
     let backup = dir
         .path()
-        .join("lessons/15-beyond-the-seed/exercise.rs.bak");
+        .join("lessons/16-beyond-the-seed/exercise.rs.bak");
     assert_eq!(std::fs::read_to_string(&backup)?, mine);
     assert!(
         said.contains("exercise.rs.bak") && said.contains("other exercises are kept"),

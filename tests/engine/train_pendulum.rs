@@ -4,7 +4,7 @@
 //! 1.4.0, 2000 episodes, seeds 0-4: mean return of the last 100 episodes −329, −327, −278,
 //! −353, −394, from about −1200 at the start. Our sampler is not PyTorch's, so the curves
 //! differ episode by episode; the learning must not: the mean of the last 100 returns
-//! reaches −450 or better on at least 4 of the 5 seeds. Lesson 17 quotes the four seeds'
+//! reaches −450 or better on at least 4 of the 5 seeds. Lesson 18 quotes the four seeds'
 //! range and the one behind them (seed 2, whose late start `tests/claims.rs` measures).
 //!
 //! The run goes through `ppo-tutor train --env Pendulum-v1 --seeds 0-4`, which trains the
@@ -82,7 +82,7 @@ fn book_defaults_learn_pendulum_on_4_of_5_seeds() -> TestResult {
         learned >= 4,
         "only {learned} of 5 seeds reach -450: {figures:?}"
     );
-    // Lesson 17 quotes the four seeds' range and the seed that fell behind, by name.
+    // Lesson 18 quotes the four seeds' range and the seed that fell behind, by name.
     let worst = (0..figures.len())
         .min_by(|&a, &b| figures[a].total_cmp(&figures[b]))
         .ok_or("no seeds")?;
@@ -101,11 +101,11 @@ fn book_defaults_learn_pendulum_on_4_of_5_seeds() -> TestResult {
         signed(high),
         signed(figures[worst])
     );
-    let lesson = include_str!("../../lessons/17-pendulum/lesson.md");
+    let lesson = include_str!("../../lessons/18-pendulum/lesson.md");
     let flat = lesson.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
         flat.contains(&claim),
-        "lessons/17-pendulum/lesson.md should say {claim:?}"
+        "lessons/18-pendulum/lesson.md should say {claim:?}"
     );
     Ok(())
 }

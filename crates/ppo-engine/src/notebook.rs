@@ -368,7 +368,7 @@ pub fn snapshot(
 }
 
 /// Runs the lab experiment called `name` (`eps`, `epochs`, `actor-lr`, `target-kl`,
-/// `reinforce`, and lesson 14's `critic-lr`, `hidden-dim`, `gamma`, `lmbda`: see [`crate::ppo::lab::Experiment`]) with the seed's settings, `episodes`
+/// `reinforce`, and lesson 15's `critic-lr`, `hidden-dim`, `gamma`, `lmbda`: see [`crate::ppo::lab::Experiment`]) with the seed's settings, `episodes`
 /// per run, once per seed of `seeds`, on every core: what `ppo-tutor lab NAME` and the
 /// terminal app's `x` run. Shown in a notebook as its table and its figure.
 ///

@@ -55,6 +55,7 @@ pub mod pipeline;
 pub mod plain;
 pub mod prose;
 pub mod report;
+pub mod renumber;
 pub mod reset;
 pub mod solutions;
 pub mod spec;

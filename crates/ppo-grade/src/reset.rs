@@ -1,6 +1,6 @@
 //! `ppo-tutor reset EXERCISE`: the starter back, without losing the learner's work.
 //!
-//! Several exercises can share one lesson file (lesson 15's `exercise.rs` holds
+//! Several exercises can share one lesson file (lesson 16's `exercise.rs` holds
 //! `td_target_truncation`, `gae_rollout` and `normalize_advantage`). Resetting one of them
 //! replaces only that function (from `fn` to its closing brace) with the starter's, and
 //! keeps the rest of the file; an exercise alone in its file gets the whole starter back.
@@ -253,11 +253,11 @@ fn char_literal_len(rest: &str) -> Option<usize> {
 mod tests {
     use super::*;
 
-    const STARTER: &str = "//! Lesson 15.\n\n/// One.\npub fn one(x: f32) -> f32 {\n    todo!()\n}\n\n/// Two.\npub fn two(v: &[f32]) -> Vec<f32> {\n    todo!()\n}\n";
+    const STARTER: &str = "//! Lesson 16.\n\n/// One.\npub fn one(x: f32) -> f32 {\n    todo!()\n}\n\n/// Two.\npub fn two(v: &[f32]) -> Vec<f32> {\n    todo!()\n}\n";
 
     #[test]
     fn only_the_named_function_is_replaced() -> Result<(), String> {
-        let mine = "//! Lesson 15.\n\n/// One.\npub fn one(x: f32) -> f32 {\n    // a } in a comment, \"}\" in a string, '}' a char\n    let s = \"{\\\"}\";\n    let _ = (s, '}', r#\"}\"#);\n    /* nested /* } */ */\n    x * 2.0\n}\n\n/// Two.\npub fn two(v: &[f32]) -> Vec<f32> {\n    v.iter().map(|x| { x + 1.0 }).collect()\n}\n";
+        let mine = "//! Lesson 16.\n\n/// One.\npub fn one(x: f32) -> f32 {\n    // a } in a comment, \"}\" in a string, '}' a char\n    let s = \"{\\\"}\";\n    let _ = (s, '}', r#\"}\"#);\n    /* nested /* } */ */\n    x * 2.0\n}\n\n/// Two.\npub fn two(v: &[f32]) -> Vec<f32> {\n    v.iter().map(|x| { x + 1.0 }).collect()\n}\n";
         let out = splice_function(mine, STARTER, "two").ok_or("not spliced")?;
         assert!(
             out.contains("x * 2.0"),

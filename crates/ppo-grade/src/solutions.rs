@@ -15,21 +15,21 @@ pub mod gae;
 #[path = "../../../lessons/09-ratio/solution.rs"]
 pub mod ratio;
 
-#[path = "../../../lessons/10-clipping/solution.rs"]
+#[path = "../../../lessons/11-clipping/solution.rs"]
 pub mod clipping;
 
-#[path = "../../../lessons/11-losses/solution.rs"]
+#[path = "../../../lessons/12-losses/solution.rs"]
 pub mod losses;
 
-#[path = "../../../lessons/11-losses/solution_candle.rs"]
+#[path = "../../../lessons/12-losses/solution_candle.rs"]
 pub mod losses_candle;
 
-#[path = "../../../lessons/12-clip-lab/solution.rs"]
+#[path = "../../../lessons/13-clip-lab/solution.rs"]
 pub mod clip_lab;
 
 #[allow(clippy::needless_range_loop)]
-#[path = "../../../lessons/15-beyond-the-seed/solution.rs"]
+#[path = "../../../lessons/16-beyond-the-seed/solution.rs"]
 pub mod beyond;
 
-#[path = "../../../lessons/16-continuous-actions/solution.rs"]
+#[path = "../../../lessons/17-continuous-actions/solution.rs"]
 pub mod continuous;

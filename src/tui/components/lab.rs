@@ -39,8 +39,8 @@ impl Lab {
     pub fn start(&mut self, experiment: Option<Experiment>, base: PpoConfig) -> String {
         let Some(experiment) = experiment else {
             return t(
-                "this step has no experiment to run (lessons 12 and 14 have them)",
-                "本节没有可运行的实验（第 12 课和第 14 课里有）",
+                "this step has no experiment to run (lessons 13 and 15 have them)",
+                "本节没有可运行的实验（第 13 课和第 15 课里有）",
             )
             .into();
         };

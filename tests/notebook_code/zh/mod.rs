@@ -9,14 +9,14 @@ pub mod l06_adam;
 pub mod l07_td_target;
 pub mod l08_gae;
 pub mod l09_ratio;
-pub mod l10_clipping;
-pub mod l11_losses;
-pub mod l12_clip_lab;
-pub mod l13_training;
-pub mod l14_hyperparameters;
-pub mod l15_beyond_the_seed;
-pub mod l16_continuous_actions;
-pub mod l17_pendulum;
+pub mod l11_clipping;
+pub mod l12_losses;
+pub mod l13_clip_lab;
+pub mod l14_training;
+pub mod l15_hyperparameters;
+pub mod l16_beyond_the_seed;
+pub mod l17_continuous_actions;
+pub mod l18_pendulum;
 
 #[test]
 fn l01_what_is_ppo() -> anyhow::Result<()> {
@@ -64,41 +64,41 @@ fn l09_ratio() -> anyhow::Result<()> {
 }
 
 #[test]
-fn l10_clipping() -> anyhow::Result<()> {
-    crate::check(ppo_tutor::i18n::Lang::Zh, "10-clipping", l10_clipping::run)
+fn l11_clipping() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "11-clipping", l11_clipping::run)
 }
 
 #[test]
-fn l11_losses() -> anyhow::Result<()> {
-    crate::check(ppo_tutor::i18n::Lang::Zh, "11-losses", l11_losses::run)
+fn l12_losses() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "12-losses", l12_losses::run)
 }
 
 #[test]
-fn l12_clip_lab() -> anyhow::Result<()> {
-    crate::check(ppo_tutor::i18n::Lang::Zh, "12-clip-lab", l12_clip_lab::run)
+fn l13_clip_lab() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "13-clip-lab", l13_clip_lab::run)
 }
 
 #[test]
-fn l13_training() -> anyhow::Result<()> {
-    crate::check(ppo_tutor::i18n::Lang::Zh, "13-training", l13_training::run)
+fn l14_training() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "14-training", l14_training::run)
 }
 
 #[test]
-fn l14_hyperparameters() -> anyhow::Result<()> {
-    crate::check(ppo_tutor::i18n::Lang::Zh, "14-hyperparameters", l14_hyperparameters::run)
+fn l15_hyperparameters() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "15-hyperparameters", l15_hyperparameters::run)
 }
 
 #[test]
-fn l15_beyond_the_seed() -> anyhow::Result<()> {
-    crate::check(ppo_tutor::i18n::Lang::Zh, "15-beyond-the-seed", l15_beyond_the_seed::run)
+fn l16_beyond_the_seed() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "16-beyond-the-seed", l16_beyond_the_seed::run)
 }
 
 #[test]
-fn l16_continuous_actions() -> anyhow::Result<()> {
-    crate::check(ppo_tutor::i18n::Lang::Zh, "16-continuous-actions", l16_continuous_actions::run)
+fn l17_continuous_actions() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "17-continuous-actions", l17_continuous_actions::run)
 }
 
 #[test]
-fn l17_pendulum() -> anyhow::Result<()> {
-    crate::check(ppo_tutor::i18n::Lang::Zh, "17-pendulum", l17_pendulum::run)
+fn l18_pendulum() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "18-pendulum", l18_pendulum::run)
 }

@@ -391,7 +391,7 @@ mod tests {
         .into();
         assert_eq!((p.quiz, p.quiz_numbering), (kept, QUIZ_NUMBERING));
         // Every replaced question exists. Section 3's ask about the run (their prompts show
-        // givens); section 5's about seeds, lesson 14's about its experiments.
+        // givens); section 5's about seeds, lesson 15's about its experiments.
         let course = Course::embedded_in(crate::i18n::Lang::En)?;
         for (id, n) in REPLACED {
             let q = course

@@ -1,7 +1,7 @@
 //! The clip lab: one of PPO's knobs changed at a time, every arm trained over the same
 //! seeds, so that a difference between arms is a difference between settings and not the
-//! luck of one seed. Lesson 12 runs the experiments on the clip and the actor's steps,
-//! lesson 4 the comparison with REINFORCE, and lesson 14 one experiment per remaining
+//! luck of one seed. Lesson 13 runs the experiments on the clip and the actor's steps,
+//! lesson 4 the comparison with REINFORCE, and lesson 15 one experiment per remaining
 //! setting (critic_lr, hidden_dim, gamma, lmbda), each predicted before it runs.
 //!
 //! An [`Experiment`] lists its arms; the first is always the base configuration (the seed's

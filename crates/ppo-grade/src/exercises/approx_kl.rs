@@ -1,4 +1,4 @@
-//! `approx_kl` (lesson 12): CleanRL's estimate of KL(π_old ‖ π_θ) from the sampled
+//! `approx_kl` (lesson 13): CleanRL's estimate of KL(π_old ‖ π_θ) from the sampled
 //! actions. Its signature, reference, typical mistakes and cases; the hints that name the
 //! mistakes are in the lesson's `exercise.toml`.
 
@@ -9,7 +9,7 @@ use crate::value::{Arg, Kind, OutKind, Output};
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "approx_kl",
-    lesson: "12-clip-lab",
+    lesson: "13-clip-lab",
     params: &[("old_log_probs", Kind::F32s), ("log_probs", Kind::F32s)],
     output: OutKind::F32,
     tolerance: LOSS_TOL,

@@ -1,4 +1,4 @@
-//! `clipped_value_loss` (lesson 11): CleanRL's clipped value loss, PPO's clip applied to the
+//! `clipped_value_loss` (lesson 12): CleanRL's clipped value loss, PPO's clip applied to the
 //! critic. Its signature, reference, typical mistakes and cases; the hints that name the
 //! mistakes are in the lesson's `exercise.toml`.
 
@@ -9,7 +9,7 @@ use crate::value::{Arg, Kind, OutKind, Output};
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "clipped_value_loss",
-    lesson: "11-losses",
+    lesson: "12-losses",
     params: &[
         ("values", Kind::F32s),
         ("old_values", Kind::F32s),

@@ -1,4 +1,4 @@
-//! `diag_gaussian_log_prob` (lesson 16): the log-density of a diagonal Gaussian policy at the
+//! `diag_gaussian_log_prob` (lesson 17): the log-density of a diagonal Gaussian policy at the
 //! actions taken, one number per row however many dimensions an action has (CleanRL's
 //! `Normal(action_mean, action_logstd.exp()).log_prob(action).sum(1)`). Its signature,
 //! reference, typical mistakes and cases; the hints that name the mistakes are in the
@@ -20,7 +20,7 @@ const LOG_SQRT_2PI: f32 = 0.918_938_5;
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "diag_gaussian_log_prob",
-    lesson: "16-continuous-actions",
+    lesson: "17-continuous-actions",
     params: &[
         ("actions", Kind::F32s),
         ("mu", Kind::F32s),

@@ -1,4 +1,4 @@
-//! `gae_rollout` (lesson 15): advantages and returns over a rollout of several episodes,
+//! `gae_rollout` (lesson 16): advantages and returns over a rollout of several episodes,
 //! CleanRL's layout, telling a time-limit cut from a real end. Its signature, reference,
 //! typical mistakes and cases; the hints that name the mistakes are in the lesson's
 //! `exercise.toml`.
@@ -12,7 +12,7 @@ use super::td_target_truncation::random_ends;
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "gae_rollout",
-    lesson: "15-beyond-the-seed",
+    lesson: "16-beyond-the-seed",
     params: &[
         ("rewards", Kind::F32s),
         ("values", Kind::F32s),

@@ -1,4 +1,4 @@
-//! `kl_early_stop` (lesson 12): Spinning Up's early stopping, the k1 estimate of the KL
+//! `kl_early_stop` (lesson 13): Spinning Up's early stopping, the k1 estimate of the KL
 //! divergence tested against 1.5 × `target_kl` before each epoch's step. Its signature,
 //! reference, typical mistakes and cases; the hints that name the mistakes are in the
 //! lesson's `exercise.toml`.
@@ -10,7 +10,7 @@ use crate::value::{Arg, Kind, OutKind, Output};
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "kl_early_stop",
-    lesson: "12-clip-lab",
+    lesson: "13-clip-lab",
     params: &[
         ("old_log_probs", Kind::F32s),
         ("log_probs_per_epoch", Kind::F32s),

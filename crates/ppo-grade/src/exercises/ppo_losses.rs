@@ -114,7 +114,7 @@ pub const REFERENCE_MEAN: f64 = 399.75;
 /// The mean return the training check requires.
 pub const LEARNS_AT: f64 = 150.0;
 
-/// The reference solution (`lessons/11-losses/solution_candle.rs`).
+/// The reference solution (`lessons/12-losses/solution_candle.rs`).
 pub const REFERENCE: LossesFn = crate::solutions::losses_candle::ppo_losses;
 
 /// The weights whose gradients are compared, in order.
@@ -277,7 +277,7 @@ pub fn in_place_within(f: LossesFn, limit: Duration) -> Report {
     )
 }
 
-/// Grades a `ppo_losses` on candle tensors (lesson 11): [`in_place_within`] with
+/// Grades a `ppo_losses` on candle tensors (lesson 12): [`in_place_within`] with
 /// [`IN_PLACE_LIMIT`] per call.
 ///
 /// ```no_run
@@ -358,7 +358,7 @@ impl Spec for PpoLosses {
     fn meta(&self) -> Meta {
         Meta {
             name: "ppo_losses",
-            lesson: "11-losses",
+            lesson: "12-losses",
             starter: "exercise_candle.rs",
             solution: "solution_candle.rs",
             backend: Backend::Cargo,

@@ -1,4 +1,4 @@
-//! `td_target_truncation` (lesson 15): the TD target that bootstraps through a time-limit
+//! `td_target_truncation` (lesson 16): the TD target that bootstraps through a time-limit
 //! cut and not through a real end. Its signature, reference, typical mistakes and cases; the
 //! hints that name the mistakes are in the lesson's `exercise.toml`.
 
@@ -9,7 +9,7 @@ use crate::value::{Arg, Kind, OutKind, Output};
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "td_target_truncation",
-    lesson: "15-beyond-the-seed",
+    lesson: "16-beyond-the-seed",
     params: &[
         ("rewards", Kind::F32s),
         ("next_values", Kind::F32s),

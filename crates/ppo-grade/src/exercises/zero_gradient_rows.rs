@@ -1,4 +1,4 @@
-//! `zero_gradient_rows` (lesson 10): which rows of the clipped surrogate have a zero
+//! `zero_gradient_rows` (lesson 11): which rows of the clipped surrogate have a zero
 //! gradient with respect to the ratio. It tests the idea of the clip, not a formula of the
 //! seed. Its signature, reference, typical mistakes and cases; the hints that name the
 //! mistakes are in the lesson's `exercise.toml`.
@@ -10,7 +10,7 @@ use crate::value::{Arg, Kind, OutKind, Output};
 /// The exercise.
 pub const EXERCISE: Plain = Plain {
     name: "zero_gradient_rows",
-    lesson: "10-clipping",
+    lesson: "11-clipping",
     params: &[
         ("ratio", Kind::F32s),
         ("advantage", Kind::F32s),

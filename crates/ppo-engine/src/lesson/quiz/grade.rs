@@ -408,7 +408,7 @@ mod tests {
 
     #[test]
     fn notebooks_ask_with_the_run_and_answer_live_choices_with_it() {
-        // Lesson 10's last question: its right choice comes from the run.
+        // Lesson 11's last question: its right choice comes from the run.
         let Ok(lesson) = questions("clipping") else {
             panic!("the clipping quiz loads");
         };
@@ -424,7 +424,7 @@ mod tests {
                 )
             })
             .map_or(0, |i| i + 1);
-        assert!(n > 0, "lesson 10 has a choice the run decides");
+        assert!(n > 0, "lesson 11 has a choice the run decides");
         let told = answer("clipping", n, 'a');
         assert!(
             !told.answered && told.text.contains("quiz::answer_live"),

@@ -1,5 +1,5 @@
 //! Typical wrong answers to `ppo_losses`, each a complete losses function (the hints that
-//! name them are in `lessons/11-losses/exercise.toml`). A mistake concerns one of the two losses (its [`Part`]) and computes the
+//! name them are in `lessons/12-losses/exercise.toml`). A mistake concerns one of the two losses (its [`Part`]) and computes the
 //! other one right, so the grader can name a mistake in each loss separately.
 
 use candle_core::{Result, Tensor};
