@@ -21,6 +21,7 @@ pub mod pendulum;
 pub mod play;
 pub mod replay;
 pub mod train;
+pub mod trust_region;
 
 /// Learn Proximal Policy Optimization by running it: a terminal tutor over a native
 /// CartPole-v1 and a candle PPO identical to the seed's PyTorch code.
@@ -73,6 +74,9 @@ pub enum Command {
     Train(train::TrainArgs),
     /// Run a clip-lab experiment: one knob changed, every setting over several seeds.
     Lab(lab::LabArgs),
+    /// Measure how far PPO's surrogate can be trusted: steps of growing length along the
+    /// latest batch's gradient, each with the KL, the predicted and the true change in return.
+    TrustRegion(trust_region::TrustRegionArgs),
     /// Watch a saved agent (`train --save`) balance the pole or swing up the pendulum.
     Play(play::PlayArgs),
     /// Re-run recorded PyTorch updates (ppo_update_pytorch.json, or its continuous twin) and
@@ -313,6 +317,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Show(args)) => lessons::show(&args),
         Some(Command::Train(args)) => train::run(&args),
         Some(Command::Lab(args)) => lab::run(&args),
+        Some(Command::TrustRegion(args)) => trust_region::run(&args),
         Some(Command::Play(args)) => play::run(&args),
         Some(Command::Replay(args)) => replay::run(&args),
         Some(Command::Grade(args)) => grade::run(&args),
@@ -332,7 +337,8 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
 /// course to their current names and says so on stderr (see [`ppo_grade::renumber`]).
 fn move_renumbered_lessons(command: &Option<Command>) {
     let root = match command {
-        None | Some(Command::Show(_) | Command::Grade(_) | Command::Watch(_) | Command::Reset(_)) => {
+        None
+        | Some(Command::Show(_) | Command::Grade(_) | Command::Watch(_) | Command::Reset(_)) => {
             std::path::PathBuf::from(".")
         }
         Some(Command::Init(args)) => args.dir.clone().unwrap_or_else(|| ".".into()),

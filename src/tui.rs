@@ -50,6 +50,11 @@ pub enum Event {
     Lab(Experiment, LabState),
     /// The open lesson's exercise file was saved.
     Saved,
+    /// The trust-region probe of the batch after this many episodes finished.
+    Probe(
+        usize,
+        Result<Box<crate::ppo::trust_region::TrustRegionProbe>, String>,
+    ),
 }
 
 /// Frames per second of the cart-pole animation.
@@ -129,6 +134,9 @@ fn event_loop(
         if let Some((experiment, base)) = app.lab.request.take() {
             spawn_lab(experiment, base, tx.clone());
         }
+        if let Some(episodes) = app.wants_probe() {
+            spawn_probe(app, episodes, tx.clone());
+        }
         if app.quit {
             return Ok(());
         }
@@ -143,6 +151,7 @@ pub fn handle(app: &mut App, event: Event) {
         Event::Graded(graded) => app.on_graded(graded),
         Event::Lab(experiment, state) => app.on_lab(experiment, state),
         Event::Saved => app.on_saved(),
+        Event::Probe(episodes, result) => app.on_probe(episodes, result),
         Event::Input(event::Event::Key(key)) => {
             let context = keys::Context {
                 overlay_open: app.overlay != app::Overlay::None
@@ -196,6 +205,21 @@ fn watch_exercise_files(app: &mut App, watcher: &mut Option<SaveWatcher>, tx: &S
             ));
         }
     }
+}
+
+/// Measures the trust-region probe of the latest batch on a background thread (a second or
+/// so), so that training and the UI never wait on it.
+fn spawn_probe(app: &mut App, episodes: usize, tx: Sender<Event>) {
+    let snapshot = app.run.snapshot.clone();
+    let config = app.run.cartpole();
+    app.probe = app::Probe::Measuring(episodes);
+    std::thread::spawn(move || {
+        let settings = crate::ppo::trust_region::ProbeSettings::default();
+        let result = crate::ppo::trust_region::probe_snapshot(&snapshot, &config, &settings)
+            .map(Box::new)
+            .map_err(|e| e.to_string());
+        let _ = tx.send(Event::Probe(episodes, result));
+    });
 }
 
 /// Runs a clip-lab experiment on a background thread (its runs on every core), sending its

@@ -1689,3 +1689,254 @@ fn the_hyperparameter_lesson_states_what_each_knob_does() -> TestResult {
     says(quiz, quiz_file, &format!("0.95's {}", mean_ms(seed_lmbda)));
     Ok(())
 }
+
+/// The first episode (from 0) at which the mean smoothed curve reaches `level`, as text.
+fn proximal_reach(arm: &ArmResult, level: f64) -> String {
+    arm.first_reaching(level)
+        .map_or_else(|| "never".to_string(), |e| e.to_string())
+}
+
+/// Issue 28 §3: four ways to stay near π_old over seeds 0–4, 500 episodes each: the clip
+/// (the seed), PPO-Penalty's adaptive β, the KL line search and none. Prints every figure
+/// the lesson may quote (score, worst seed, when the mean curve reaches 400 and 450, late
+/// falls, the per-update KL, β's range, the line search's halvings) and asserts the ones
+/// that held with margin when measured.
+#[test]
+#[cfg_attr(
+    not(feature = "full-tests"),
+    ignore = "full tier (cargo test --features full-tests): four arms over five seeds, three on candle"
+)]
+fn proximal_arms_over_five_seeds() -> TestResult {
+    let lab = lab::run(
+        Experiment::Proximal,
+        &PpoConfig::default(),
+        &[0, 1, 2, 3, 4],
+        2,
+        |_, _| {},
+    )?;
+    for line in lab.table() {
+        println!("{line}");
+    }
+    let falls = |arm: &ArmResult| -> Vec<usize> {
+        arm.returns
+            .iter()
+            .map(|r| {
+                let first = r.iter().position(|&x| x >= 500.0).unwrap_or(r.len());
+                r[first..].iter().filter(|&&x| x < 250.0).count()
+            })
+            .collect()
+    };
+    for arm in &lab.arms {
+        println!("{}", arm.summary());
+        println!("{}", arm.kl_summary());
+        println!(
+            "  finals {:?}; mean curve reaches 400 at {}, 450 at {}; late falls {:?}",
+            arm.finals
+                .iter()
+                .map(|f| format!("{f:.1}"))
+                .collect::<Vec<_>>(),
+            proximal_reach(arm, 400.0),
+            proximal_reach(arm, 450.0),
+            falls(arm)
+        );
+    }
+    let [clip, penalty, search, none] = &lab.arms[..] else {
+        return Err("proximal has four arms".into());
+    };
+    let (c, p, s, n) = (
+        clip.mean_updates(),
+        penalty.mean_updates(),
+        search.mean_updates(),
+        none.mean_updates(),
+    );
+    // Measured (release, 2026-12-03): final 495.5 ± 5.7 / 486.2 ± 15.1 / 457.2 ± 20.8 /
+    // 453.2 ± 57.0; worst seed 488.3 / 463.9 / 422.2 / 383.0; mean curve at 400 by episode
+    // 133 / 139 / 215 / 163; KL per update 0.0047 / 0.0115 / 0.0057 / 0.0123 (max 0.120 /
+    // 0.511 / 0.0100 / 0.644); 2.13 halvings per update, no refused search; β from 3e-80
+    // to 16. Asserted: only what holds with margin (the line search and none are too close
+    // to order by score).
+    let (mean_of, worst_of) = (|a: &ArmResult| a.final_mean_std().0, ArmResult::worst_final);
+    assert!(mean_of(clip) > mean_of(penalty) + 5.0, "clip ends highest");
+    for other in [search, none] {
+        assert!(
+            mean_of(penalty) > mean_of(other) + 15.0,
+            "penalty beats {}",
+            other.label
+        );
+        assert!(worst_of(clip) > worst_of(other) + 20.0);
+    }
+    assert!(
+        worst_of(clip) > worst_of(penalty) + 10.0,
+        "clip's worst seed is the best"
+    );
+    for other in [clip, penalty, search] {
+        assert!(
+            none.final_mean_std().1 > 2.0 * other.final_mean_std().1,
+            "none spreads widest"
+        );
+    }
+    let reach = |a: &ArmResult| a.first_reaching(400.0).unwrap_or(usize::MAX);
+    assert!(reach(clip) <= reach(penalty) && reach(penalty) < reach(none));
+    assert!(
+        reach(search) > reach(none) + 30,
+        "the line search is the slowest to 400"
+    );
+    // How far each update moves the policy: the line search never past δ, the two arms
+    // without a hard limit (penalty, none) more than twice the clip's on average and by far
+    // the largest single moves.
+    let delta = search.config.kl_delta;
+    assert!(s.kl_after_max <= delta * 1.02, "{}", s.kl_after_max);
+    assert!(s.kl_after > 1.1 * c.kl_after && p.kl_after > 1.5 * s.kl_after);
+    for u in [p, n] {
+        assert!(u.kl_after > 2.0 * c.kl_after && u.kl_after_max > 10.0 * delta);
+    }
+    let halvings = s.ls_halvings.ok_or("no halvings")?;
+    assert!((1.5..3.0).contains(&halvings), "{halvings}");
+    assert_eq!(s.ls_refused, Some(0.0));
+    // β collapses: the penalty spends most updates halving it towards 0
+    let (lo, hi) = p.beta_range.ok_or("no β range")?;
+    assert!(lo < 1e-20 && hi >= 2.0, "β from {lo:e} to {hi}");
+    Ok(())
+}
+
+// ---- Lesson 10 (trust-region): how far the surrogate's prediction holds. ----
+
+/// Training episodes before the probe, as `ppo-tutor trust-region` by default.
+const TRUST_REGION_TRAINING: usize = 40;
+
+/// `ppo-tutor trust-region --seed SEED`: the seed's agent after 40 episodes, its latest
+/// batch probed with the default settings (held-out episodes drawn from the same seed).
+fn trust_region_probe(
+    seed: u64,
+) -> Result<ppo_tutor::ppo::trust_region::TrustRegionProbe, Box<dyn std::error::Error>> {
+    use ppo_tutor::ppo::trust_region::{ProbeSettings, probe_snapshot};
+    let config = PpoConfig {
+        num_episodes: TRUST_REGION_TRAINING,
+        ..PpoConfig::default()
+    };
+    let snapshot = ppo_tutor::lesson::Session::run(config.clone(), seed, TRUST_REGION_TRAINING)?;
+    let settings = ProbeSettings {
+        seed,
+        ..ProbeSettings::default()
+    };
+    Ok(probe_snapshot(&snapshot, &config, &settings)?)
+}
+
+/// How many combined standard errors separate the prediction from the truth (positive:
+/// the truth is below the prediction).
+fn trust_region_gap(p: &ppo_tutor::ppo::trust_region::ProbePoint) -> f64 {
+    (p.predicted - p.truth) / p.predicted_se.hypot(p.truth_se)
+}
+
+/// Checks one seed's probe and returns `(largest KL up to which every step agrees within
+/// 2 SE, smallest KL where the truth is below the prediction by more than 3 SE)`.
+fn trust_region_check(
+    seed: u64,
+    probe: &ppo_tutor::ppo::trust_region::TrustRegionProbe,
+) -> Result<(f64, f64), String> {
+    eprintln!(
+        "seed {seed}: ‖g‖ = {:.4}, π_old scores {:.1} (J_γ {:.2}) over {} held-out episodes, {} states",
+        probe.gradient_norm, probe.old_score, probe.old_return, probe.episodes, probe.states
+    );
+    eprintln!("      α    mean KL   predicted ± se     true ± se   gap/SE   score ± se");
+    for p in &probe.points {
+        eprintln!(
+            "  {:5.3}  {:9.2e}  {:+7.3} ± {:5.3}  {:+7.3} ± {:5.3}  {:+6.1}  {:+6.1} ± {:4.1}",
+            p.step,
+            p.kl,
+            p.predicted,
+            p.predicted_se,
+            p.truth,
+            p.truth_se,
+            if p.kl > 0.0 { trust_region_gap(p) } else { 0.0 },
+            p.return_change,
+            p.return_change_se
+        );
+    }
+    let points = &probe.points;
+    let zero = points.first().ok_or("no points")?;
+    if (zero.kl, zero.predicted, zero.truth) != (0.0, 0.0, 0.0) {
+        return Err(format!("seed {seed}: α = 0 moved something: {zero:?}"));
+    }
+    if let Some(w) = points.windows(2).find(|w| w[1].kl <= w[0].kl) {
+        return Err(format!("seed {seed}: the KL does not grow with α: {w:?}"));
+    }
+    let (first, last) = (&points[1], &points[points.len() - 1]);
+    // Measured (seeds 0-4): 1.0e-4 to 1.4e-3 at the smallest step, 1.1 to 6.9 at the largest.
+    if !(first.kl < 3e-3 && last.kl > 0.3) {
+        return Err(format!(
+            "seed {seed}: the KL spans {} to {}",
+            first.kl, last.kl
+        ));
+    }
+    // Measured: 0.1 to 1.5 combined SE at the smallest step.
+    if trust_region_gap(first).abs() > 2.0 {
+        return Err(format!(
+            "seed {seed}: prediction and truth differ at the smallest step: {first:?}"
+        ));
+    }
+    // Measured: 4.1 (seed 4, KL 0.57) to 24 combined SE.
+    for p in points.iter().filter(|p| p.kl >= 0.5) {
+        if trust_region_gap(p) <= 3.0 {
+            return Err(format!(
+                "seed {seed}: at KL {} the truth is not below the prediction: {p:?}",
+                p.kl
+            ));
+        }
+    }
+    let agree = points
+        .iter()
+        .skip(1)
+        .take_while(|p| trust_region_gap(p).abs() <= 2.0)
+        .last()
+        .map_or(0.0, |p| p.kl);
+    let part = points
+        .iter()
+        .skip(1)
+        .find(|p| trust_region_gap(p) > 3.0)
+        .map_or(f64::NAN, |p| p.kl);
+    eprintln!(
+        "seed {seed}: agree within 2 SE up to KL {agree:.2e}; truth below by > 3 SE from KL {part:.2e}"
+    );
+    Ok((agree, part))
+}
+
+/// Lesson 10, seed 0: near θ_old the surrogate predicts the change in J_γ that fresh
+/// episodes measure; as the KL grows the truth falls far below the prediction.
+#[test]
+fn trust_region_prediction_holds_near_theta_old_on_seed_0() -> TestResult {
+    let probe = trust_region_probe(0)?;
+    trust_region_check(0, &probe)?;
+    Ok(())
+}
+
+/// Lesson 10 over seeds 0-4: the same three facts on every seed, and where each seed's
+/// prediction and truth part.
+#[test]
+#[cfg_attr(
+    not(feature = "full-tests"),
+    ignore = "full tier (cargo test --features full-tests): five trust-region probes, about 2 s"
+)]
+fn trust_region_prediction_holds_near_theta_old_over_five_seeds() -> TestResult {
+    let mut agree = Vec::new();
+    let mut part = Vec::new();
+    for seed in 0..5 {
+        let (a, p) = trust_region_check(seed, &trust_region_probe(seed)?)?;
+        agree.push(a);
+        part.push(p);
+    }
+    let span = |v: &[f64]| {
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (lo, hi)
+    };
+    let ((a_lo, a_hi), (p_lo, p_hi)) = (span(&agree), span(&part));
+    eprintln!(
+        "seeds 0-4: agree up to KL {a_lo:.2e}..{a_hi:.2e}; part (> 3 SE) from KL {p_lo:.2e}..{p_hi:.2e}"
+    );
+    assert!(
+        part.iter().all(|p| p.is_finite()),
+        "every seed parts: {part:?}"
+    );
+    Ok(())
+}

@@ -25,6 +25,9 @@ mod sol09;
 #[path = "../lessons/11-clipping/solution.rs"]
 mod sol10;
 #[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/10-trust-region/solution.rs"]
+mod sol10_trust_region;
+#[allow(unused, clippy::all, clippy::pedantic)]
 #[path = "../lessons/12-losses/solution.rs"]
 mod sol11;
 #[allow(unused, clippy::all, clippy::pedantic)]
@@ -70,6 +73,7 @@ wrong_answers! {
     w_n_step_target = "wrong_answers/n_step_target/crosses_episode_end.rs";
     w_advantage = "wrong_answers/compute_advantage/forwards.rs";
     w_importance = "wrong_answers/importance_weighted_mean/inverted_ratio.rs";
+    w_categorical_kl = "wrong_answers/categorical_kl/no_zero_convention.rs";
     w_zero_gradient_rows = "wrong_answers/zero_gradient_rows/sides_swapped.rs";
     w_clipped_value_loss = "wrong_answers/clipped_value_loss/min_instead_of_max.rs";
     w_approx_kl = "wrong_answers/approx_kl/naive_estimator.rs";
@@ -88,6 +92,7 @@ fn every_reference_solution_passes_in_place() {
         in_process::n_step_target(sol07::n_step_target),
         in_process::compute_advantage(sol08::compute_advantage),
         in_process::importance_weighted_mean(sol09::importance_weighted_mean),
+        in_process::categorical_kl(sol10_trust_region::categorical_kl),
         in_process::zero_gradient_rows(sol10::zero_gradient_rows),
         in_process::clipped_value_loss(sol11::clipped_value_loss),
         in_process::approx_kl(sol12::approx_kl),
@@ -170,6 +175,11 @@ fn wrong_answers_get_the_same_diagnosis_and_messages_as_from_a_file() -> TestRes
             "importance_weighted_mean",
             "inverted_ratio",
             g::importance_weighted_mean(w_importance::importance_weighted_mean),
+        ),
+        (
+            "categorical_kl",
+            "no_zero_convention",
+            g::categorical_kl(w_categorical_kl::categorical_kl),
         ),
         (
             "zero_gradient_rows",

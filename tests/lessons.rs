@@ -11,9 +11,9 @@ type TestResult = Result<(), Box<dyn std::error::Error>>;
 #[test]
 fn the_course_is_complete_and_consistent() -> TestResult {
     let course = Course::embedded()?;
-    assert_eq!(course.lessons.len(), 17, "the outline has 17 lessons");
+    assert_eq!(course.lessons.len(), 18, "the outline has 18 lessons");
     let orders: Vec<u32> = course.lessons.iter().map(|l| l.order).collect();
-    assert_eq!(orders, (1..=17).collect::<Vec<_>>());
+    assert_eq!(orders, (1..=18).collect::<Vec<_>>());
     // A course's order: the environment and the loop before the networks, the derivation
     // before the mechanics, the lab after them, the recap of settings near the end.
     let ids: Vec<&str> = course.lessons.iter().map(|l| l.id.as_str()).collect();
@@ -29,6 +29,7 @@ fn the_course_is_complete_and_consistent() -> TestResult {
             "td-target",
             "gae",
             "ratio",
+            "trust-region",
             "clipping",
             "losses",
             "clip-lab",

@@ -28,6 +28,7 @@ const SPOILS: &[(&str, &[&str])] = &[
     ("n_step_target", &["n_step_target"]),
     ("compute_advantage", &["advantage"]),
     ("importance_weighted_mean", &["weighted_mean"]),
+    ("categorical_kl", &["categorical_kl"]),
     ("zero_gradient_rows", &["surr1", "surr2"]),
     ("clipped_value_loss", &["v_clipped", "value_loss"]),
     ("ppo_losses", &["actor_loss", "critic_loss"]),

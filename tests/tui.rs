@@ -460,7 +460,7 @@ fn x_runs_the_step_s_experiment_and_the_panel_shows_its_result() -> TestResult {
 }
 
 /// Saved progress names lessons by id, so a state file written before the course was
-/// reordered (hyper-parameters was lesson 2, now 14) still opens the same lesson and step.
+/// reordered (hyper-parameters was lesson 2, now 15) still opens the same lesson and step.
 #[test]
 fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
     let old: Progress = serde_json::from_str(
@@ -470,7 +470,7 @@ fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
     let lesson = app.current_lesson().ok_or("no lesson")?;
     assert_eq!(
         (lesson.id.as_str(), lesson.order, app.step),
-        ("hyperparameters", 14, 2)
+        ("hyperparameters", 15, 2)
     );
     assert!(app.progress.lessons_done.contains("what-is-ppo"));
     Ok(())

@@ -2,7 +2,7 @@
 """Regenerates assets/fonts/PpoTutorSansSC-Regular.otf, the font Chinese plots are set in.
 
 It keeps, from Noto Sans CJK SC Regular (SIL OFL 1.1), only the characters the plots can
-show: printable ASCII, every non-ASCII character of src/plot/labels.rs, the Chinese terms
+show: printable ASCII, every non-ASCII character of crates/ppo-engine/src/plot/labels.rs, the Chinese terms
 of lessons/glossary.toml and the characters of assets/fonts/extra-chars.txt. The subset is
 a Modified Version under the OFL, so it is renamed (no "Noto", no "Source").
 
@@ -29,7 +29,7 @@ POSTSCRIPT = "PpoTutorSansSC-Regular"
 
 def characters() -> str:
     chars = {chr(c) for c in range(0x20, 0x7F)}
-    chars |= {c for c in (ROOT / "src/plot/labels.rs").read_text("utf-8") if ord(c) > 0x7F}
+    chars |= {c for c in (ROOT / "crates/ppo-engine/src/plot/labels.rs").read_text("utf-8") if ord(c) > 0x7F}
     glossary = tomllib.loads((ROOT / "lessons/glossary.toml").read_text("utf-8"))
     chars |= {c for term in glossary["term"] for c in term["zh"] if ord(c) > 0x7F}
     for line in (ROOT / "assets/fonts/extra-chars.txt").read_text("utf-8").splitlines():

@@ -22,7 +22,7 @@ use crate::tr;
 #[derive(Debug, Args)]
 pub struct LabArgs {
     /// The experiment: eps, epochs, actor-lr, target-kl, reinforce, critic-lr, hidden-dim,
-    /// gamma or lmbda (omit to list them).
+    /// gamma, lmbda or proximal (omit to list them).
     #[arg(value_parser = parse_experiment)]
     pub experiment: Option<Experiment>,
     /// The seeds every setting runs: numbers and ranges, e.g. 0-4 or 0,3,7.
@@ -117,6 +117,12 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
     )?;
     for line in result.table() {
         writeln!(out, "{line}")?;
+    }
+    if experiment == Experiment::Proximal {
+        writeln!(out)?;
+        for arm in &result.arms {
+            writeln!(out, "{}", arm.kl_summary())?;
+        }
     }
     if !args.quiet {
         let width = crossterm::terminal::size().map_or(80, |(w, _)| usize::from(w));

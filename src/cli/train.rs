@@ -115,18 +115,29 @@ pub struct TrainArgs {
     /// episode on log π·(G_t − V(s_t)), no ratio, no clip; CartPole only).
     #[arg(long, value_enum, default_value = "ppo")]
     pub algorithm: AlgorithmArg,
-    /// PPO's objective for the actor: clip (the seed's PPO-Clip) or penalty (PPO-Penalty:
+    /// PPO's objective for the actor: clip (the seed's PPO-Clip), penalty (PPO-Penalty:
     /// −mean(ratio·Â) + β·mean(KL(π_old‖π)), β halved or doubled after each update to keep
-    /// the KL near --kl-delta); CartPole only.
+    /// the KL near --kl-delta) or line-search (a KL-constrained line search on the
+    /// surrogate's gradient, TRPO's constraint without its natural gradient: one actor step
+    /// per update, halved until the mean KL ≤ --kl-delta and the surrogate improves);
+    /// CartPole only.
     #[arg(long, value_enum, default_value = "clip")]
     pub objective: ObjectiveArg,
     /// PPO-Penalty's first β [default: 1].
     #[arg(long, allow_hyphen_values = true)]
     pub beta_init: Option<f64>,
-    /// PPO-Penalty's KL target δ: β halves below δ/1.5 and doubles above 1.5·δ [default:
-    /// 0.01]. Not --target-kl, which stops epochs early.
+    /// PPO-Penalty's KL target δ: β halves below δ/1.5 and doubles above 1.5·δ; the line
+    /// search's bound on the mean KL [default: 0.01]. Not --target-kl, which stops epochs
+    /// early.
     #[arg(long, allow_hyphen_values = true)]
     pub kl_delta: Option<f64>,
+    /// The line search's first step length α along the gradient's unit direction
+    /// [default: 0.25].
+    #[arg(long, allow_hyphen_values = true)]
+    pub ls_max_step: Option<f64>,
+    /// The line search's most halvings of α before the actor keeps θ_old [default: 10].
+    #[arg(long)]
+    pub ls_backtracks: Option<usize>,
 }
 
 /// `--objective` values.
@@ -136,6 +147,8 @@ pub enum ObjectiveArg {
     Clip,
     /// PPO-Penalty, an adaptive KL penalty.
     Penalty,
+    /// A KL-constrained line search on the surrogate's gradient (not TRPO).
+    LineSearch,
 }
 
 impl From<ObjectiveArg> for Objective {
@@ -143,6 +156,7 @@ impl From<ObjectiveArg> for Objective {
         match o {
             ObjectiveArg::Clip => Self::Clip,
             ObjectiveArg::Penalty => Self::Penalty,
+            ObjectiveArg::LineSearch => Self::LineSearch,
         }
     }
 }
@@ -192,6 +206,8 @@ impl TrainArgs {
             objective: self.objective.into(),
             beta_init: self.beta_init.unwrap_or(seed.beta_init),
             kl_delta: self.kl_delta.unwrap_or(seed.kl_delta),
+            ls_max_step: self.ls_max_step.unwrap_or(seed.ls_max_step),
+            ls_backtracks: self.ls_backtracks.unwrap_or(seed.ls_backtracks),
         }
     }
 }

@@ -88,6 +88,8 @@ pub struct App {
     pub quiz: Quiz,
     /// The clip-lab experiments started in this session.
     pub lab: Lab,
+    /// The trust-region probe of the latest batch, for steps that show `trust_region`.
+    pub probe: Probe,
     /// The live runs: the current environment's and the one set aside.
     pub run: Run,
     /// The one-line status message (warnings, errors, confirmations) and who set it.
@@ -149,6 +151,7 @@ impl App {
             exercise: ExercisePanel::default(),
             quiz: Quiz::default(),
             lab: Lab::default(),
+            probe: Probe::None,
             run,
             status: Status::default(),
             progress,
@@ -489,6 +492,34 @@ impl App {
         }
     }
 
+    /// The episode count whose batch the open step's trust-region view should be measured
+    /// on, when it is not measured or being measured yet (`None` otherwise).
+    #[must_use]
+    pub fn wants_probe(&self) -> Option<usize> {
+        let shows = self
+            .current_step()
+            .is_some_and(|s| s.show.iter().any(|v| v == "trust_region"));
+        let s = &self.run.snapshot;
+        if !shows || s.played_with.is_none() || s.env != crate::lesson::Environment::CartPole {
+            return None;
+        }
+        let episodes = s.episodes;
+        match &self.probe {
+            Probe::Measuring(_) => None,
+            Probe::Done(e, _) if *e == episodes => None,
+            _ => Some(episodes),
+        }
+    }
+
+    /// Keeps a finished trust-region probe.
+    pub fn on_probe(
+        &mut self,
+        episodes: usize,
+        result: Result<Box<crate::ppo::trust_region::TrustRegionProbe>, String>,
+    ) {
+        self.probe = Probe::Done(episodes, result);
+    }
+
     /// Applies an experiment's progress or its end.
     pub fn on_lab(&mut self, experiment: Experiment, state: LabState) {
         if let Some(said) = self.lab.on_event(experiment, state) {
@@ -638,4 +669,20 @@ impl App {
         self.run.outbox.push(Command::Quit);
         self.quit = true;
     }
+}
+
+/// The trust-region view's probe (lesson 10): measured off the UI thread for the batch of
+/// the latest episode, again after each new episode while a step shows it.
+#[derive(Debug, Clone, Default)]
+pub enum Probe {
+    /// Never measured.
+    #[default]
+    None,
+    /// Being measured for the batch after this many episodes.
+    Measuring(usize),
+    /// Measured for the batch after this many episodes (or why it could not be).
+    Done(
+        usize,
+        Result<Box<crate::ppo::trust_region::TrustRegionProbe>, String>,
+    ),
 }

@@ -389,6 +389,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             }
             .render(area, buf);
         }
+        "trust_region" => draw_probe(app, theme, area, buf),
         "lab" => {
             let Some(experiment) = app.current_step().and_then(|s| s.lab) else {
                 return;
@@ -408,6 +409,60 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             .render(area, buf);
         }
     }
+}
+
+/// The trust-region probe of the latest batch as its table: step length, KL, the surrogate's
+/// predicted change of J_γ against the measured one, and the score change.
+fn draw_probe(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
+    use crate::tui::app::Probe;
+    let block = panel(
+        t(
+            "trust region: the surrogate's prediction against the truth",
+            "信任域：替代目标的预测与真实变化",
+        ),
+        theme,
+    );
+    let inner = block.inner(area);
+    block.render(area, buf);
+    let lines: Vec<Line> = match &app.probe {
+        Probe::Done(episodes, Ok(probe)) => {
+            let mut lines = vec![Line::styled(
+                tr!(
+                    "the batch after episode {episodes}, stepped along its surrogate gradient; {} fresh episodes per row",
+                    "第 {episodes} 个回合之后的这批数据，沿替代目标的梯度迈步；每行用 {} 个新回合",
+                    probe.episodes
+                ),
+                theme.dim(),
+            )];
+            lines.extend(
+                crate::notebook::trust_region_table(probe)
+                    .into_iter()
+                    .map(Line::raw),
+            );
+            lines
+        }
+        Probe::Done(_, Err(e)) => vec![Line::styled(e.clone(), theme.dim())],
+        Probe::Measuring(episodes) => vec![Line::styled(
+            tr!(
+                "measuring the batch after episode {episodes} …",
+                "正在测量第 {episodes} 个回合之后的这批数据……"
+            ),
+            theme.dim(),
+        )],
+        Probe::None => vec![Line::styled(
+            t(
+                "appears after the first episode: press e (one episode) or t (train).",
+                "在第一个回合之后出现：按 e 训练一个回合，或按 t 连续训练。",
+            ),
+            theme.dim(),
+        )],
+    };
+    let columns = usize::from(inner.width);
+    let lines: Vec<Line> = lines
+        .into_iter()
+        .map(|l| text::cut(l, columns, Span::styled("…", theme.dim())))
+        .collect();
+    Paragraph::new(lines).render(inner, buf);
 }
 
 fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {

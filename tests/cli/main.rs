@@ -8,3 +8,4 @@ mod commands;
 mod pendulum;
 mod pendulum_train;
 mod ppo;
+mod trust_region;

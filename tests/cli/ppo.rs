@@ -315,6 +315,109 @@ fn train_with_the_penalty_objective() -> TestResult {
     Ok(())
 }
 
+/// `--objective line-search` trains the KL line search on candle (its settings in the
+/// JSON), and its flags are refused without it, as are the flags that do not fit it.
+#[test]
+fn train_with_the_line_search_objective() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let json = dir.path().join("run.json");
+    let out = ppo_tutor(&[
+        "train",
+        "--quiet",
+        "--episodes",
+        "4",
+        "--objective",
+        "line-search",
+        "--ls-max-step",
+        "0.5",
+        "--ls-backtracks",
+        "6",
+        "--kl-delta",
+        "0.02",
+        "--json",
+        path(&json)?,
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8(out.stdout)?;
+    assert!(
+        stdout.contains("update path: candle (autograd) for all 4 updates"),
+        "{stdout}"
+    );
+    let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+    let config = run["config"].to_string();
+    for key in [
+        r#""objective":"line-search""#,
+        r#""ls_max_step":0.5"#,
+        r#""ls_backtracks":6"#,
+        r#""kl_delta":0.02"#,
+    ] {
+        assert!(config.contains(key), "{key} missing: {config}");
+    }
+    // at the defaults the settings are left out
+    let out = ppo_tutor(&[
+        "train",
+        "--quiet",
+        "--episodes",
+        "2",
+        "--objective",
+        "line-search",
+        "--json",
+        path(&json)?,
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+    let config = run["config"].to_string();
+    assert!(
+        config.contains(r#""objective":"line-search""#) && !config.contains("ls_"),
+        "{config}"
+    );
+
+    for (args, expected) in [
+        (
+            &["--ls-max-step", "0.5"][..],
+            "--ls-max-step is a setting of the KL line search: add --objective line-search",
+        ),
+        (
+            &["--objective", "penalty", "--ls-backtracks", "3"][..],
+            "--ls-backtracks is a setting of the KL line search: add --objective line-search",
+        ),
+        (
+            &["--objective", "line-search", "--beta-init", "2"][..],
+            "--beta-init is a setting of PPO-Penalty: add --objective penalty",
+        ),
+        (
+            &["--objective", "line-search", "--algorithm", "reinforce"][..],
+            "--objective line-search and --algorithm reinforce do not go together",
+        ),
+        (
+            &["--objective", "line-search", "--no-clip"][..],
+            "--objective line-search and --no-clip do not go together",
+        ),
+        (
+            &["--objective", "line-search", "--ls-max-step", "0"][..],
+            "invalid --ls-max-step 0: expected a finite number > 0",
+        ),
+        (
+            &["--objective", "line-search", "--ls-backtracks", "51"][..],
+            "invalid --ls-backtracks 51",
+        ),
+        (
+            &["--objective", "line-search", "--entropy-coef", "0.01"][..],
+            "invalid --entropy-coef 0.01",
+        ),
+        (
+            &["--env", "Pendulum-v1", "--objective", "line-search"][..],
+            "--objective works only with CartPole",
+        ),
+    ] {
+        let out = ppo_tutor(&[&["train", "--episodes", "1"][..], args].concat())?;
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        assert!(err.contains(expected), "{args:?}: {err}");
+    }
+    Ok(())
+}
+
 #[test]
 fn replay_names_a_missing_key_and_a_wrong_shape() -> TestResult {
     let dir = tempfile::tempdir()?;

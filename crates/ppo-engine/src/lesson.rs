@@ -109,4 +109,13 @@ impl Exercise {
 }
 
 /// Views a step can show instead of a tensor.
-pub const VIEWS: [&str; 5] = ["plot", "cartpole", "clip_chart", "lab", "pendulum"];
+/// `trust_region` is the trust-region probe of the latest batch
+/// ([`crate::ppo::trust_region::probe_snapshot`]), measured when the step opens.
+pub const VIEWS: [&str; 6] = [
+    "plot",
+    "cartpole",
+    "clip_chart",
+    "lab",
+    "pendulum",
+    "trust_region",
+];

@@ -22,7 +22,9 @@
 
 use std::fmt::Write as _;
 
+mod trust_region;
 mod work_folder;
+pub use trust_region::{trust_region_svg, trust_region_table};
 pub use work_folder::{Claim, claim_in, claim_work_folder};
 
 use crate::lesson::{Mark, RunConfig, Session, Snapshot, TensorView};
@@ -368,7 +370,7 @@ pub fn snapshot(
 }
 
 /// Runs the lab experiment called `name` (`eps`, `epochs`, `actor-lr`, `target-kl`,
-/// `reinforce`, and lesson 15's `critic-lr`, `hidden-dim`, `gamma`, `lmbda`: see [`crate::ppo::lab::Experiment`]) with the seed's settings, `episodes`
+/// `reinforce`, and lesson 15's `critic-lr`, `hidden-dim`, `gamma`, `lmbda`, and `proximal`: see [`crate::ppo::lab::Experiment`]) with the seed's settings, `episodes`
 /// per run, once per seed of `seeds`, on every core: what `ppo-tutor lab NAME` and the
 /// terminal app's `x` run. Shown in a notebook as its table and its figure.
 ///
@@ -421,7 +423,13 @@ impl LabResult {
 
 impl Rich for LabResult {
     fn rich(&self) -> Vec<(&'static str, String)> {
-        let mut out = vec![("text/plain", self.table().join("\n"))];
+        let mut lines = self.table();
+        if self.experiment == Experiment::Proximal {
+            // each arm's per-update KL, β's range and the line search's halvings
+            lines.push(String::new());
+            lines.extend(self.arms.iter().map(crate::ppo::lab::ArmResult::kl_summary));
+        }
+        let mut out = vec![("text/plain", lines.join("\n"))];
         if let Ok(svg) = self.plot() {
             out.push(("image/svg+xml", svg.0));
         }

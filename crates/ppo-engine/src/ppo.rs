@@ -59,7 +59,9 @@ pub mod train;
 pub mod update_path;
 
 // The discrete agent's modules keep their old paths (`ppo::agent`, `ppo::config`, ...).
-pub use discrete::{ACTION_DIM, STATE_DIM, agent, config, gradient, penalty, replay, trace};
+pub use discrete::{
+    ACTION_DIM, STATE_DIM, agent, config, gradient, penalty, replay, trace, trust_region,
+};
 
 pub use adam::Adam;
 pub use advantage::{compute_advantage, normalize_advantage};

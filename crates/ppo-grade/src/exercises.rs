@@ -34,6 +34,7 @@ registry! {
     n_step_target,
     compute_advantage,
     importance_weighted_mean,
+    categorical_kl,
     zero_gradient_rows,
     clipped_value_loss,
     ppo_losses,

@@ -142,8 +142,16 @@ mod tests {
         let root = dir.path();
         // The folder names of the numbering before lesson 10 (trust-region) was added.
         write(root, "lessons/10-clipping/exercise.rs", "// mine: clipping");
-        write(root, "lessons/11-losses/exercise_candle.rs", "// mine: candle");
-        write(root, "lessons/16-continuous-actions/exercise.rs", "// mine: gaussian");
+        write(
+            root,
+            "lessons/11-losses/exercise_candle.rs",
+            "// mine: candle",
+        );
+        write(
+            root,
+            "lessons/16-continuous-actions/exercise.rs",
+            "// mine: gaussian",
+        );
         write(root, "lessons/09-ratio/exercise.rs", "// unchanged");
         let moved = move_renumbered(root);
         let names: Vec<String> = moved.iter().map(Moved::message).collect();

@@ -401,6 +401,18 @@ const CHECK_NAMES: &[(&str, &str)] = &[
     ("a rare action: a large weight", "罕见的动作：很大的权重"),
     ("six actions per row", "每行六个动作"),
     (
+        "the old policy never takes some actions",
+        "旧策略从不采取某些动作",
+    ),
+    (
+        "rows where the two policies agree (0)",
+        "两个策略一致的行（为 0）",
+    ),
+    (
+        "PyTorch's kl_divergence of two Categoricals (recorded)",
+        "PyTorch 对两个 Categorical 的 kl_divergence（录制）",
+    ),
+    (
         "values within eps of old: the plain half MSE",
         "新旧价值相差不超过 eps：就是普通的半均方误差",
     ),

@@ -15,6 +15,9 @@ pub mod gae;
 #[path = "../../../lessons/09-ratio/solution.rs"]
 pub mod ratio;
 
+#[path = "../../../lessons/10-trust-region/solution.rs"]
+pub mod trust_region;
+
 #[path = "../../../lessons/11-clipping/solution.rs"]
 pub mod clipping;
 

@@ -7,8 +7,10 @@
 //! CartPole agent's opt-in switches are refused on Pendulum-v1, each with its reason: the
 //! book's continuous update has none of them (no advantage normalisation, entropy bonus,
 //! gradient clipping, KL stop, unclipped, PPO-Penalty or REINFORCE variant, nor a bootstrap
-//! at the time limit: its `done` is `terminated or truncated`). PPO-Penalty's own flags
-//! (`--beta-init`, `--kl-delta`) need `--objective penalty`, and PPO-Penalty needs PPO.
+//! at the time limit: its `done` is `terminated or truncated`). PPO-Penalty's own flag
+//! `--beta-init` needs `--objective penalty`, the KL line search's (`--ls-max-step`,
+//! `--ls-backtracks`) need `--objective line-search`, `--kl-delta` needs one of the two, and
+//! both objectives need PPO with its clip left alone.
 
 use std::fmt;
 
@@ -82,6 +84,7 @@ pub fn run_config(args: &TrainArgs) -> Result<RunConfig, String> {
     let setup = match args.env_id {
         TrainEnv::CartPole(env_id) => {
             refuse_lone_penalty_flags(args)?;
+            refuse_lone_line_search_flags(args)?;
             RunConfig::CartPole(args.config_for(env_id))
         }
         TrainEnv::Pendulum => {
@@ -189,9 +192,9 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
             args.objective != ObjectiveArg::Clip,
             "--objective",
             t(
-                "the book's PPOContinuous is PPO-Clip; PPO-Penalty's exact KL is written for \
-                 CartPole's two actions",
-                "书中的 PPOContinuous 是 PPO-截断；PPO-惩罚的精确 KL 是为 CartPole 的两个动作写的",
+                "the book's PPOContinuous is PPO-Clip; the exact KL of PPO-Penalty and of the \
+                 KL line search is written for CartPole's two actions",
+                "书中的 PPOContinuous 是 PPO-截断；PPO-惩罚和 KL 线搜索的精确 KL 是为 CartPole 的两个动作写的",
             ),
         ),
     ];
@@ -209,9 +212,11 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
 /// (no ratio) or `--no-clip` (PPO-Penalty has no clip to drop).
 fn refuse_lone_penalty_flags(args: &TrainArgs) -> Result<(), String> {
     let penalty = args.objective == ObjectiveArg::Penalty;
+    // δ is also the line search's bound (refused there by its own check)
+    let search = args.objective == ObjectiveArg::LineSearch;
     let unused = [
         (!penalty && args.beta_init.is_some(), "--beta-init"),
-        (!penalty && args.kl_delta.is_some(), "--kl-delta"),
+        (!penalty && !search && args.kl_delta.is_some(), "--kl-delta"),
     ];
     if let Some((_, flag)) = unused.into_iter().find(|(on, _)| *on) {
         return Err(tr!(
@@ -238,6 +243,48 @@ fn refuse_lone_penalty_flags(args: &TrainArgs) -> Result<(), String> {
         Some((_, flag, why)) => Err(tr!(
             "--objective penalty and {flag} do not go together: {why}",
             "--objective penalty 不能与 {flag} 同用：{why}"
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Refuses the KL line search's flags where they would change nothing: `--ls-max-step` and
+/// `--ls-backtracks` without `--objective line-search`, and `--objective line-search` with
+/// REINFORCE (no ratio, no surrogate to search along) or `--no-clip` (it has no clip).
+fn refuse_lone_line_search_flags(args: &TrainArgs) -> Result<(), String> {
+    let search = args.objective == ObjectiveArg::LineSearch;
+    let unused = [
+        (!search && args.ls_max_step.is_some(), "--ls-max-step"),
+        (!search && args.ls_backtracks.is_some(), "--ls-backtracks"),
+    ];
+    if let Some((_, flag)) = unused.into_iter().find(|(on, _)| *on) {
+        return Err(tr!(
+            "{flag} is a setting of the KL line search: add --objective line-search, or drop {flag}",
+            "{flag} 是 KL 线搜索的设置：请加上 --objective line-search，或去掉 {flag}"
+        ));
+    }
+    let clash = [
+        (
+            args.algorithm == AlgorithmArg::Reinforce,
+            "--algorithm reinforce",
+            t(
+                "REINFORCE has no ratio, so no surrogate to search along",
+                "REINFORCE 没有比率，也就没有可供搜索的替代目标",
+            ),
+        ),
+        (
+            args.no_clip,
+            "--no-clip",
+            t(
+                "the KL line search has no clip to drop",
+                "KL 线搜索本来就没有截断",
+            ),
+        ),
+    ];
+    match clash.into_iter().find(|(on, _, _)| search && *on) {
+        Some((_, flag, why)) => Err(tr!(
+            "--objective line-search and {flag} do not go together: {why}",
+            "--objective line-search 不能与 {flag} 同用：{why}"
         )),
         None => Ok(()),
     }

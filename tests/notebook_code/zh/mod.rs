@@ -9,6 +9,7 @@ pub mod l06_adam;
 pub mod l07_td_target;
 pub mod l08_gae;
 pub mod l09_ratio;
+pub mod l10_trust_region;
 pub mod l11_clipping;
 pub mod l12_losses;
 pub mod l13_clip_lab;
@@ -61,6 +62,11 @@ fn l08_gae() -> anyhow::Result<()> {
 #[test]
 fn l09_ratio() -> anyhow::Result<()> {
     crate::check(ppo_tutor::i18n::Lang::Zh, "09-ratio", l09_ratio::run)
+}
+
+#[test]
+fn l10_trust_region() -> anyhow::Result<()> {
+    crate::check(ppo_tutor::i18n::Lang::Zh, "10-trust-region", l10_trust_region::run)
 }
 
 #[test]

@@ -18,6 +18,7 @@ pub use session::Session;
 pub use values::{IN_BOTH, LIVE, LiveValue, NAMES, PENDULUM_ONLY, is_known, lookup};
 
 use super::Environment;
+use crate::ppo::model::ActorSnapshot;
 use crate::ppo::{
     ContinuousUpdateTrace, NamedWeights, PpoConfig, PpoContinuousConfig, SurrogateGradients,
     UpdateTrace,
@@ -199,6 +200,10 @@ pub struct Snapshot {
     /// The latest batch's two policy gradients at θ_old, PPO's surrogate and REINFORCE's
     /// `log π · Â` (the policy-gradient lesson shows them side by side).
     pub gradients: Option<SurrogateGradients>,
+    /// CartPole runs: the actor that played the latest batch, θ_old (before the batch's
+    /// update), as plain weights: where the trust-region probe
+    /// ([`crate::ppo::trust_region::probe_snapshot`]) steps from.
+    pub played_with: Option<ActorSnapshot>,
     /// The environment of the run (CartPole: [`Self::trace`]; Pendulum: [`Self::continuous`]).
     pub env: Environment,
     /// Pendulum runs: the latest update's batch and intermediates.

@@ -636,7 +636,7 @@ fn check_step(
         });
     }
     let view_env = |view: &str| match view {
-        "cartpole" | "clip_chart" | "lab" => Some(Environment::CartPole),
+        "cartpole" | "clip_chart" | "lab" | "trust_region" => Some(Environment::CartPole),
         "pendulum" => Some(Environment::Pendulum),
         _ => None,
     };

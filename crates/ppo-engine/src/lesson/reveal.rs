@@ -292,7 +292,7 @@ mod tests {
         );
         assert_eq!(
             note(&[gate("zero_gradient_rows", 10), gate("ppo_losses", 11)]),
-            "solve exercises `zero_gradient_rows` (lesson 11) and `ppo_losses` (lesson 12) to \
+            "solve exercises `zero_gradient_rows` (lesson 10) and `ppo_losses` (lesson 11) to \
              see the crate's version"
         );
         let _zh = Lang::Zh.scoped();

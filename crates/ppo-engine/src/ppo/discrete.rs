@@ -7,15 +7,20 @@
 //! - [`trace`]: the recorded intermediates every face displays.
 //! - [`gradient`]: the policy gradient and PPO's surrogate have one gradient at θ_old.
 //! - [`penalty`]: PPO-Penalty's exact KL and adaptive β ([`Objective::Penalty`]).
+//! - [`line_search`]: the KL-constrained line search on the surrogate's gradient
+//!   ([`Objective::LineSearch`]).
 //! - [`replay`]: re-running a recorded PyTorch update (`ppo_update_pytorch.json`).
+//! - [`trust_region`]: how far the surrogate's prediction holds, measured along its gradient.
 
 pub mod agent;
 pub mod checkpoint;
 pub mod config;
 pub mod gradient;
+pub mod line_search;
 pub mod penalty;
 pub mod replay;
 pub mod trace;
+pub mod trust_region;
 
 use std::path::Path;
 
@@ -28,7 +33,7 @@ use crate::ppo::on_policy::{AgentConfig, Batch, OnPolicyAgent, Replayed};
 
 pub use agent::{Agent, Losses, Transitions};
 pub use config::{Algorithm, Objective, PpoConfig};
-pub use trace::{EarlyStop, EpochTrace, PenaltyTrace, UpdateTrace};
+pub use trace::{EarlyStop, EpochTrace, LineSearchTrace, PenaltyTrace, UpdateTrace};
 
 /// Observations per state: CartPole's `(x, x_dot, theta, theta_dot)`.
 pub const STATE_DIM: usize = 4;
@@ -79,8 +84,9 @@ impl AgentConfig for PpoConfig {
         f64::from(self.env_id.max_episode_steps())
     }
 
-    /// The seed's five numbers, the seed, the CleanRL-style switches, the objective (clip or
-    /// PPO-Penalty, with its defaults β₀ = 1 and δ = 0.01) and the algorithm:
+    /// The seed's five numbers, the seed, the CleanRL-style switches, the objective (clip,
+    /// PPO-Penalty or the KL line search, with their defaults β₀ = 1, δ = 0.01, α₀ = 0.25 and
+    /// 10 halvings) and the algorithm:
     /// the three switches with a value toggle between off and the value their source uses
     /// (an entropy bonus of 0.01, CleanRL's gradient clip of 0.5, Spinning Up's target KL
     /// of 0.01).
@@ -169,10 +175,7 @@ impl AgentConfig for PpoConfig {
             "objective",
             |c| c.objective.as_str().into(),
             |c, _| {
-                c.objective = match c.objective {
-                    Objective::Clip => Objective::Penalty,
-                    Objective::Penalty => Objective::Clip,
-                };
+                c.objective = c.objective.next(); // clip → penalty → line-search → clip
             },
         ),
         Knob::value(

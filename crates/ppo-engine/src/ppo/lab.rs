@@ -10,6 +10,9 @@
 //! seed's mean of the last 50 returns, and what the updates did (approx_kl, clip fraction,
 //! the ratios' largest distance from 1, epochs run).
 //!
+//! The proximal experiment compares four ways to stay near π_old (the clip, PPO-Penalty, the
+//! KL line search, none) and reports, for every arm, the same per-update exact KL.
+//!
 //! ```
 //! use ppo_engine::ppo::lab::Experiment;
 //! use ppo_engine::ppo::PpoConfig;
@@ -27,7 +30,7 @@ use crate::i18n::{pad_left, pad_right, t};
 use crate::tr;
 use serde::Serialize;
 
-use super::config::{Algorithm, PpoConfig};
+use super::config::{Algorithm, Objective, PpoConfig};
 use super::moving_average::smoothed_returns;
 use super::seeds::{Band, SeedError, mean_std, train_jobs};
 use super::train::{EpisodeReport, mean_last};
@@ -60,6 +63,9 @@ pub enum Experiment {
     Gamma,
     /// GAE's λ: 0.95 (the seed), 0.5 and 1.
     Lmbda,
+    /// Four ways to stay near π_old: the clip (the seed), PPO-Penalty's adaptive β, the KL
+    /// line search, and none of them; with each arm's per-update KL.
+    Proximal,
 }
 
 /// One setting of an experiment.
@@ -73,7 +79,7 @@ pub struct Arm {
 
 impl Experiment {
     /// Every experiment, in the order the lessons use them.
-    pub const ALL: [Self; 9] = [
+    pub const ALL: [Self; 10] = [
         Self::Eps,
         Self::Epochs,
         Self::ActorLr,
@@ -83,10 +89,11 @@ impl Experiment {
         Self::HiddenDim,
         Self::Gamma,
         Self::Lmbda,
+        Self::Proximal,
     ];
 
     /// The name on the command line and in lessons (`eps`, `epochs`, `actor-lr`,
-    /// `target-kl`, `reinforce`, `critic-lr`, `hidden-dim`, `gamma`, `lmbda`).
+    /// `target-kl`, `reinforce`, `critic-lr`, `hidden-dim`, `gamma`, `lmbda`, `proximal`).
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -99,6 +106,7 @@ impl Experiment {
             Self::HiddenDim => "hidden-dim",
             Self::Gamma => "gamma",
             Self::Lmbda => "lmbda",
+            Self::Proximal => "proximal",
         }
     }
 
@@ -147,6 +155,10 @@ impl Experiment {
             Self::Lmbda => t(
                 "What does GAE's λ change: trusting the critic more, or less?",
                 "GAE 的 λ 改变了什么：更信任价值网络，还是更不信任？",
+            ),
+            Self::Proximal => t(
+                "Clip, KL penalty, KL line search or nothing: which way of staying near π_old learns best, and how far does each move the policy per update?",
+                "截断、KL 惩罚、KL 线搜索，还是什么都不用：哪种让策略留在 π_old 附近的办法学得最好？每次更新又让策略移动多远？",
             ),
         }
     }
@@ -242,6 +254,35 @@ impl Experiment {
                 arm("lmbda = 0.5".into(), with(&|c| c.lmbda = 0.5)),
                 arm("lmbda = 1".into(), with(&|c| c.lmbda = 1.0)),
             ],
+            Self::Proximal => {
+                let delta = PpoConfig::default().kl_delta;
+                vec![
+                    first(tr!("clip ε = {}", "截断 ε = {}", base.eps)),
+                    arm(
+                        t("penalty, adaptive β (no clip)", "惩罚，自适应 β（不截断）").into(),
+                        with(&|c| {
+                            c.objective = Objective::Penalty;
+                            c.beta_init = 1.0;
+                            c.kl_delta = delta;
+                        }),
+                    ),
+                    arm(
+                        // short enough for the app's lab panel to show the KL columns
+                        tr!(
+                            "KL line search δ={delta} (no clip, 1 step, no Adam)",
+                            "KL 线搜索 δ={delta}（不截断，一步，无 Adam）"
+                        ),
+                        with(&|c| {
+                            c.objective = Objective::LineSearch;
+                            c.kl_delta = delta;
+                        }),
+                    ),
+                    arm(
+                        t("none (no clip, no penalty)", "都不用（不截断，无惩罚）").into(),
+                        with(&|c| c.no_clip = true),
+                    ),
+                ]
+            }
         }
     }
 }
@@ -257,6 +298,23 @@ pub struct UpdateStats {
     pub max_ratio_deviation: f64,
     /// Mean number of epochs that stepped.
     pub epochs_run: f64,
+    /// Mean over updates of the exact `KL(π_old ‖ π_new)` between the actor before and after
+    /// each update ([`UpdateTrace::kl_after`](super::UpdateTrace::kl_after)), the same
+    /// measure for every objective: how far each update moved the policy.
+    pub kl_after: f64,
+    /// The largest per-update `kl_after` (over seeds: the largest of any seed).
+    pub kl_after_max: f64,
+    /// PPO-Penalty: the smallest and largest β any update used or left; `None` for the
+    /// other objectives.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beta_range: Option<(f64, f64)>,
+    /// The KL line search: mean halvings per update; `None` for the other objectives.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ls_halvings: Option<f64>,
+    /// The KL line search: the share of updates whose every try was refused (the actor
+    /// kept θ_old); `None` for the other objectives.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ls_refused: Option<f64>,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -266,6 +324,17 @@ struct Sums {
     dev: f64,
     epochs: f64,
     updates: f64,
+    kl_after: f64,
+    kl_after_max: f64,
+    beta: Option<(f64, f64)>,
+    searches: f64,
+    halvings: f64,
+    refused: f64,
+}
+
+/// The range covering `range` (if any) and `lo..=hi`.
+fn widen(range: Option<(f64, f64)>, lo: f64, hi: f64) -> (f64, f64) {
+    range.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi)))
 }
 
 impl Sums {
@@ -273,6 +342,21 @@ impl Sums {
         let trace = &report.trace;
         self.updates += 1.0;
         self.epochs += trace.epochs_run() as f64;
+        let kl_after = f64::from(trace.kl_after.unwrap_or(0.0));
+        self.kl_after += kl_after;
+        self.kl_after_max = self.kl_after_max.max(kl_after);
+        if let Some(p) = trace.penalty {
+            let (lo, hi) = (
+                p.beta_before.min(p.beta_after),
+                p.beta_before.max(p.beta_after),
+            );
+            self.beta = Some(widen(self.beta, lo, hi));
+        }
+        if let Some(s) = trace.line_search {
+            self.searches += 1.0;
+            self.halvings += s.halvings as f64;
+            self.refused += f64::from(u8::from(s.step.is_none()));
+        }
         if let Some(e) = trace.epochs.last() {
             self.kl += f64::from(e.approx_kl);
             self.clip += f64::from(e.clip_fraction);
@@ -291,6 +375,11 @@ impl Sums {
             clip_fraction: self.clip / n,
             max_ratio_deviation: self.dev / n,
             epochs_run: self.epochs / n,
+            kl_after: self.kl_after / n,
+            kl_after_max: self.kl_after_max,
+            beta_range: self.beta,
+            ls_halvings: (self.searches > 0.0).then(|| self.halvings / self.searches),
+            ls_refused: (self.searches > 0.0).then(|| self.refused / self.searches),
         }
     }
 }
@@ -324,11 +413,28 @@ impl ArmResult {
     pub fn mean_updates(&self) -> UpdateStats {
         let n = self.updates.len().max(1) as f64;
         let sum = |f: fn(&UpdateStats) -> f64| self.updates.iter().map(f).sum::<f64>() / n;
+        let some = |f: fn(&UpdateStats) -> Option<f64>| {
+            let xs: Vec<f64> = self.updates.iter().filter_map(f).collect();
+            (!xs.is_empty()).then(|| xs.iter().sum::<f64>() / xs.len() as f64)
+        };
         UpdateStats {
             approx_kl: sum(|u| u.approx_kl),
             clip_fraction: sum(|u| u.clip_fraction),
             max_ratio_deviation: sum(|u| u.max_ratio_deviation),
             epochs_run: sum(|u| u.epochs_run),
+            kl_after: sum(|u| u.kl_after),
+            kl_after_max: self
+                .updates
+                .iter()
+                .map(|u| u.kl_after_max)
+                .fold(0.0, f64::max),
+            beta_range: self
+                .updates
+                .iter()
+                .filter_map(|u| u.beta_range)
+                .fold(None, |r, (lo, hi)| Some(widen(r, lo, hi))),
+            ls_halvings: some(|u| u.ls_halvings),
+            ls_refused: some(|u| u.ls_refused),
         }
     }
 
@@ -343,6 +449,35 @@ impl ArmResult {
     #[must_use]
     pub fn worst_final(&self) -> f64 {
         self.finals.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    /// How far the arm's updates moved the policy, for the proximal experiment: the mean and
+    /// largest per-update `KL(π_old ‖ π_new)`, with PPO-Penalty's β range and the line
+    /// search's mean halvings and refusals where they apply.
+    #[must_use]
+    pub fn kl_summary(&self) -> String {
+        let u = self.mean_updates();
+        let mut out = tr!(
+            "{}: per-update KL(π_old ‖ π_new) {:.4} on average, at most {:.4}",
+            "{}：每次更新的 KL(π_old ‖ π_new) 平均 {:.4}，最大 {:.4}",
+            self.label,
+            u.kl_after,
+            u.kl_after_max
+        );
+        if let Some((lo, hi)) = u.beta_range {
+            out.push_str(&tr!(
+                "; β between {lo:.1e} and {hi:.1e}",
+                "；β 介于 {lo:.1e} 与 {hi:.1e} 之间"
+            ));
+        }
+        if let (Some(h), Some(r)) = (u.ls_halvings, u.ls_refused) {
+            out.push_str(&tr!(
+                "; {h:.2} halvings per update, {:.1}% of updates without a step",
+                "；每次更新平均减半 {h:.2} 次，{:.1}% 的更新没有迈步",
+                100.0 * r
+            ));
+        }
+        out
     }
 
     /// One sentence the lessons quote: the final score over seeds, the worst seed, and when
@@ -379,16 +514,35 @@ pub struct LabResult {
 impl LabResult {
     /// The result as a table, one row per setting: the mean ± sample std over seeds of each
     /// seed's last-50 mean, and the update statistics averaged over seeds.
+    ///
+    /// The proximal experiment adds two columns after the score: the mean and the largest
+    /// per-update exact `KL(π_old ‖ π_new)` ([`UpdateStats::kl_after`]), the one measure all
+    /// its arms share. Labels wider than 30 columns widen the first column.
     #[must_use]
     pub fn table(&self) -> Vec<String> {
+        let label_width = self
+            .arms
+            .iter()
+            .map(|a| crate::i18n::width(&a.label))
+            .fold(30, usize::max);
+        let with_kl = self.experiment == Experiment::Proximal;
+        let kl_head = if with_kl {
+            format!(
+                " {} {}",
+                pad_left(t("KL/update", "每次更新 KL"), 11),
+                pad_left(t("max KL", "最大 KL"), 8)
+            )
+        } else {
+            String::new()
+        };
         let mut lines = vec![format!(
-            "{} {} {:>9} {} {:>8} {}",
+            "{} {}{kl_head} {:>9} {} {:>8} {}",
             pad_right(
                 &tr!(
                     "setting (last {LAST} returns)",
                     "设置（最后 {LAST} 个回报）"
                 ),
-                30
+                label_width
             ),
             pad_left(t("mean ± std", "均值 ± 标准差"), 15),
             "approx_kl",
@@ -399,9 +553,14 @@ impl LabResult {
         for arm in &self.arms {
             let (mean, std) = arm.final_mean_std();
             let u = arm.mean_updates();
+            let kl = if with_kl {
+                format!(" {:>11.4} {:>8.4}", u.kl_after, u.kl_after_max)
+            } else {
+                String::new()
+            };
             lines.push(format!(
-                "{} {:>15} {:>9.4} {:>9.3} {:>8.3} {:>6.1}",
-                pad_right(&arm.label, 30),
+                "{} {:>15}{kl} {:>9.4} {:>9.3} {:>8.3} {:>6.1}",
+                pad_right(&arm.label, label_width),
                 format!("{mean:.1} ± {std:.1}"),
                 u.approx_kl,
                 u.clip_fraction,
@@ -572,6 +731,70 @@ mod tests {
                 .iter()
                 .all(|a| a.mean_updates().max_ratio_deviation > 0.0)
         );
+        Ok(())
+    }
+
+    /// The proximal experiment's four arms: what each changes, and the statistics only some
+    /// of them have; every arm reports its per-update KL, in the table's extra columns.
+    #[test]
+    fn the_proximal_arms_each_report_their_per_update_kl() -> TestResult {
+        let base = PpoConfig {
+            num_episodes: 8,
+            ..PpoConfig::default()
+        };
+        let arms = Experiment::Proximal.arms(&base);
+        let objectives: Vec<(Objective, bool)> = arms
+            .iter()
+            .map(|a| (a.config.objective, a.config.no_clip))
+            .collect();
+        assert_eq!(
+            objectives,
+            [
+                (Objective::Clip, false),
+                (Objective::Penalty, false),
+                (Objective::LineSearch, false),
+                (Objective::Clip, true),
+            ]
+        );
+        assert_eq!(Experiment::ALL.last(), Some(&Experiment::Proximal));
+        assert!(arms[1].label.contains("no clip") && arms[2].label.contains("no Adam"));
+        let lab = run(Experiment::Proximal, &base, &[0, 1], 2, |_, _| {})?;
+        for arm in &lab.arms {
+            let u = arm.mean_updates();
+            assert!(
+                u.kl_after > 0.0 && u.kl_after_max >= u.kl_after,
+                "{}: {u:?}",
+                arm.label
+            );
+            let penalty = arm.config.objective == Objective::Penalty;
+            let search = arm.config.objective == Objective::LineSearch;
+            assert_eq!(u.beta_range.is_some(), penalty, "{}", arm.label);
+            assert_eq!(u.ls_halvings.is_some(), search, "{}", arm.label);
+            if search {
+                // every accepted step is inside δ, and a refused search moves nothing
+                assert!(u.kl_after_max <= arm.config.kl_delta * 1.001, "{u:?}");
+            }
+            assert!(arm.kl_summary().starts_with(&arm.label));
+        }
+        let table = lab.table();
+        assert_eq!(table.len(), 5);
+        assert!(
+            table[0].contains("mean ± std   KL/update   max KL approx_kl"),
+            "{}",
+            table[0]
+        );
+        // the app's lab panel (86 columns at 160 × 50) shows the label, the score and the KL
+        let kl_end = table[0].find("max KL").map_or(0, |i| i + "max KL".len());
+        assert!(
+            crate::i18n::width(&table[0][..kl_end]) <= 86,
+            "{}",
+            table[0]
+        );
+        let widths: Vec<usize> = table.iter().map(|l| crate::i18n::width(l)).collect();
+        assert!(widths.iter().all(|&w| w == widths[0]), "{table:#?}");
+        // the other experiments' tables keep their columns
+        let eps = run(Experiment::Eps, &base, &[0], 1, |_, _| {})?;
+        assert!(eps.table()[0].ends_with("epochs"));
         Ok(())
     }
 }

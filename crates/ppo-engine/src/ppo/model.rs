@@ -212,7 +212,7 @@ impl ValueNet {
 /// run in order, so its probabilities can differ from the tensor version's in the last
 /// bit; they are what the agent samples from, and they stay the same from version to
 /// version.)
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct ActorSnapshot {
     w1: Vec<f32>,
     b1: Vec<f32>,
@@ -275,6 +275,25 @@ impl ActorSnapshot {
             state_dim,
             w1t,
         }
+    }
+
+    /// The hidden layer's width (`fc1`'s outputs).
+    #[must_use]
+    pub fn hidden_dim(&self) -> usize {
+        self.b1.len()
+    }
+
+    /// Every parameter, flattened in PyTorch's order (`fc1.weight`, `fc1.bias`,
+    /// `fc2.weight`, `fc2.bias`, each row-major): the layout of
+    /// [`SurrogateGradients`](crate::ppo::SurrogateGradients), so that `θ + α · g` is an
+    /// entry-by-entry sum.
+    #[must_use]
+    pub fn parameters(&self) -> Vec<f32> {
+        [&self.w1, &self.b1, &self.w2, &self.b2]
+            .into_iter()
+            .flatten()
+            .copied()
+            .collect()
     }
 
     /// `softmax(fc2(relu(fc1(state))))` for one state, in f32.

@@ -15,8 +15,8 @@
 //! condition                                       why candle is needed otherwise
 //! no learner's losses (Agent::update_with)        only autograd differentiates any function
 //! PPO's clipped surrogate (not REINFORCE, not     the plain kernels hold that one gradient
-//!   no_clip, not PPO-Penalty) and no entropy        (PPO-Penalty's exact KL term has none
-//!   bonus (coef = 0)                                  there)
+//!   no_clip, not PPO-Penalty nor the KL line        (PPO-Penalty's exact KL term and the
+//!   search) and no entropy bonus (coef = 0)           line search's step have none there)
 //! 3 to 512 rows, 2 to 512 hidden units, and       gemm's summation orders change outside
 //!   rows × hidden > 256                             (tiny products, sums split past 512)
 //! x86-64 with AVX2 and FMA, found at run time     the candle kernels the plain path copies
@@ -131,8 +131,8 @@ pub struct PathConditions {
     /// only autograd can differentiate them (plain needs `false`).
     pub learner_losses: bool,
     /// The actor's loss is PPO's clipped surrogate `mean(-min(surr1, surr2))`, not
-    /// REINFORCE's `log π · Â`, `no_clip`'s `ratio · Â` nor PPO-Penalty's
-    /// `−mean(ratio · Â) + β · mean(KL)` (plain needs `true`).
+    /// REINFORCE's `log π · Â`, `no_clip`'s `ratio · Â`, PPO-Penalty's
+    /// `−mean(ratio · Â) + β · mean(KL)` nor the KL line search's step (plain needs `true`).
     pub clipped_surrogate: bool,
     /// An entropy bonus is on (`entropy_coef` > 0; plain needs `false`).
     pub entropy_bonus: bool,

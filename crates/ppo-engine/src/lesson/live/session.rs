@@ -87,6 +87,7 @@ impl LiveAgent for Agent {
             &report.trace.advantage,
         )?);
         s.trace = Some(report.trace);
+        s.played_with = Some(played_with);
         Ok(())
     }
 }
@@ -332,6 +333,7 @@ mod tests {
             assert!((p[a].ln() - old).abs() < 1e-5, "{p:?} {a} {old}");
         }
         assert_eq!(s.probs, probs_over(&before, &trace.states));
+        assert_eq!(s.played_with.as_ref(), Some(&before), "θ_old is kept");
         Ok(())
     }
 

@@ -26,7 +26,8 @@
 //! [`UpdatePath::Plain`], the same trace and weights bit for bit, about ten times faster.
 //! `update` runs plain when the losses are the built-in ones (not [`Agent::update_with`]'s),
 //! the algorithm is PPO with the clip (not REINFORCE, not `no_clip`, not PPO-Penalty, whose
-//! KL term only candle differentiates), `entropy_coef` is 0,
+//! KL term only candle differentiates, nor the KL line search, which steps the actor
+//! without Adam: [`line_search`](super::line_search)), `entropy_coef` is 0,
 //! the batch has 3 to 512 transitions, `hidden_dim` is 2 to 512 with
 //! transitions × `hidden_dim` > 256, the CPU is x86-64 with AVX2 and FMA (detected at run
 //! time), and `PPO_TUTOR_UPDATE` is not `candle`; on candle otherwise
@@ -49,6 +50,7 @@
 
 use candle_core::{DType, Device, Tensor, Var};
 
+use super::line_search::{SearchBatch, line_search};
 use super::penalty::{adapt_beta, categorical_kl, penalty_actor_loss};
 use super::trace::{EarlyStop, EpochTrace, PenaltyTrace, UpdateTrace};
 use super::{ACTION_DIM, Algorithm, Objective, PpoConfig, STATE_DIM};
@@ -427,12 +429,16 @@ impl Agent {
         // The seed's configuration runs without tensors, with the same float operations
         // (bit for bit the numbers of `update_with_tensors`; see `lean`).
         let conditions = lean::conditions(&self.config, batch.len(), losses.is_some());
-        if choose_path(&conditions, forced) == UpdatePath::Plain
+        let before = self.acting.clone(); // π_old, for the KL every objective reports
+        let mut trace = if choose_path(&conditions, forced) == UpdatePath::Plain
             && let Some(simd) = isa()
         {
-            return lean::update(simd, self, batch);
-        }
-        self.update_with_tensors(batch, losses)
+            lean::update(simd, self, batch)?
+        } else {
+            self.update_with_tensors(batch, losses)?
+        };
+        trace.kl_after = Some(mean_kl(&before, &self.acting, &batch.states));
+        Ok(trace)
     }
 
     /// The update on candle tensors (the code the lessons show), for a checked batch.
@@ -511,9 +517,16 @@ impl Agent {
             .detach();
         // ANCHOR_END: old_log_probs
         // PPO-Penalty's π_old(·|s), held fixed like old_log_probs (the KL's first argument)
+        let searched = cfg.algorithm == Algorithm::Ppo && cfg.objective == Objective::LineSearch;
         let old_probs = match (cfg.algorithm, cfg.objective) {
             (Algorithm::Ppo, Objective::Penalty) => Some(self.actor.forward(&states)?.detach()),
             _ => None,
+        };
+        // The KL line search's π_old(·|s): the KL it bounds, not a loss term
+        let search_old_probs = if searched {
+            Some(self.actor.forward(&states)?.detach())
+        } else {
+            None
         };
 
         let mut trace = UpdateTrace {
@@ -534,8 +547,22 @@ impl Agent {
             explained_variance: None,
             path: UpdatePath::Candle,
             penalty: None,
+            line_search: None,
+            kl_after: None,
         };
         check_batch(&mut trace)?;
+        // The KL line search: one actor step, no Adam for the actor (its epochs below step
+        // only the critic)
+        if let Some(old_probs) = &search_old_probs {
+            let search = SearchBatch {
+                states: &states,
+                actions: &actions,
+                old_log_probs: &old_log_probs,
+                old_probs,
+                advantage: &advantage,
+            };
+            trace.line_search = Some(line_search(&self.actor, &search, &self.config)?);
+        }
 
         let batch = EpochInputs {
             states: &states,
@@ -550,6 +577,8 @@ impl Agent {
         // Both networks step `epochs` times (the seed); with `critic_epochs` set, the network
         // with more steps takes its extra ones after these, alone.
         let (actor_epochs, critic_epochs) = self.config.epochs_of_each();
+        // after the line search's step the actor has no epochs left: the critic steps alone
+        let actor_epochs = if searched { 0 } else { actor_epochs };
         let epochs = actor_epochs.min(critic_epochs);
         // ANCHOR: epochs
         for k in 0..epochs {
@@ -716,6 +745,12 @@ impl Agent {
                 actor_loss = (actor_loss - (&entropy * self.config.entropy_coef)?)?;
             }
         }
+        // The KL line search's actor takes no Adam step: its record is the surrogate it
+        // climbed, −mean(ratio · Â), at the accepted θ
+        if self.config.algorithm == Algorithm::Ppo && self.config.objective == Objective::LineSearch
+        {
+            actor_loss = surr1.mean_all()?.neg()?;
+        }
         // ANCHOR: critic_loss
         let critic_loss = (self.critic.forward(b.states)? - b.critic_target)?
             .sqr()?
@@ -861,6 +896,34 @@ struct EpochInputs<'a> {
     old_probs: Option<&'a Tensor>,
     /// A learner's losses in place of the built-in ones ([`Agent::update_with`]).
     losses: Option<&'a Losses<'a>>,
+}
+
+/// The mean over `states` of the exact `KL(π_before(·|s) ‖ π_after(·|s))`, computed in
+/// `f64` from the two acting snapshots' probabilities (a probability of 0 under `before`
+/// contributes 0; one of 0 under `after` alone makes the KL infinite).
+fn mean_kl(before: &ActorSnapshot, after: &ActorSnapshot, states: &[[f32; 4]]) -> f32 {
+    if states.is_empty() {
+        return 0.0;
+    }
+    let probs = |snap: &ActorSnapshot, s: &[f32; 4]| match snap.probs2(s) {
+        Some(p) => p.to_vec(),
+        None => snap.probs(s),
+    };
+    let total: f64 = states
+        .iter()
+        .map(|s| {
+            let (p, q) = (probs(before, s), probs(after, s));
+            p.iter()
+                .zip(&q)
+                .filter(|(p, _)| **p > 0.0)
+                .map(|(&p, &q)| {
+                    let (p, q) = (f64::from(p), f64::from(q));
+                    p * (p.ln() - q.ln())
+                })
+                .sum::<f64>()
+        })
+        .sum();
+    (total / states.len() as f64) as f32
 }
 
 fn to_vec(t: &Tensor) -> candle_core::Result<Vec<f32>> {

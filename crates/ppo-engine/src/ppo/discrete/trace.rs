@@ -10,7 +10,9 @@
 //! per epoch: log_probs, ratio, surr1, surr2, clipped (N); actor_loss, critic_loss, approx_kl,
 //!            clip_fraction, entropy (scalars); PPO-Penalty only: kl (N), kl_mean (scalar)
 //! per update: explained_variance, early_stop (scalars), path (which implementation ran);
-//!             PPO-Penalty only: penalty (β before and after, the KL after the last epoch)
+//!             kl_after (the mean exact KL(π_old ‖ π_new), every objective; not in JSON);
+//!             PPO-Penalty only: penalty (β before and after, the KL after the last epoch);
+//!             KL line search only: line_search (the accepted step, its halvings, KL and gain)
 //! ```
 
 use serde::Serialize;
@@ -65,6 +67,40 @@ pub struct UpdateTrace {
     /// PPO-Penalty's β and the KL it was adapted on; `None` for the clip and REINFORCE.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub penalty: Option<PenaltyTrace>,
+    /// The KL line search's step ([`line_search`](super::line_search)); `None` for the other
+    /// objectives and REINFORCE.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line_search: Option<LineSearchTrace>,
+    /// The mean over the batch of the exact `KL(π_old(·|s_t) ‖ π_new(·|s_t))` between the
+    /// actor before and after this update, the same measure for every objective (clip, no
+    /// clip, PPO-Penalty, the line search, REINFORCE), so that the lab compares how far each
+    /// moves the policy per update. Set by [`Agent::update`](crate::ppo::Agent::update) and
+    /// [`Agent::update_with`](crate::ppo::Agent::update_with) (`None` in a trace built
+    /// otherwise). Not serialised, so that saved traces and their hashes are unchanged;
+    /// PPO-Penalty's and the line search's own records carry their KL in JSON.
+    #[serde(skip)]
+    pub kl_after: Option<f32>,
+}
+
+/// What one KL line search did ([`line_search`](super::line_search)): the step along the
+/// surrogate's gradient it accepted, if any.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LineSearchTrace {
+    /// `‖g‖`, the L2 norm of `∇θ mean(ratio · Â)` at θ_old over every actor parameter; 0
+    /// when the advantages are all 0 (then no step is tried).
+    pub grad_norm: f32,
+    /// The mean exact KL of the first try (α = `ls_max_step`); `None` when no step was tried.
+    pub first_kl: Option<f32>,
+    /// The accepted α (the step's length in parameter space), `None` when every try was
+    /// refused and the actor kept θ_old.
+    pub step: Option<f64>,
+    /// How many times α was halved: before the accepted try, or every halving allowed
+    /// (`ls_backtracks`) when none was accepted; 0 when no step was tried.
+    pub halvings: usize,
+    /// The accepted step's mean exact KL(π_old ‖ π_θ) over the batch (≤ `kl_delta`).
+    pub kl: Option<f32>,
+    /// The accepted step's surrogate gain `mean((ratio − 1) · Â)` (> 0).
+    pub gain: Option<f32>,
 }
 
 /// What one PPO-Penalty update did to β ([`penalty`](super::penalty)).
@@ -101,7 +137,8 @@ pub struct EpochTrace {
     /// Whether the ratio left `[1-ε, 1+ε]` (CleanRL's `clipfrac` counts these).
     pub clipped: Vec<bool>,
     /// `mean(-min(surr1, surr2))`, or PPO-Penalty's `−mean(surr1) + β · kl_mean` (minus the
-    /// entropy bonus when that switch is on).
+    /// entropy bonus when that switch is on), or `−mean(surr1)` for `no_clip` and the line
+    /// search (whose actor takes no Adam step: its epochs step only the critic).
     pub actor_loss: f32,
     /// `mean((V(s_t) - td_target_t)²)`.
     pub critic_loss: f32,

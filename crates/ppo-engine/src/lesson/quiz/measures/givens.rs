@@ -206,6 +206,21 @@ pub(super) static GIVENS: &[Measure] = &[
         |s| outside(s, false, false),
     ),
     given(
+        "prob_old_at_ratio_max_last",
+        "π_old(a|s), the old probability of the action of the last epoch's largest-ratio row",
+        "最后一轮中比率最大那一行的动作在旧策略下的概率 π_old(a|s)",
+        |s| at(&s.trace.as_ref()?.old_log_probs, extreme_row(s, true)?).map(f64::exp),
+    ),
+    given(
+        "adv_abs_max",
+        "the largest |Â| of the latest batch",
+        "最近一批数据中最大的 |Â|",
+        |s| {
+            let adv = &s.trace.as_ref()?.advantage;
+            adv.iter().map(|a| f64::from(a.abs())).reduce(f64::max)
+        },
+    ),
+    given(
         "adv_first",
         "Â_0, the advantage of the batch's first row",
         "Â_0，批次第一行的优势值",

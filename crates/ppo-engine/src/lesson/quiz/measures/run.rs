@@ -137,6 +137,41 @@ pub(super) static RUN: &[Measure] = &[
         },
     },
     Measure {
+        name: "kl_at_ratio_max_last",
+        about: "KL(π_old ‖ π_θ) at the state of the last epoch's largest-ratio row, between the \
+                policy that played and the last epoch's",
+        about_zh: "最后一轮比率最大那一行的状态上，玩这批数据的策略与最后一轮的策略之间的 KL(π_old ‖ π_θ)",
+        // CartPole only (`trace`): the two-action KL from the taken action's probabilities.
+        value: |s| {
+            let t = s.trace.as_ref()?;
+            let i = extreme_row(s, true)?;
+            let p = at(&t.old_log_probs, i)?.exp();
+            let q = at(&t.epochs.last()?.log_probs, i)?.exp();
+            Some(kl_two_actions(p, q))
+        },
+        choices: 0,
+        basis: Basis::Run {
+            given: &["ratio_max_last", "prob_old_at_ratio_max_last"],
+            // The last epoch's policy gives the action q = r·p, the other action 1 − q.
+            from: |g| kl_two_actions(g[1], g[0] * g[1]),
+        },
+    },
+    Measure {
+        name: "trpo_c",
+        about: "TRPO's C = 4·γ·max|A| / (1 − γ)², with the batch's largest |Â| for max|A|",
+        about_zh: "TRPO 的 C = 4·γ·max|A| / (1 − γ)²，用批次中最大的 |Â| 代替 max|A|",
+        value: |s| {
+            let adv = &s.trace.as_ref()?.advantage;
+            let largest = adv.iter().map(|a| f64::from(a.abs())).reduce(f64::max)?;
+            Some(trpo_c(hyper(s, "gamma")?, largest))
+        },
+        choices: 0,
+        basis: Basis::Run {
+            given: &["gamma", "adv_abs_max"],
+            from: |g| trpo_c(g[0], g[1]),
+        },
+    },
+    Measure {
         name: "pull_at_ratio_max_last",
         about: "what the clipped objective does to the ratio of the last epoch's largest-ratio \
                 row (0 pushes it up, 1 down, 2 nothing)",
@@ -272,6 +307,18 @@ pub(super) static RUN: &[Measure] = &[
 /// weight moves by −lr·g/(|g| + 1e-8), about −lr·sign(g).
 fn adam_first_step(lr: f64, g: f64) -> f64 {
     -lr * g / (g.abs() + 1e-8)
+}
+
+/// `KL(π_old ‖ π_θ)` between two policies over two actions that give the first action `p`
+/// and `q`: `p·ln(p/q) + (1 − p)·ln((1 − p)/(1 − q))`.
+fn kl_two_actions(p: f64, q: f64) -> f64 {
+    p * (p / q).ln() + (1.0 - p) * ((1.0 - p) / (1.0 - q)).ln()
+}
+
+/// The constant of TRPO's bound, `4·γ·max|A| / (1 − γ)²` (Schulman et al., 2015, with
+/// `max|A|` the largest absolute advantage).
+fn trpo_c(gamma: f64, max_abs_advantage: f64) -> f64 {
+    4.0 * gamma * max_abs_advantage / (1.0 - gamma).powi(2)
 }
 
 /// What PPO's clipped objective does to a row's ratio `r` with advantage `adv`: 0 pushes it

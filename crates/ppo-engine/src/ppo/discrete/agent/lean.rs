@@ -277,6 +277,8 @@ fn epochs(
         explained_variance: None,
         path: UpdatePath::Plain,
         penalty: None,
+        line_search: None,
+        kl_after: None,
     };
     check_batch(&mut trace)?;
 

@@ -1,0 +1,17 @@
+pub fn categorical_kl(old_probs: &[f32], new_probs: &[f32], n_actions: usize) -> Vec<f32> {
+    let n = old_probs.len() / n_actions;
+    let mut out = Vec::new();
+    for i in 0..n {
+        let mut total = 0.0;
+        for a in 0..n_actions {
+            let p = old_probs[i * n_actions + a];
+            let q = new_probs[i * n_actions + a];
+            if p > 0.0 {
+                total += p * (p / q).ln();
+            }
+        }
+        // average over the actions
+        out.push(total / n_actions as f32);
+    }
+    out
+}
