@@ -11,7 +11,6 @@ use anyhow::Context;
 use clap::Args;
 
 use super::args::{parse_count, parse_seed};
-use super::pad_left;
 use crate::i18n::t;
 use crate::lesson::Session;
 use crate::ppo::PpoConfig;
@@ -120,51 +119,9 @@ pub fn run(args: &TrustRegionArgs) -> anyhow::Result<ExitCode> {
 
 /// The probe as lines of text: a header, one row per step, a legend.
 #[must_use]
+/// The probe as a table: the notebooks' and this command's one layout.
 pub fn table(probe: &TrustRegionProbe) -> Vec<String> {
-    let (norm, episodes, states) = (probe.gradient_norm, probe.episodes, probe.states);
-    let (score, old_return) = (probe.old_score, probe.old_return);
-    let mut lines = vec![
-        tr!(
-            "θ_α = θ_old + α · g/‖g‖ with g the batch's surrogate gradient (‖g‖ = {norm:.4}); {episodes} held-out episodes of π_old (mean score {score:.1}, mean J_γ {old_return:.2}), {states} states",
-            "θ_α = θ_old + α · g/‖g‖，g 是这一批替代目标的梯度（‖g‖ = {norm:.4}）；π_old 另跑 {episodes} 个回合（平均得分 {score:.1}，平均 J_γ {old_return:.2}），共 {states} 个状态"
-        ),
-        String::new(),
-    ];
-    let headers = [
-        t("α", "步长 α"),
-        t("mean KL", "平均 KL"),
-        t("predicted ΔJ_γ", "预测的 ΔJ_γ"),
-        t("true ΔJ_γ", "真实的 ΔJ_γ"),
-        t("score change", "得分变化"),
-    ];
-    let widths = [7, 11, 18, 18, 16];
-    let row = |cells: [String; 5]| {
-        cells
-            .iter()
-            .zip(widths)
-            .map(|(c, w)| pad_left(c, w))
-            .collect::<Vec<_>>()
-            .join("  ")
-    };
-    lines.push(row(headers.map(String::from)));
-    for p in &probe.points {
-        lines.push(row([
-            format!("{:.3}", p.step),
-            format!("{:.2e}", p.kl),
-            format!("{:+.3} ± {:.3}", p.predicted, p.predicted_se),
-            format!("{:+.3} ± {:.3}", p.truth, p.truth_se),
-            format!("{:+.1} ± {:.1}", p.return_change, p.return_change_se),
-        ]));
-    }
-    lines.push(String::new());
-    lines.push(
-        t(
-            "predicted: the surrogate Σ_t γ^t (r_t − 1) Â_t on π_old's held-out episodes; true: fresh episodes of π_θα from the same seeds, minus π_old's; ± one standard error over the episodes.",
-            "预测：替代目标在 π_old 另跑的回合上的 Σ_t γ^t (r_t − 1) Â_t；真实：π_θα 用同样的随机种子重新跑的回合，减去 π_old 的；± 为各回合间的一个标准误。",
-        )
-        .to_string(),
-    );
-    lines
+    crate::notebook::trust_region_table(probe)
 }
 
 #[cfg(test)]
