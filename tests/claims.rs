@@ -15,6 +15,8 @@ type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 const LOSSES: &str = include_str!("../lessons/12-losses/lesson.md");
 const TRAINING: &str = include_str!("../lessons/14-training/lesson.md");
+const TRUST_REGION: &str = include_str!("../lessons/10-trust-region/lesson.md");
+const TRUST_REGION_ZH: &str = include_str!("../lessons/10-trust-region/lesson.zh.md");
 
 /// `text` with every run of whitespace one space (lessons wrap lines anywhere).
 fn flat(text: &str) -> String {
@@ -25,6 +27,19 @@ fn says(lesson: &str, file: &str, claim: &str) {
     assert!(
         flat(lesson).contains(claim),
         "{file} should say {claim:?} (the figure the experiment gives)"
+    );
+}
+
+/// [`says`] for several claims at once, naming every one the lesson does not state.
+fn says_all(lesson: &str, file: &str, claims: &[String]) {
+    let text = flat(lesson);
+    let missing: Vec<&String> = claims
+        .iter()
+        .filter(|c| !text.contains(c.as_str()))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "{file} should say each of {missing:#?} (the figures the experiment gives)"
     );
 }
 
@@ -1796,6 +1811,172 @@ fn proximal_arms_over_five_seeds() -> TestResult {
     // β collapses: the penalty spends most updates halving it towards 0
     let (lo, hi) = p.beta_range.ok_or("no β range")?;
     assert!(lo < 1e-20 && hi >= 2.0, "β from {lo:e} to {hi}");
+    proximal_lesson_quotes(&lab.arms, &falls)
+}
+
+/// Lesson 10's step 7 quotes every figure of the proximal lab: each arm's score, worst
+/// seed, when its mean curve reaches 400 and how far its updates moved the policy; the
+/// penalty's and the clip's late falls; the line search's halvings; the range of β.
+/// Each quoted as the lab computes it, in both languages.
+fn proximal_lesson_quotes(
+    arms: &[ArmResult],
+    falls: &dyn Fn(&ArmResult) -> Vec<usize>,
+) -> TestResult {
+    let [clip, penalty, search, none] = arms else {
+        return Err("proximal has four arms".into());
+    };
+    let en = "lessons/10-trust-region/lesson.md";
+    let zh = "lessons/10-trust-region/lesson.zh.md";
+    let score = |a: &ArmResult| {
+        let (m, sd) = a.final_mean_std();
+        format!("{m:.1} ± {sd:.1}")
+    };
+    let worst = |a: &ArmResult| format!("{:.1}", a.worst_final());
+    let reach = |a: &ArmResult| proximal_reach(a, 400.0);
+    let kl = |a: &ArmResult| format!("{:.4}", a.mean_updates().kl_after);
+    let largest =
+        |a: &ArmResult, digits: usize| format!("{:.digits$}", a.mean_updates().kl_after_max);
+    let fell = |a: &ArmResult| falls(a).iter().sum::<usize>();
+    let u = search.mean_updates();
+    let halvings = format!("{:.1}", u.ls_halvings.ok_or("no halvings")?);
+    assert_eq!(
+        u.ls_refused,
+        Some(0.0),
+        "the lesson says no update was refused"
+    );
+    // β per seed: the largest it reached and the smallest it fell to, as powers of ten.
+    let ranges: Vec<(f64, f64)> = penalty
+        .updates
+        .iter()
+        .filter_map(|u| u.beta_range)
+        .collect();
+    let span = |f: fn(&(f64, f64)) -> f64| {
+        let v: Vec<f64> = ranges.iter().map(f).collect();
+        (
+            v.iter().copied().fold(f64::INFINITY, f64::min),
+            v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        )
+    };
+    let (top_lo, top_hi) = span(|r| r.1);
+    let (low_lo, low_hi) = span(|r| r.0);
+    let power = |x: f64| format!("1e{}", x.log10().floor());
+    println!(
+        "β per seed: highest {top_lo}..{top_hi}, lowest {low_lo:e}..{low_hi:e}; late falls {} / {}",
+        fell(penalty),
+        fell(clip)
+    );
+    let en_claims = [
+        format!("**clip ε = 0.2**: {} (mean ± std", score(clip)),
+        format!(
+            "worst seed {}; the mean curve reaches 400 at episode {}",
+            worst(clip),
+            reach(clip)
+        ),
+        format!(
+            "**penalty**: {}, worst {}; 400 at episode {}",
+            score(penalty),
+            worst(penalty),
+            reach(penalty)
+        ),
+        format!(
+            "**KL line search**: {}, worst {}; 400 at episode {}",
+            score(search),
+            worst(search),
+            reach(search)
+        ),
+        format!(
+            "**none**: {}, worst {}; 400 at episode {}",
+            score(none),
+            worst(none),
+            reach(none)
+        ),
+        format!(
+            "**clip**: mean KL per update {}, largest {}",
+            kl(clip),
+            largest(clip, 2)
+        ),
+        format!(
+            "**penalty**: mean {}, largest {}",
+            kl(penalty),
+            largest(penalty, 2)
+        ),
+        format!(
+            "**KL line search**: mean {}, largest {} (never above δ; {halvings} halvings per update, no update refused)",
+            kl(search),
+            largest(search, 4)
+        ),
+        format!("**none**: mean {}, largest {}", kl(none), largest(none, 2)),
+        format!("({} against the clip's {})", fell(penalty), fell(clip)),
+        format!(
+            "({:.1} and {:.1}:",
+            search.final_mean_std().0,
+            none.final_mean_std().0
+        ),
+        format!("(largest KL {})", largest(none, 2)),
+        format!(
+            "reached at most {top_lo:.0} to {top_hi:.0} but fell to between {} and {}",
+            power(low_hi),
+            power(low_lo)
+        ),
+        format!("(mean {})", kl(penalty)),
+    ];
+    let zh_claims = [
+        format!("**截断 ε = 0.2**：{}（各随机种子", score(clip)),
+        format!(
+            "最差的随机种子 {}；平均曲线在第 {} 个回合达到 400",
+            worst(clip),
+            reach(clip)
+        ),
+        format!(
+            "**惩罚**：{}，最差 {}；第 {} 个回合达到 400",
+            score(penalty),
+            worst(penalty),
+            reach(penalty)
+        ),
+        format!(
+            "**KL 线搜索**：{}，最差 {}；第 {} 个回合达到 400",
+            score(search),
+            worst(search),
+            reach(search)
+        ),
+        format!(
+            "**都不用**：{}，最差 {}；第 {} 个回合达到 400",
+            score(none),
+            worst(none),
+            reach(none)
+        ),
+        format!(
+            "**截断**：每次更新的平均 KL 为 {}，最大 {}",
+            kl(clip),
+            largest(clip, 2)
+        ),
+        format!(
+            "**惩罚**：平均 {}，最大 {}",
+            kl(penalty),
+            largest(penalty, 2)
+        ),
+        format!(
+            "**KL 线搜索**：平均 {}，最大 {}（从未超过 δ；每次更新平均减半 {halvings} 次，没有一次更新被拒绝）",
+            kl(search),
+            largest(search, 4)
+        ),
+        format!("**都不用**：平均 {}，最大 {}", kl(none), largest(none, 2)),
+        format!("（{} 次，截断是 {} 次）", fell(penalty), fell(clip)),
+        format!(
+            "（{:.1} 与 {:.1}，",
+            search.final_mean_std().0,
+            none.final_mean_std().0
+        ),
+        format!("（最大 KL {}）", largest(none, 2)),
+        format!(
+            "β 的最大值只有 {top_lo:.0} 到 {top_hi:.0}，最小值却降到 {} 到 {} 之间",
+            power(low_hi),
+            power(low_lo)
+        ),
+        format!("（平均 {}）", kl(penalty)),
+    ];
+    says_all(TRUST_REGION, en, &en_claims);
+    says_all(TRUST_REGION_ZH, zh, &zh_claims);
     Ok(())
 }
 
@@ -1901,29 +2082,195 @@ fn trust_region_check(
     Ok((agree, part))
 }
 
-/// Lesson 10, seed 0: near θ_old the surrogate predicts the change in J_γ that fresh
-/// episodes measure; as the KL grows the truth falls far below the prediction.
+/// Lesson 10's settings and arithmetic, in both languages: the bound's constant for the
+/// seed's γ, the two-action KLs of step 3 (both directions, the small and the large change
+/// with the same ratio, the taken action's term), the line search's and the penalty's
+/// defaults, and the probe's steps, episodes and training.
 #[test]
-fn trust_region_prediction_holds_near_theta_old_on_seed_0() -> TestResult {
-    let probe = trust_region_probe(0)?;
-    trust_region_check(0, &probe)?;
+fn the_trust_region_lesson_quotes_its_settings_and_arithmetic() -> TestResult {
+    use ppo_tutor::ppo::trust_region::ProbeSettings;
+    let c = PpoConfig::default();
+    let kl = |p: f64, q: f64| p * (p / q).ln() + (1.0 - p) * ((1.0 - p) / (1.0 - q)).ln();
+    let steep = 4.0 * c.gamma / (1.0 - c.gamma).powi(2);
+    let cap = 1.0 / (1.0 - c.gamma);
+    let (big, back, small) = (kl(0.7, 0.91), kl(0.91, 0.7), kl(0.01, 0.013));
+    let times = big / small;
+    let taken = 0.7 * (0.7_f64 / 0.91).ln();
+    assert!((0.91_f64 / 0.7 - 1.3).abs() < 1e-12 && (0.013_f64 / 0.01 - 1.3).abs() < 1e-12);
+    let settings = ProbeSettings::default();
+    let top = settings.steps.iter().copied().fold(f32::MIN, f32::max);
+    let figures = [
+        format!("4γ/(1 − γ)² is {steep:.0}"),
+        format!("1/(1 − γ) = {cap:.0}"),
+        format!("{big:.3} one way and {back:.3} the other"),
+        format!("KL ≈ {small:.5}"),
+        format!(
+            "KL ≈ {big:.3}, about {:.0} times more",
+            (times / 10.0).round() * 10.0
+        ),
+        format!("0.7 · ln(0.7 / 0.91) ≈ {}", signed(taken, 3)),
+        format!("tries the length α = {} first", c.ls_max_step),
+        format!(
+            "at most {} times, until the mean exact KL over the batch is at most δ = {}",
+            c.ls_backtracks, c.kl_delta
+        ),
+        format!("starts from β₀ = {} with δ = {}", c.beta_init, c.kl_delta),
+        format!("from 0 up to {top}"),
+        format!("averaged over {} fresh episodes", settings.episodes),
+        format!("probed after {TRUST_REGION_TRAINING} training episodes"),
+        format!("**clip ε = {}**: the seed", c.eps),
+    ];
+    says_all(TRUST_REGION, "lessons/10-trust-region/lesson.md", &figures);
+    let figures_zh = [
+        format!("4γ/(1 − γ)² 等于 {steep:.0}"),
+        format!("1/(1 − γ) = {cap:.0}"),
+        format!("一个方向是 {big:.3}，另一个方向是 {back:.3}"),
+        format!("KL ≈ {small:.5}"),
+        format!(
+            "KL ≈ {big:.3}，大约是前者的 {:.0} 倍",
+            (times / 10.0).round() * 10.0
+        ),
+        format!("0.7 · ln(0.7 / 0.91) ≈ {}", signed(taken, 3)),
+        format!("β₀ = {}、δ = {}", c.beta_init, c.kl_delta),
+        format!(
+            "先试长度 α = {}，然后减半，最多 {} 次，直到批次上精确 KL 的均值不超过 δ = {}",
+            c.ls_max_step, c.ls_backtracks, c.kl_delta
+        ),
+        format!("从 0 到 {top}"),
+        format!("π_old 新采样的 {} 个回合上的平均", settings.episodes),
+        format!("各训练 {TRUST_REGION_TRAINING} 个回合后探测"),
+        format!("**截断 ε = {}**：原教程代码", c.eps),
+    ];
+    says_all(
+        TRUST_REGION_ZH,
+        "lessons/10-trust-region/lesson.zh.md",
+        &figures_zh,
+    );
+    // The quiz's arithmetic: the same ratio 1.5 at two states, the bound's price of a KL of
+    // δ, β's band, the line search's first try.
+    let (a, b) = (kl(0.02, 0.03), kl(0.6, 0.9));
+    let delta = c.kl_delta;
+    let quiz = [
+        format!("B: about {b:.3} against about {a:.4}"),
+        format!(
+            "is {a:.4} with p = 0.02, q = 0.03, and {b:.3} with p = 0.6, q = 0.9, about {:.0} times more",
+            (b / a / 10.0).round() * 10.0
+        ),
+        format!(
+            "4γ/(1 − γ)² = 4 × {} / {:.2}² = {steep:.0}",
+            c.gamma,
+            1.0 - c.gamma
+        ),
+        format!(
+            "charged {delta}·C, {:.0} times the batch's largest |Â|",
+            delta * steep
+        ),
+        format!("δ/1.5 ≈ {:.4}", delta / 1.5),
+        format!("about {:.4} to {}", delta / 1.5, 1.5 * delta),
+        format!("d > 1.5·δ = {}, so β doubles", 1.5 * delta),
+        format!("tries α = {} first", c.ls_max_step),
+    ];
+    says_all(
+        include_str!("../lessons/10-trust-region/quiz.toml"),
+        "lessons/10-trust-region/quiz.toml",
+        &quiz,
+    );
+    let quiz_zh = [
+        format!("B：约 {b:.3} 对约 {a:.4}"),
+        format!(
+            "在 p = 0.02、q = 0.03 时为 {a:.4}，在 p = 0.6、q = 0.9 时为 {b:.3}，大约是前者的 {:.0} 倍",
+            (b / a / 10.0).round() * 10.0
+        ),
+        format!(
+            "4γ/(1 − γ)² = 4 × {} / {:.2}² = {steep:.0}",
+            c.gamma,
+            1.0 - c.gamma
+        ),
+        format!("相当于这批数据最大 |Â| 的 {:.0} 倍", delta * steep),
+        format!("d < δ/1.5 ≈ {:.4}", delta / 1.5),
+        format!("即大约 {:.4} 到 {} 之间", delta / 1.5, 1.5 * delta),
+        format!("d > 1.5·δ = {}，所以 β 加倍", 1.5 * delta),
+        format!("第一次尝试 α = {}", c.ls_max_step),
+    ];
+    says_all(
+        include_str!("../lessons/10-trust-region/quiz.zh.toml"),
+        "lessons/10-trust-region/quiz.zh.toml",
+        &quiz_zh,
+    );
     Ok(())
 }
 
-/// Lesson 10 over seeds 0-4: the same three facts on every seed, and where each seed's
-/// prediction and truth part.
+/// `x` to two significant figures, as lesson 10's tables write a KL (0.028, 0.060, 0.00074, 1.1).
+fn two_figures(x: f64) -> String {
+    let decimals = (1 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// `x` as lesson 10 writes a small KL in a sentence: two figures in e-notation, a trailing
+/// `.0` dropped (1e-4, 1.4e-3).
+fn e_figures(x: f64) -> String {
+    format!("{x:.1e}").replace(".0e", "e")
+}
+
+/// Lesson 10 over seeds 0-4: the same three facts on every seed, where each seed's
+/// prediction and truth part, and every figure the lesson's table and sentences quote of
+/// these probes, in both languages.
 #[test]
-#[cfg_attr(
-    not(feature = "full-tests"),
-    ignore = "full tier (cargo test --features full-tests): five trust-region probes, about 2 s"
-)]
 fn trust_region_prediction_holds_near_theta_old_over_five_seeds() -> TestResult {
+    let (en, zh) = (
+        "lessons/10-trust-region/lesson.md",
+        "lessons/10-trust-region/lesson.zh.md",
+    );
     let mut agree = Vec::new();
     let mut part = Vec::new();
+    let (mut rows_en, mut rows_zh) = (Vec::new(), Vec::new());
+    let (mut first_kl, mut first_gap, mut far_gap, mut old_return) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for seed in 0..5 {
-        let (a, p) = trust_region_check(seed, &trust_region_probe(seed)?)?;
+        let probe = trust_region_probe(seed)?;
+        let (a, p) = trust_region_check(seed, &probe)?;
         agree.push(a);
         part.push(p);
+        let (first, last) = (&probe.points[1], &probe.points[probe.points.len() - 1]);
+        first_kl.push(first.kl);
+        first_gap.push(trust_region_gap(first).abs());
+        far_gap.extend(
+            probe
+                .points
+                .iter()
+                .filter(|p| p.kl >= 0.5)
+                .map(trust_region_gap),
+        );
+        old_return.push(probe.old_return);
+        // The table's row for this seed.
+        let plus = |x: f64| {
+            if x > 0.0 {
+                format!("+{x:.1}")
+            } else {
+                signed(x, 1)
+            }
+        };
+        let row = format!(
+            "| {seed} | {} | {} | {} / {}",
+            two_figures(a),
+            two_figures(p),
+            plus(last.predicted),
+            plus(last.truth)
+        );
+        let kl = two_figures(last.kl);
+        rows_en.push(format!("{row} (KL {kl}) |"));
+        rows_zh.push(format!("{row}（KL {kl}） |"));
+        if seed == 0 {
+            // "its held-out prediction is negative from the first step ... and the truth agreed"
+            assert!(
+                probe
+                    .points
+                    .iter()
+                    .skip(1)
+                    .all(|p| p.predicted < 0.0 && p.truth < 0.0),
+                "seed 0's prediction and truth are negative at every step"
+            );
+        }
     }
     let span = |v: &[f64]| {
         let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
@@ -1938,5 +2285,32 @@ fn trust_region_prediction_holds_near_theta_old_over_five_seeds() -> TestResult 
         part.iter().all(|p| p.is_finite()),
         "every seed parts: {part:?}"
     );
+    let (kl_lo, kl_hi) = span(&first_kl);
+    let (_, gap_hi) = span(&first_gap);
+    let (far_lo, far_hi) = span(&far_gap);
+    let (j_lo, j_hi) = span(&old_return);
+    eprintln!(
+        "smallest step: KL {kl_lo:e}..{kl_hi:e}, gap at most {gap_hi:.2} SE; KL ≥ 0.5: {far_lo:.1}..{far_hi:.1} SE; J_γ {j_lo:.1}..{j_hi:.1}"
+    );
+    // "within 1.5 combined standard errors": the largest gap, rounded up to a tenth.
+    let within = format!("{:.1}", (gap_hi * 10.0).ceil() / 10.0);
+    let (kl_lo, kl_hi) = (e_figures(kl_lo), e_figures(kl_hi));
+    let (far_lo, far_hi) = (far_lo.floor(), far_hi.round());
+    let (j_lo, j_hi) = (j_lo.round(), j_hi.round());
+    let (p_lo, p_hi) = (two_figures(p_lo), two_figures(p_hi));
+    rows_en.extend([
+        format!("At the smallest step (KL {kl_lo} to {kl_hi}) prediction and truth agree within {within} combined standard errors on every seed"),
+        format!("by {far_lo} to {far_hi} standard errors"),
+        format!("(J_γ of π_old is {j_lo} to {j_hi})"),
+        format!("(KL {p_lo} to {p_hi})"),
+    ]);
+    rows_zh.extend([
+        format!("在最小的一步（KL 为 {kl_lo} 到 {kl_hi}），每个随机种子上预测与真实之差都在合并标准误的 {within} 倍以内"),
+        format!("差距都有 {far_lo} 到 {far_hi} 个标准误"),
+        format!("（π_old 的 J_γ 为 {j_lo} 到 {j_hi}）"),
+        format!("（KL 从 {p_lo} 到 {p_hi}）"),
+    ]);
+    says_all(TRUST_REGION, en, &rows_en);
+    says_all(TRUST_REGION_ZH, zh, &rows_zh);
     Ok(())
 }

@@ -131,7 +131,14 @@ for (i, (ret, t)) in penalised.iter().enumerate() {
     println!("{:7}  {ret:6}  {:9.5}  {:10.5}  {:9.5}", i + 1, p.beta_before, p.kl_after, p.beta_after);
 }
 
+// The live values below are this penalty run's latest update (seed 0, 40 episodes, the run
+// of step 3); `clip_snap` keeps the seed's clip run for the next step.
+let clip_snap: Snapshot = snap.clone();
+let snap: Snapshot = pen.clone();
+
 // %% step: Answer 3: the clip (PPO-Clip)
+// The live values below are the seed's clip run's again.
+let snap: Snapshot = clip_snap.clone();
 // The seed's clip on the same seed and episodes, beside the other two answers: the exact KL
 // each update moved the policy by (kl_after, the same measure for every objective).
 use ppo_engine::i18n::pad_right;

@@ -305,7 +305,8 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
         let block = panel(t("live values", "实时数值"), theme);
         let inner = block.inner(tensor_area);
         block.render(tensor_area, buf);
-        if shown.is_empty() && !names.is_empty() {
+        let notes = text::wrap(missing_notes(app, &names, theme), inner.width);
+        if shown.is_empty() && notes.is_empty() && !names.is_empty() {
             let line = Line::styled(
                 tr!(
                     "{} appear after the first episode: press e (one episode) or t (train).",
@@ -324,13 +325,40 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
             };
             // A title or series line wider than the pane ends in a dim `…`, as code does.
             let columns = usize::from(inner.width);
-            let lines: Vec<Line> = tensors::lines(&shown, view, theme)
+            let view = tensors::Viewport {
+                height: view.height.saturating_sub(notes.len()),
+                ..view
+            };
+            let lines: Vec<Line> = notes
                 .into_iter()
+                .chain(tensors::lines(&shown, view, theme))
                 .map(|l| text::cut(l, columns, Span::styled("…", theme.dim())))
                 .collect();
             Paragraph::new(lines).render(inner, buf);
         }
     }
+}
+
+/// Why the PPO-Penalty values among `names` are empty in a run of another objective, and
+/// how to see them: one dim line (none before the first update, or when they are there).
+fn missing_notes(app: &App, names: &[&str], theme: Theme) -> Vec<Line<'static>> {
+    let s = &app.run.snapshot;
+    let missing: Vec<&str> = names
+        .iter()
+        .copied()
+        .filter(|n| crate::lesson::live::PENALTY_ONLY.contains(n) && s.tensor(n).is_none())
+        .collect();
+    if missing.is_empty() || s.trace.is_none() {
+        return Vec::new();
+    }
+    vec![Line::styled(
+        tr!(
+            "{}: PPO-Penalty's values, empty while the live agent runs another objective. To see them, press s, set objective to penalty, and Enter retrains.",
+            "{}：PPO-惩罚的数值，实时运行的智能体用别的目标时为空。要看到它们，按 s，把 objective 设为 penalty，再按 Enter 重新训练。",
+            missing.join(", ")
+        ),
+        theme.dim(),
+    )]
 }
 
 fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) {

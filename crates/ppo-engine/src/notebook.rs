@@ -291,10 +291,7 @@ impl Snapshot {
         for name in names {
             let part = self.tensor(name).map_or_else(
                 || {
-                    let msg = crate::tr!(
-                        "{name}: not available yet (train an episode first)",
-                        "{name}：还没有数值（请先训练一个回合）"
-                    );
+                    let msg = crate::lesson::live::why_missing(name, self);
                     Html {
                         html: format!("<p>{}</p>", escape(&msg)),
                         text: format!("{msg}\n"),

@@ -189,7 +189,7 @@ impl Report {
                 "  {}",
                 tr!(
                     "{p}/{n} checks passed: not yet",
-                    "{p}/{n} 项检查通过：还差一点"
+                    "{p}/{n} 项检查通过：尚未通过"
                 )
             )
         };
@@ -321,6 +321,13 @@ pub fn phrase(text: &str) -> String {
     {
         return format!("第一处不同在 [{index}]：应为 {want}，实际为 {got}");
     }
+    // `ppo_losses`'s gradients: `fc1.weight[3]: expected 0.1, got 0.2`
+    if let Some((name, rest)) = text.split_once("]: expected ")
+        && let Some((want, got)) = rest.split_once(", got ")
+        && !name.contains(' ')
+    {
+        return format!("{name}]：应为 {want}，实际为 {got}");
+    }
     if let Some(rest) = text.strip_prefix("expected ")
         && let Some((want, got)) = rest.split_once(" values, got ")
     {
@@ -373,6 +380,12 @@ fn lists(text: &str) -> String {
 
 const PHRASES: &[(&str, &str)] = &[
     ("the file does not compile", "文件编译不通过"),
+    ("the actor loss differs", "策略网络的损失不同"),
+    ("the critic loss differs", "价值网络的损失不同"),
+    (
+        "the gradients could not be carried to the weights",
+        "梯度无法传回到权重上",
+    ),
     (
         "an earlier case stopped the program",
         "前面的用例让程序停止了",
@@ -580,13 +593,18 @@ mod tests {
         assert!(zh.contains("      提示：    HINT"), "{zh}");
         assert!(zh.contains("8 组由随机种子生成的输入"), "{zh}");
         assert!(zh.contains("前面的用例让程序停止了"), "{zh}");
-        assert!(zh.contains("1/3 项检查通过"), "{zh}");
+        assert!(zh.contains("1/3 项检查通过：尚未通过"), "{zh}");
         assert_eq!(en.lines().count(), zh.lines().count());
         let _zh = Lang::Zh.scoped();
         assert_eq!(
             phrase("first difference at [1]: expected -1.5, got 8.25"),
             "第一处不同在 [1]：应为 -1.5，实际为 8.25"
         );
+        assert_eq!(
+            phrase("fc1.weight[3]: expected 0.1, got 0.2"),
+            "fc1.weight[3]：应为 0.1，实际为 0.2"
+        );
+        assert_eq!(phrase("the actor loss differs"), "策略网络的损失不同");
         assert_eq!(
             phrase("[1.0, 2.0, … ] (149 values)"),
             "[1.0, 2.0, … ]（共 149 个值）"

@@ -128,7 +128,14 @@ for (i, (ret, t)) in penalised.iter().enumerate() {
     println!("{:7}  {ret:6}  {:9.5}  {:10.5}  {:9.5}", i + 1, p.beta_before, p.kl_after, p.beta_after);
 }
 
+// 下面的实时数值是这次惩罚运行（随机种子 0，40 个回合，即第 3 节那次运行）的最近一次更新；
+// `clip_snap` 留着原教程代码的截断运行，供下一节使用。
+let clip_snap: Snapshot = snap.clone();
+let snap: Snapshot = pen.clone();
+
 // %% step: Answer 3: the clip (PPO-Clip)
+// 下面的实时数值又是原教程代码的截断运行的。
+let snap: Snapshot = clip_snap.clone();
 // 原教程代码用的截断，同样的随机种子和回合数，与另外两种答案并列：每次更新让策略移动了多少，
 // 用精确 KL 衡量（kl_after，对每种目标都是同一个量）。
 use ppo_engine::i18n::pad_right;

@@ -131,11 +131,21 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         delta * 1.5
     );
     println!("episode  return   β before  KL after d    β after");
-    nb.show((&Shown(&(for (i, (ret, t)) in penalised.iter().enumerate() {
-    let Some(p) = t.penalty else { continue };
-    println!("{:7}  {ret:6}  {:9.5}  {:10.5}  {:9.5}", i + 1, p.beta_before, p.kl_after, p.beta_after);
-}))).outputs());
-    nb.cell(18);
+    for (i, (ret, t)) in penalised.iter().enumerate() {
+        let Some(p) = t.penalty else { continue };
+        println!("{:7}  {ret:6}  {:9.5}  {:10.5}  {:9.5}", i + 1, p.beta_before, p.kl_after, p.beta_after);
+    }
+
+    // The live values below are this penalty run's latest update (seed 0, 40 episodes, the run
+    // of step 3); `clip_snap` keeps the seed's clip run for the next step.
+    let clip_snap: Snapshot = snap.clone();
+    let snap: Snapshot = pen.clone();
+    nb.cell(17);
+    // This step's live values, from the training run `snap`:
+    nb.show((&Shown(&(snap.show(&["kl_mean", "approx_kl", "beta", "kl_after"])))).outputs());
+    nb.cell(19);
+    // The live values below are the seed's clip run's again.
+    let snap: Snapshot = clip_snap.clone();
     // The seed's clip on the same seed and episodes, beside the other two answers: the exact KL
     // each update moved the policy by (kl_after, the same measure for every objective).
     use ppo_engine::i18n::pad_right;
@@ -149,17 +159,17 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let last: f64 = runs[runs.len() - 10..].iter().map(|(r, _)| r).sum::<f64>() / 10.0;
     println!("{}  {mean:7.4}  {largest:10.4}  {above:12} of {:2}  {last:27.1}", pad_right(name, 12), kls.len());
 }))).outputs());
-    nb.cell(19);
+    nb.cell(20);
     // This step's live values, from the training run `snap`:
-    nb.show((&Shown(&(snap.show(&["ratio_min", "ratio_max"])))).outputs());
-    nb.cell(21);
+    nb.show((&Shown(&(snap.show(&["ratio_min", "ratio_max", "approx_kl", "kl_after"])))).outputs());
+    nb.cell(22);
     // This step's experiment, as `ppo-tutor lab proximal` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("proximal", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
     // The exercise as the learner first meets it: starters and grading.
     {
-        nb.cell(23);
+        nb.cell(24);
         /// The exact KL divergence `KL(π_old(·|s) ‖ π_new(·|s))` between the old and the new policy,
         /// one number per state.
         ///
@@ -187,26 +197,26 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             // count for?
             todo!()
         }
-        nb.cell(24);
+        nb.cell(25);
         nb.show((&Shown(&(ppo_grade::in_process::categorical_kl(categorical_kl)))).outputs());
     }
-    nb.cell(27);
+    nb.cell(28);
     use ppo_engine::lesson::quiz;
-    nb.cell(29);
+    nb.cell(30);
     nb.show((&Shown(&(quiz::answer("trust-region", 1, '?')))).outputs());
-    nb.cell(31);
-    nb.show((&Shown(&(quiz::ask("trust-region", 2, &snap)))).outputs());
     nb.cell(32);
+    nb.show((&Shown(&(quiz::ask("trust-region", 2, &snap)))).outputs());
+    nb.cell(33);
     nb.show((&Shown(&(quiz::predict("trust-region", 2, "?", &snap)))).outputs());
-    nb.cell(34);
+    nb.cell(35);
     nb.show((&Shown(&(quiz::answer("trust-region", 3, '?')))).outputs());
-    nb.cell(36);
-    nb.show((&Shown(&(quiz::ask("trust-region", 4, &snap)))).outputs());
     nb.cell(37);
+    nb.show((&Shown(&(quiz::ask("trust-region", 4, &snap)))).outputs());
+    nb.cell(38);
     nb.show((&Shown(&(quiz::predict("trust-region", 4, "?", &snap)))).outputs());
-    nb.cell(39);
+    nb.cell(40);
     nb.show((&Shown(&(quiz::answer("trust-region", 5, '?')))).outputs());
-    nb.cell(41);
+    nb.cell(42);
     nb.show((&Shown(&(quiz::answer("trust-region", 6, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

@@ -129,11 +129,21 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         delta * 1.5
     );
     println!("   回合    回报 更新时的 β 更新后 KL d   之后的 β");
-    nb.show((&Shown(&(for (i, (ret, t)) in penalised.iter().enumerate() {
-    let Some(p) = t.penalty else { continue };
-    println!("{:7}  {ret:6}  {:9.5}  {:10.5}  {:9.5}", i + 1, p.beta_before, p.kl_after, p.beta_after);
-}))).outputs());
-    nb.cell(18);
+    for (i, (ret, t)) in penalised.iter().enumerate() {
+        let Some(p) = t.penalty else { continue };
+        println!("{:7}  {ret:6}  {:9.5}  {:10.5}  {:9.5}", i + 1, p.beta_before, p.kl_after, p.beta_after);
+    }
+
+    // 下面的实时数值是这次惩罚运行（随机种子 0，40 个回合，即第 3 节那次运行）的最近一次更新；
+    // `clip_snap` 留着原教程代码的截断运行，供下一节使用。
+    let clip_snap: Snapshot = snap.clone();
+    let snap: Snapshot = pen.clone();
+    nb.cell(17);
+    // 本节的实时数值，来自训练运行 `snap`：
+    nb.show((&Shown(&(snap.show(&["kl_mean", "approx_kl", "beta", "kl_after"])))).outputs());
+    nb.cell(19);
+    // 下面的实时数值又是原教程代码的截断运行的。
+    let snap: Snapshot = clip_snap.clone();
     // 原教程代码用的截断，同样的随机种子和回合数，与另外两种答案并列：每次更新让策略移动了多少，
     // 用精确 KL 衡量（kl_after，对每种目标都是同一个量）。
     use ppo_engine::i18n::pad_right;
@@ -147,17 +157,17 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let last: f64 = runs[runs.len() - 10..].iter().map(|(r, _)| r).sum::<f64>() / 10.0;
     println!("{}  {mean:7.4}  {largest:10.4}  {above:13} / {:2}  {last:27.1}", pad_right(name, 12), kls.len());
 }))).outputs());
-    nb.cell(19);
+    nb.cell(20);
     // 本节的实时数值，来自训练运行 `snap`：
-    nb.show((&Shown(&(snap.show(&["ratio_min", "ratio_max"])))).outputs());
-    nb.cell(21);
+    nb.show((&Shown(&(snap.show(&["ratio_min", "ratio_max", "approx_kl", "kl_after"])))).outputs());
+    nb.cell(22);
     // 本节的实验，与终端里 `ppo-tutor lab proximal` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("proximal", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
     // The exercise as the learner first meets it: starters and grading.
     {
-        nb.cell(23);
+        nb.cell(24);
         /// 旧策略与新策略之间精确的 KL 散度 `KL(π_old(·|s) ‖ π_new(·|s))`，每个状态一个数。
         ///
         /// 第 10 课用这个散度衡量新策略离旧策略走了多远，PPO-惩罚把它加进了损失。这里你要为一整批
@@ -179,26 +189,26 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             // 动作，又该算多少？
             todo!()
         }
-        nb.cell(24);
+        nb.cell(25);
         nb.show((&Shown(&(ppo_grade::in_process::categorical_kl(categorical_kl)))).outputs());
     }
-    nb.cell(27);
+    nb.cell(28);
     use ppo_engine::lesson::quiz;
-    nb.cell(29);
+    nb.cell(30);
     nb.show((&Shown(&(quiz::answer("trust-region", 1, '?')))).outputs());
-    nb.cell(31);
-    nb.show((&Shown(&(quiz::ask("trust-region", 2, &snap)))).outputs());
     nb.cell(32);
+    nb.show((&Shown(&(quiz::ask("trust-region", 2, &snap)))).outputs());
+    nb.cell(33);
     nb.show((&Shown(&(quiz::predict("trust-region", 2, "?", &snap)))).outputs());
-    nb.cell(34);
+    nb.cell(35);
     nb.show((&Shown(&(quiz::answer("trust-region", 3, '?')))).outputs());
-    nb.cell(36);
-    nb.show((&Shown(&(quiz::ask("trust-region", 4, &snap)))).outputs());
     nb.cell(37);
+    nb.show((&Shown(&(quiz::ask("trust-region", 4, &snap)))).outputs());
+    nb.cell(38);
     nb.show((&Shown(&(quiz::predict("trust-region", 4, "?", &snap)))).outputs());
-    nb.cell(39);
+    nb.cell(40);
     nb.show((&Shown(&(quiz::answer("trust-region", 5, '?')))).outputs());
-    nb.cell(41);
+    nb.cell(42);
     nb.show((&Shown(&(quiz::answer("trust-region", 6, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();

@@ -15,7 +15,9 @@ pub mod session;
 pub mod values;
 
 pub use session::Session;
-pub use values::{IN_BOTH, LIVE, LiveValue, NAMES, PENDULUM_ONLY, is_known, lookup};
+pub use values::{
+    IN_BOTH, LIVE, LiveValue, NAMES, PENALTY_ONLY, PENDULUM_ONLY, is_known, lookup, why_missing,
+};
 
 use super::Environment;
 use crate::ppo::model::ActorSnapshot;

@@ -127,6 +127,7 @@ impl Reader<'_> {
         let got = match got {
             Value::Array(a) => format!("a list of {} entries", a.len()),
             Value::Object(_) => "an object".into(),
+            Value::String(s) if s.chars().count() <= 40 => format!("the string {s:?}"),
             Value::String(_) => "a string".into(),
             Value::Null => "null".into(),
             other => format!("{other}"),

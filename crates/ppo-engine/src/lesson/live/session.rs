@@ -260,7 +260,7 @@ fn probs_over(policy: &ActorSnapshot, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
 mod tests {
     use super::*;
     use crate::lesson::Environment;
-    use crate::lesson::live::LIVE;
+    use crate::lesson::live::{LIVE, PENALTY_ONLY};
     use crate::ppo::{ContinuousTrainer, PpoConfig, PpoContinuousConfig, Trainer};
 
     type TestResult = Result<(), Box<dyn std::error::Error>>;
@@ -280,13 +280,26 @@ mod tests {
             (Environment::CartPole, cartpole),
             (Environment::Pendulum, pendulum),
         ] {
-            check_every_value(env, &snapshot)?;
+            check_every_value(env, &snapshot, |name| !PENALTY_ONLY.contains(&name))?;
         }
+        // PPO-Penalty's own values, in a run of that objective.
+        let penalty = PpoConfig {
+            objective: crate::ppo::Objective::Penalty,
+            ..PpoConfig::default()
+        };
+        let penalty = Session::run(penalty, 0, 10)?;
+        check_every_value(Environment::CartPole, &penalty, |name| {
+            PENALTY_ONLY.contains(&name)
+        })?;
         Ok(())
     }
 
-    fn check_every_value(env: Environment, snapshot: &Snapshot) -> TestResult {
-        for v in LIVE.iter().filter(|v| v.runs_on(env)) {
+    fn check_every_value(
+        env: Environment,
+        snapshot: &Snapshot,
+        checked: impl Fn(&str) -> bool,
+    ) -> TestResult {
+        for v in LIVE.iter().filter(|v| v.runs_on(env) && checked(v.name)) {
             let t = snapshot
                 .tensor(v.name)
                 .ok_or_else(|| format!("{} has no view in a {env:?} run", v.name))?;

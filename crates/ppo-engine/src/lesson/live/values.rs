@@ -77,6 +77,27 @@ pub const IN_BOTH: [&str; 23] = [
     "moving_average",
 ];
 
+/// Live values that only PPO-Penalty's update computes (`objective = "penalty"`): in a run
+/// of another objective they stay empty ([`why_missing`] says so).
+pub const PENALTY_ONLY: [&str; 2] = ["kl_mean", "beta"];
+
+/// Why live value `name` has no value in `snapshot`, as one line for the reader: a
+/// penalty-only value in a run of another objective, or nothing trained yet.
+#[must_use]
+pub fn why_missing(name: &str, snapshot: &Snapshot) -> String {
+    if PENALTY_ONLY.contains(&name) && snapshot.trace.is_some() {
+        crate::tr!(
+            "{name}: only PPO-Penalty computes it (objective = penalty); this run's objective is another",
+            "{name}：只有 PPO-惩罚才计算它（objective = penalty），这次运行用的是别的目标"
+        )
+    } else {
+        crate::tr!(
+            "{name}: not available yet (train an episode first)",
+            "{name}：还没有数值（请先训练一个回合）"
+        )
+    }
+}
+
 /// Every live value a lesson may show, in the seed's order (views such as `plot` are listed
 /// in [`crate::lesson::VIEWS`]).
 pub const LIVE: &[LiveValue] = &[
@@ -209,6 +230,53 @@ pub const LIVE: &[LiveValue] = &[
     LiveValue {
         name: "approx_kl",
         view: |n, s| epoch_series(n, s, |e| e.approx_kl),
+    },
+    LiveValue {
+        name: "kl_mean",
+        view: |n, s| {
+            let t = trace(s)?;
+            t.penalty?;
+            let values: Vec<f64> = t
+                .epochs
+                .iter()
+                .map(|e| e.kl_mean.map_or(f64::NAN, f64::from))
+                .collect();
+            Some(TensorView::new(n, vec![values.len()], "float32", values))
+        },
+    },
+    LiveValue {
+        name: "beta",
+        view: |n, s| {
+            let p = trace(s)?.penalty?;
+            let mut t = TensorView::new(n, vec![3], "float64", vec![]);
+            for (label, v) in [
+                (
+                    crate::i18n::t("β in this update's loss", "本次更新损失中的 β"),
+                    p.beta_before,
+                ),
+                (
+                    crate::i18n::t("d, the KL after it", "d，更新后的 KL"),
+                    f64::from(p.kl_after),
+                ),
+                (
+                    crate::i18n::t("β for the next update", "下一次更新的 β"),
+                    p.beta_after,
+                ),
+            ] {
+                let label = crate::i18n::pad_right(label, 23);
+                t.labels.push(format!("{label} = {v:.4e}"));
+                t.values.push(v);
+                t.marks.push(Mark::Plain);
+            }
+            Some(t)
+        },
+    },
+    LiveValue {
+        name: "kl_after",
+        view: |n, s| {
+            let kl = trace(s)?.kl_after?;
+            Some(TensorView::new(n, vec![1], "float32", vec![f64::from(kl)]))
+        },
     },
     LiveValue {
         name: "clip_frac",
@@ -595,6 +663,63 @@ fn epoch_series(
 mod tests {
     use super::*;
     use std::collections::HashSet;
+
+    /// PPO-Penalty's live values come from its trace: each epoch's exact mean KL (0 before
+    /// the first step), β before, d and β after; a clip run has none of them and says why.
+    #[test]
+    fn penalty_values_view_the_penalty_trace() -> Result<(), crate::ppo::PpoError> {
+        use crate::lesson::Session;
+        use crate::ppo::{Objective, PpoConfig};
+        let penalty = PpoConfig {
+            objective: Objective::Penalty,
+            num_episodes: 3,
+            ..PpoConfig::default()
+        };
+        let s = Session::run(penalty, 0, 3)?;
+        let t = s.trace.as_ref().ok_or(crate::ppo::PpoError::EmptyBatch)?;
+        let p = t.penalty.ok_or(crate::ppo::PpoError::EmptyBatch)?;
+        let beta = s.tensor("beta").ok_or(crate::ppo::PpoError::EmptyBatch)?;
+        assert_eq!(
+            beta.values,
+            [p.beta_before, f64::from(p.kl_after), p.beta_after]
+        );
+        assert_eq!(beta.labels.len(), 3);
+        let kl = s
+            .tensor("kl_mean")
+            .ok_or(crate::ppo::PpoError::EmptyBatch)?;
+        assert_eq!(kl.values.len(), t.epochs.len());
+        assert_eq!(kl.values[0], 0.0, "π_θ is π_old before the first step");
+        assert!(kl.values.windows(2).all(|w| w[1] >= w[0]) && kl.values[9] > 0.0);
+        let after = s
+            .tensor("kl_after")
+            .ok_or(crate::ppo::PpoError::EmptyBatch)?;
+        // The same KL, computed by the penalty (candle) and for every objective (plain f32).
+        let d = f64::from(p.kl_after);
+        assert!(
+            (after.values[0] - d).abs() < 1e-5 * d,
+            "d is kl_after: {after:?} {d}"
+        );
+
+        let clip = Session::run(
+            PpoConfig {
+                num_episodes: 3,
+                ..PpoConfig::default()
+            },
+            0,
+            3,
+        )?;
+        for name in PENALTY_ONLY {
+            assert!(clip.tensor(name).is_none(), "{name}");
+            assert!(why_missing(name, &clip).contains("penalty"), "{name}");
+        }
+        assert!(
+            clip.tensor("kl_after").is_some(),
+            "every objective reports it"
+        );
+        let fresh = Snapshot::default();
+        assert!(why_missing("beta", &fresh).contains("train an episode"));
+        Ok(())
+    }
 
     #[test]
     fn names_are_unique_and_known() {

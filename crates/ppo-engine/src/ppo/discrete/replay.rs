@@ -150,9 +150,17 @@ impl Reader<'_> {
     fn case(&self, case: &Value, path: &str) -> Result<ReplayCase, PpoError> {
         let objective = match case.get("objective") {
             None => Objective::Clip,
-            Some(v) => serde_json::from_value(v.clone()).map_err(|_| {
-                self.wrong(&format!("{path}.objective"), "\"clip\" or \"penalty\"", v)
-            })?,
+            Some(v) => match serde_json::from_value(v.clone()) {
+                Ok(o @ (Objective::Clip | Objective::Penalty)) => o,
+                // No PyTorch recording of the KL line search exists to replay.
+                _ => {
+                    return Err(self.wrong(
+                        &format!("{path}.objective"),
+                        "\"clip\" or \"penalty\" (the objectives ppo_fixtures.py records)",
+                        v,
+                    ));
+                }
+            },
         };
         let hpath = format!("{path}.hyper");
         let hyper = self.key(case, path, "hyper", HYPER)?;
@@ -370,5 +378,25 @@ mod tests {
             err.contains("missing key 'cases[0].batch.next_states'") && err.contains("[1, 4]"),
             "{err}"
         );
+    }
+
+    /// Only the objectives PyTorch recorded replay: the KL line search has no recording, and
+    /// a file that says it is refused by name, as is an unknown objective.
+    #[test]
+    fn an_objective_without_a_recording_is_refused() {
+        for objective in ["line-search", "trpo"] {
+            let mut j = case_json();
+            j["cases"][0]["objective"] = serde_json::json!(objective);
+            let err = parse_replay(&j.to_string(), "t.json")
+                .err()
+                .map(|e| e.to_string())
+                .unwrap_or_default();
+            assert!(
+                err.contains("cases[0].objective")
+                    && err.contains("\"clip\" or \"penalty\"")
+                    && err.contains(&format!("{objective:?}")),
+                "{err}"
+            );
+        }
     }
 }
