@@ -15,6 +15,7 @@ pub mod args;
 pub mod cartpole;
 pub mod dev;
 pub mod grade;
+pub mod help_zh;
 pub mod lab;
 pub mod lessons;
 pub mod pendulum;
@@ -139,7 +140,7 @@ where
     // Usage errors are reported before the language is settled: guess it from the raw
     // arguments and the environment, so even they speak it.
     guess_lang(&args).set_current();
-    let cli = match Cli::try_parse_from(&args) {
+    let cli = match parse(&args) {
         Ok(cli) => cli,
         Err(err) => return report_clap_error(&err),
     };
@@ -161,6 +162,21 @@ where
         Err(err) => {
             eprintln!("{}{err:#}", error_prefix());
             ExitCode::FAILURE
+        }
+    }
+}
+
+/// Parses the command line in the current language: in Chinese against the command whose
+/// help, headings and usage [`help_zh::localise`] translated (the same ids and parsers, so
+/// the same [`Cli`]); in English exactly as clap derive does.
+fn parse(args: &[OsString]) -> Result<Cli, clap::Error> {
+    use clap::{CommandFactory as _, FromArgMatches as _};
+    match Lang::current() {
+        Lang::En => Cli::try_parse_from(args),
+        Lang::Zh => {
+            let mut cmd = help_zh::localise(Cli::command());
+            let mut matches = cmd.try_get_matches_from_mut(args)?;
+            Cli::from_arg_matches_mut(&mut matches).map_err(|e| e.format(&mut cmd))
         }
     }
 }
@@ -212,14 +228,129 @@ fn report_clap_error(err: &clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         }
         _ => {
-            eprintln!(
-                "{}{}",
-                usage_error_line(&err.render().to_string()),
-                see_help()
-            );
+            let line = match Lang::current() {
+                Lang::En => usage_error_line(&err.render().to_string()),
+                Lang::Zh => usage_error_zh(err),
+            };
+            eprintln!("{line}{}", see_help());
             ExitCode::from(EXIT_USAGE)
         }
     }
+}
+
+/// A clap usage error as one Chinese line, built from its kind and context (what clap
+/// renders is English): `错误：` and one sentence per kind, quoting the argument and value.
+fn usage_error_zh(err: &clap::Error) -> String {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    let get = |kind: ContextKind| -> Option<String> {
+        match err.get(kind)? {
+            ContextValue::String(s) => Some(s.clone()),
+            ContextValue::Strings(v) => Some(v.join("、")),
+            ContextValue::StyledStr(s) => Some(s.to_string()),
+            ContextValue::StyledStrs(v) => Some(
+                v.iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join("、"),
+            ),
+            ContextValue::Number(n) => Some(n.to_string()),
+            ContextValue::Bool(b) => Some(b.to_string()),
+            ContextValue::None => None,
+            _ => None,
+        }
+    };
+    let quoted = |list: String| -> String {
+        list.split('、')
+            .map(|item| format!("'{item}'"))
+            .collect::<Vec<_>>()
+            .join("、")
+    };
+    let arg = get(ContextKind::InvalidArg).unwrap_or_default();
+    let value = get(ContextKind::InvalidValue);
+    let suggest = |kind: ContextKind| -> String {
+        get(kind)
+            .map(|s| format!("；你是不是想用 {}？", quoted(s)))
+            .unwrap_or_default()
+    };
+    let sentence = match err.kind() {
+        // A flag clap does not know, or a value no argument takes.
+        ErrorKind::UnknownArgument if arg.starts_with('-') => {
+            format!("不认识的参数 '{arg}'{}", suggest(ContextKind::SuggestedArg))
+        }
+        ErrorKind::UnknownArgument => format!("多余的参数 '{arg}'"),
+        ErrorKind::InvalidSubcommand => format!(
+            "不认识的子命令 '{}'{}",
+            get(ContextKind::InvalidSubcommand).unwrap_or_default(),
+            suggest(ContextKind::SuggestedSubcommand)
+        ),
+        ErrorKind::InvalidValue => match value.as_deref() {
+            None | Some("") => format!("'{arg}' 需要一个值，但没有给出"),
+            Some(value) => {
+                let valid = get(ContextKind::ValidValue)
+                    .map(|v| format!("；可选值：{}", quoted(v)))
+                    .unwrap_or_default();
+                format!(
+                    "'{value}' 不是 '{arg}' 的有效值{valid}{}",
+                    suggest(ContextKind::SuggestedValue)
+                )
+            }
+        },
+        ErrorKind::ValueValidation => {
+            let value = value.unwrap_or_default();
+            // Our own parsers explain in Chinese (or in both languages, then the Chinese
+            // half); a parser of the standard library only in English: then no reason.
+            let why = std::error::Error::source(err)
+                .map(ToString::to_string)
+                .map(|m| match m.split_once(" / ") {
+                    Some((_, zh)) if has_chinese(zh) => zh.to_string(),
+                    _ => m,
+                })
+                .filter(|m| has_chinese(m))
+                .map(|m| format!("：{m}"))
+                .unwrap_or_default();
+            format!("'{arg}' 的值 '{value}' 无效{why}")
+        }
+        ErrorKind::MissingRequiredArgument => format!("缺少必需的参数：{}", quoted(arg)),
+        ErrorKind::MissingSubcommand => {
+            let valid = get(ContextKind::ValidSubcommand)
+                .map(|v| format!("：{}", quoted(v)))
+                .unwrap_or_default();
+            format!(
+                "'{}' 需要一个子命令{valid}",
+                get(ContextKind::InvalidSubcommand).unwrap_or_default()
+            )
+        }
+        ErrorKind::ArgumentConflict => match get(ContextKind::PriorArg) {
+            Some(prior) if prior != arg => {
+                format!("'{arg}' 不能与 {} 同时使用", quoted(prior))
+            }
+            _ => format!("'{arg}' 不能重复使用"),
+        },
+        ErrorKind::TooManyValues => format!(
+            "'{arg}' 不需要更多的值，却多给了 '{}'",
+            value.unwrap_or_default()
+        ),
+        ErrorKind::TooFewValues => format!(
+            "'{arg}' 至少需要 {} 个值，只给了 {} 个",
+            get(ContextKind::MinValues).unwrap_or_default(),
+            get(ContextKind::ActualNumValues).unwrap_or_default()
+        ),
+        ErrorKind::WrongNumberOfValues => format!(
+            "'{arg}' 需要 {} 个值，给了 {} 个",
+            get(ContextKind::ExpectedNumValues).unwrap_or_default(),
+            get(ContextKind::ActualNumValues).unwrap_or_default()
+        ),
+        ErrorKind::NoEquals => format!("'{arg}' 的值要用等号连着写，如 '{arg}=…'"),
+        ErrorKind::InvalidUtf8 => "参数不是有效的 UTF-8 文本".to_string(),
+        _ if arg.is_empty() => "命令行参数有误".to_string(),
+        _ => format!("命令行参数 '{arg}' 有误"),
+    };
+    format!("{}{sentence}", error_prefix())
+}
+
+/// Whether `text` holds a Chinese character.
+fn has_chinese(text: &str) -> bool {
+    text.chars().any(|c| ('\u{4e00}'..='\u{9fff}').contains(&c))
 }
 
 /// A clap error as one line: its first line, and for a missing argument the arguments it
@@ -388,5 +519,88 @@ mod tests {
         let bad = Cli::try_parse_from(["ppo-tutor", "--lang", "fr", "lessons"]);
         let message = bad.err().map(|e| e.to_string()).unwrap_or_default();
         assert!(message.contains("expected en or zh"), "{message}");
+    }
+
+    /// Each kind of usage error reads as one Chinese sentence that quotes what was wrong,
+    /// with no English word outside flags, values and identifiers.
+    #[test]
+    fn usage_errors_read_in_chinese() {
+        use clap::CommandFactory as _;
+        let mut english = Cli::command();
+        english.build();
+        let mut allowed = std::collections::BTreeSet::new();
+        help_zh::identifiers(&english, &mut allowed);
+        for (line, kind, says) in [
+            (
+                &["train", "--foo"][..],
+                "UnknownArgument",
+                "不认识的参数 '--foo'",
+            ),
+            (&["train", "--epsx", "3"][..], "UnknownArgument", "'--eps'"),
+            (
+                &["lessons", "extra"][..],
+                "UnknownArgument",
+                "多余的参数 'extra'",
+            ),
+            (
+                &["trian"][..],
+                "InvalidSubcommand",
+                "不认识的子命令 'trian'",
+            ),
+            (&["show"][..], "MissingRequiredArgument", "缺少必需的参数"),
+            (&["play"][..], "MissingRequiredArgument", "'--load <文件>'"),
+            (
+                &["cartpole", "--policy", "lea"][..],
+                "InvalidValue",
+                "'lea' 不是 '--policy <策略>' 的有效值；可选值：'random'、'lean'",
+            ),
+            (&["train", "--episodes"][..], "InvalidValue", "需要一个值"),
+            (
+                &["cartpole", "--seed", "abc"][..],
+                "ValueValidation",
+                "'--seed <种子>' 的值 'abc' 无效：应为",
+            ),
+            (
+                &["--lang", "fr", "lessons"][..],
+                "ValueValidation",
+                "应为 en 或 zh",
+            ),
+            (
+                &["show", "td-target", "--step", "x"][..],
+                "ValueValidation",
+                "'x' 无效",
+            ),
+            (
+                &["train", "--seeds", "0-2", "--seed", "3"][..],
+                "ArgumentConflict",
+                "不能与 '--seed <种子>' 同时使用",
+            ),
+            (
+                &["cartpole", "--json", "--json"][..],
+                "ArgumentConflict",
+                "不能重复使用",
+            ),
+        ] {
+            let _zh = Lang::Zh.scoped();
+            let mut cmd = help_zh::localise(Cli::command());
+            let mut args = vec!["ppo-tutor"];
+            args.extend_from_slice(line);
+            let Err(err) = cmd.try_get_matches_from_mut(&args) else {
+                panic!("{line:?} parsed");
+            };
+            assert_eq!(format!("{:?}", err.kind()), kind, "{line:?}");
+            let text = usage_error_zh(&err);
+            assert!(
+                text.starts_with("错误：") && text.contains(says) && !text.contains('\n'),
+                "{line:?}: {text}"
+            );
+            // What the user typed is quoted as typed.
+            let mut quoted = text.clone();
+            for typed in line {
+                quoted = quoted.replace(&format!("'{typed}'"), "");
+            }
+            let words = help_zh::english_words(&quoted, &allowed);
+            assert!(words.is_empty(), "{line:?}: English {words:?} in {text}");
+        }
     }
 }

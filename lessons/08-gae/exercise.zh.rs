@@ -1,12 +1,12 @@
-//! 第 08 课练习：广义优势估计。
+//! 第 8 课练习：广义优势估计。
 //!
-//! 评分：`ppo-tutor grade compute_advantage`（或在教程中按 `g`）。
+//! 评分：`ppo-tutor grade compute_advantage`（或在本教程中按 `g`）。
 //! 重新开始：`ppo-tutor reset compute_advantage`。
 
 /// 用广义优势估计（GAE）计算一个回合中每一步的优势值。
 ///
 /// 一步的优势值表示它的动作结果比价值网络预期的好多少。单个 TD 误差只往前看一步，之后
-/// 就信任价值网络；GAE 还会听取回合中之后所有步的“意外”，离得越远，分量越小。γ 和 λ
+/// 就信任价值网络；GAE 还会听取回合中之后所有步的“意外”，离得越远，权重越小。γ 和 λ
 /// 决定它们衰减得多快。它对应原教程代码中的
 /// `rl_utils.compute_advantage(gamma, lmbda, td_delta)`。
 ///
@@ -24,7 +24,7 @@
 /// 讲解见第 8 课（gae）第 3 节“为什么循环要倒着走”；第 4 节“绕道 numpy，用 float32 计算”
 /// 解释了运算方式。
 pub fn compute_advantage(gamma: f32, lmbda: f32, td_delta: &[f32]) -> Vec<f32> {
-    // TODO：在这里写代码；在教程中按 `h` 可逐条显示提示。
+    // TODO：在这里写代码；在本教程中按 `h` 可逐条显示提示。
     // 哪一步的优势值不需要知道其他任何优势值就能算出？
     todo!()
 }

@@ -1,7 +1,7 @@
 //! 第 11 课练习：截断后的目标已经不再推动哪些行。
 //!
-//! 评分：`ppo-tutor grade zero_gradient_rows`（或在 ppo-tutor 中按 `g`）。
-//! 从头再来：`ppo-tutor reset zero_gradient_rows`。
+//! 评分：`ppo-tutor grade zero_gradient_rows`（或在本教程中按 `g`）。
+//! 重新开始：`ppo-tutor reset zero_gradient_rows`。
 
 /// 截断后的目标已经不再推动哪些行。
 ///

@@ -1,7 +1,7 @@
 //! 第 13 课练习：衡量一次更新让策略移动了多远，并及时让它停下。
 //!
-//! 评分：`ppo-tutor grade approx_kl` 和 `ppo-tutor grade kl_early_stop`（或在 tutor 中
-//! 按 `g`）。从头再来：`ppo-tutor reset approx_kl`（恢复整个文件）。
+//! 评分：`ppo-tutor grade approx_kl` 和 `ppo-tutor grade kl_early_stop`（或在本教程中
+//! 按 `g`）。重新开始：`ppo-tutor reset approx_kl`（恢复整个文件）。
 
 /// 策略离收集这批数据的那个策略有多远，用一个数表示。
 ///
@@ -28,7 +28,7 @@ pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
 ///
 /// - `old_log_probs[i]` 是 `log π_old(a_i|s_i)`，在更新之前就已固定；共 `N` 行，至少 1 行。
 /// - `log_probs_per_epoch` 依次存放 `E` 行、每行 `N` 个数（按行优先排列，
-///   `E = log_probs_per_epoch.len() / N`，至少为 1）：第 `e` 行是第 `e` 轮*开始*时、
+///   `E = log_probs_per_epoch.len() / N`，至少为 1）：第 `e` 行是第 `e` 轮开始时、
 ///   也就是这一轮的梯度步之前，策略给出的 `log π(a_i|s_i)`。
 /// - `target_kl` 就是 Spinning Up 的 `target_kl`（默认 0.01）。
 ///
@@ -37,7 +37,7 @@ pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
 ///
 /// 讲解见第 13 课（clip-lab）第 5 节“实验 4：在目标 KL 处提前停止”。
 pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {
-    // TODO：在这里写代码；在 tutor 中按 `h` 可逐条显示提示。
+    // TODO：在这里写代码；在本教程中按 `h` 可逐条显示提示。
     // Spinning Up 检验的是 KL 散度的哪一种估计？估计值第一次过大的那一轮，它的梯度步会怎样？
     todo!()
 }

@@ -166,11 +166,7 @@ fn print_table(t: &Trajectory, env_id: EnvId) -> anyhow::Result<()> {
     writeln!(out, "{}", return_line(t))?;
     for (i, s) in t.next_resets.iter().enumerate() {
         let n = i + 1;
-        writeln!(
-            out,
-            "{}{s:?}",
-            tr!("next reset {n}: ", "下一次 reset {n}：")
-        )?;
+        writeln!(out, "{}{s:?}", tr!("next reset {n}: ", "下一次重置 {n}："))?;
     }
     Ok(())
 }

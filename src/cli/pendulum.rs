@@ -51,7 +51,7 @@ pub fn parse_torques(s: &str) -> Result<TorqueList, String> {
     }
     let fix = tr!(
         "give decimal torques in N·m, comma-separated like -0.5,1.25 (clipped to [-{MAX_TORQUE}, {MAX_TORQUE}])",
-        "请给出以 N·m 为单位的小数力矩，用逗号分隔，如 -0.5,1.25（会截到 [-{MAX_TORQUE}, {MAX_TORQUE}]）"
+        "请给出以 N·m 为单位的小数力矩，用逗号分隔，如 -0.5,1.25（超出 [-{MAX_TORQUE}, {MAX_TORQUE}] 的会被限幅）"
     );
     s.split(',')
         .enumerate()
@@ -165,11 +165,7 @@ fn print_table(t: &PendulumTrajectory) -> anyhow::Result<()> {
     )?;
     for (i, s) in t.next_resets.iter().enumerate() {
         let n = i + 1;
-        writeln!(
-            out,
-            "{}{s:?}",
-            tr!("next reset {n}: ", "下一次 reset {n}：")
-        )?;
+        writeln!(out, "{}{s:?}", tr!("next reset {n}: ", "下一次重置 {n}："))?;
     }
     Ok(())
 }

@@ -480,7 +480,7 @@ pub(super) fn writing(path: &Path) -> String {
 
 /// The seed's tqdm prefix, `Iteration i`, in the current language.
 fn iteration_label(i: usize) -> String {
-    tr!("Iteration {i}", "第 {i} 轮迭代")
+    tr!("Iteration {i}", "第 {i} 次迭代")
 }
 
 /// The seed's ten tqdm bars ("Iteration i"), with the same postfix every 10 episodes.

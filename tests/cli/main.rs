@@ -5,6 +5,7 @@
 mod common;
 
 mod commands;
+mod help_zh;
 mod pendulum;
 mod pendulum_train;
 mod ppo;

@@ -17,14 +17,14 @@ println!(
 );
 
 // %% step: take_action: sampling, not choosing the best
-// 智能体有多少次选了它自己认为可能性较小的动作？
+// 智能体有多少次选了它自己给出的概率较小的那个动作？
 let against = trace
     .actions
     .iter()
     .zip(&snap.probs)
     .filter(|(a, p)| p[**a] < 0.5)
     .count();
-println!("{against} 个动作（共 {} 个）选的是可能性较小的那个：采样带来了探索", trace.actions.len());
+println!("{against} 个动作（共 {} 个）选的是概率较小的那个：采样带来了探索", trace.actions.len());
 
 // %% step: Stepping the environment
 // %% step: transition_dict: one episode in five lists

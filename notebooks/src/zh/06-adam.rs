@@ -16,7 +16,7 @@ trainer.next_episode()?;
 let after: NamedWeights = trainer.agent().weights()?;
 
 // %% step: Why a step is about the size of lr
-// 无论梯度多大，Adam 的一步都接近 lr：一次 `epochs` 步的更新之后，
+// 无论梯度多大，Adam 每一步的步长都接近 lr：一次 `epochs` 步的更新之后，
 // 没有哪个权重的变化明显超过 epochs × lr。
 for (name, w) in &before {
     let moved = w.data.iter().zip(&after[name].data).map(|(a, b)| (a - b).abs()).fold(0.0_f32, f32::max);

@@ -44,7 +44,7 @@ println!("第 10 轮之后：{} 个比率（共 {} 个）落在 [{:.1}, {:.1}] �
     outside, last.ratio.len(), 1.0 - eps, 1.0 + eps);
 
 // %% exercise
-// 练习评完了，现在回到“价值网络的损失”一节：第一轮中
+// 练习已经评分，现在回到“价值网络的损失”一节：第一轮中
 // V(s_t) − y_t = −δ_t，所以价值网络的损失就是 TD 误差平方的均值。
 let mse = trace.td_delta.iter().map(|d| d * d).sum::<f32>() / n;
 println!("第 1 轮价值网络损失 {:.6}，mean(td_delta²) {:.6}", first.critic_loss, mse);

@@ -15,7 +15,7 @@ println!("{config:#?}");
 
 // %% step: critic_lr: a ten times smaller critic step
 println!(
-    "critic_lr = {}（原教程代码的值），对比 {}，即策略网络自己的学习率 {}",
+    "critic_lr = {}（原教程代码的值），实验改成 {}，即策略网络自己的学习率 {}",
     config.critic_lr,
     config.critic_lr / 10.0,
     config.actor_lr

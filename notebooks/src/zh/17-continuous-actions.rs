@@ -7,7 +7,7 @@ use ppo_engine::ppo::{ContinuousUpdateTrace, PpoContinuousConfig};
 fn range(r: &[f32]) -> (f32, f32) {
     r.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)))
 }
-// 原书的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0：20 个回合，每个 200 步。
+// 书中的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0：20 个回合，每个 200 步。
 let config: PpoContinuousConfig = PpoContinuousConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 20)?;
 let trace: ContinuousUpdateTrace = snap.continuous.clone().expect("已训练 20 个回合");
@@ -30,7 +30,7 @@ let within_1 = z.iter().filter(|v| v.abs() < 1.0).count();
 let within_2 = z.iter().filter(|v| v.abs() < 2.0).count();
 let outside = trace.actions.iter().filter(|a| a.abs() > 2.0).count();
 println!("{within_1} 个力矩（共 {} 个）离 μ 不到一个 σ，{within_2} 个不到两个 σ", z.len());
-println!("{outside} 个力矩在 [−2, 2] 之外：按采样值存储，由环境限制到这个范围内");
+println!("{outside} 个力矩在 [−2, 2] 之外：按采样值存储，由环境限幅");
 
 // %% step: The log-density of a Normal
 // 密度可以大于 1：这个批次中最大的对数密度，以及与它对应的 σ。

@@ -7,7 +7,7 @@ use ppo_engine::ppo::PpoContinuousConfig;
 fn mean(r: &[f64]) -> f64 {
     r.iter().sum::<f64>() / r.len() as f64
 }
-// 原书的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0，目前只训练了一个回合。
+// 书中的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0，目前只训练了一个回合。
 let config: PpoContinuousConfig = PpoContinuousConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 1)?;
 println!("第 1 个回合：回报 {:.1}", snap.returns[0]);
@@ -32,7 +32,7 @@ println!("最坏情况：代价 {:.4}", cost(PI, 8.0, 2.0));
 println!("最大力矩：6 rad/s²，对抗重力的 15·sin θ；电机只能在偏离竖直 {:.1}° 以内稳住杆", (0.4_f64).asin().to_degrees());
 
 // %% step: The training run and its return curve
-// 这里训练 300 个回合（原书训练 2000 个：在终端里运行 `ppo-tutor train --env Pendulum-v1`）。
+// 这里训练 300 个回合（书中训练 2000 个：在终端里运行 `ppo-tutor train --env Pendulum-v1`）。
 let mut session = Session::new(config.clone(), 0)?;
 let mut maps: Vec<(usize, Snapshot)> = Vec::new();
 for episode in 1..=300 {
@@ -60,4 +60,4 @@ for (episode, s) in &maps {
     let mean_std = map.std.iter().sum::<f32>() / map.std.len() as f32;
     println!("第 {episode:>3} 个回合之后：网格上 σ 的均值 = {mean_std:.4}");
 }
-println!("（原书完整训练 2000 个回合会让它变小：在终端里运行 `ppo-tutor train --env Pendulum-v1`）");
+println!("（书中完整训练 2000 个回合会让它变小：在终端里运行 `ppo-tutor train --env Pendulum-v1`）");

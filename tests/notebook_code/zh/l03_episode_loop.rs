@@ -27,14 +27,14 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["returns"])))).outputs());
     nb.cell(7);
-    // 智能体有多少次选了它自己认为可能性较小的动作？
+    // 智能体有多少次选了它自己给出的概率较小的那个动作？
     let against = trace
         .actions
         .iter()
         .zip(&snap.probs)
         .filter(|(a, p)| p[**a] < 0.5)
         .count();
-    println!("{against} 个动作（共 {} 个）选的是可能性较小的那个：采样带来了探索", trace.actions.len());
+    println!("{against} 个动作（共 {} 个）选的是概率较小的那个：采样带来了探索", trace.actions.len());
     nb.cell(8);
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["obs", "probs", "actions"])))).outputs());
@@ -62,8 +62,8 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         nb.cell(17);
         /// 从策略中抽取一个动作，做法与原教程代码的 `Categorical(probs).sample()` 相同。
         ///
-        /// 智能体并不总是采取概率最大的动作，而是采样：概率为 p 的动作，会在比例为 p 的情况下
-        /// 被采取，智能体正是这样探索的。这里的随机性从外部传入，是一个数 `u`，所以同一个 `u`
+        /// 智能体并不总是采取概率最大的动作，而是采样：概率为 p 的动作，被采取的频率就是 p，
+        /// 智能体正是这样探索的。这里的随机性从外部传入，是一个数 `u`，所以同一个 `u`
         /// 总是给出同一个动作。
         ///
         /// - `probs[i]` 是策略选择动作 `i` 的概率。车杆有两个动作（0 向左推，1 向右推）；评分器
@@ -78,7 +78,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///
         /// 讲解见第 3 课（episode-loop）第 2 节“take_action：采样，而不是挑最好的”。
         pub fn sample_action(probs: &[f32], u: f32) -> usize {
-            // TODO：在这里写代码；在教程中按 `h` 可以逐条显示提示。
+            // TODO：在这里写代码；在本教程中按 `h` 可以逐条显示提示。
             // 把 [0, 1) 想象成一把尺子：每个动作各占其中的哪一段？
             todo!()
         }

@@ -27,7 +27,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(snap.show(&["probs", "actions", "rewards"])))).outputs());
     nb.cell(7);
     // G_t = r_t + γ·G_{t+1}，从最后一步往回算（done 之后的部分记为 0），这里取库里的计算：
-    // 自己写这个反向循环是第 8 课的练习。
+    // 亲手写这个反向循环，是第 8 课的练习。
     use ppo_engine::lesson::live::values::return_to_go;
     let g: Vec<f64> = return_to_go(&trace.rewards, &trace.dones, config.gamma);
     let g32: Vec<f32> = g.iter().map(|&x| x as f32).collect();
@@ -62,9 +62,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(snap.show(&["advantage"])))).outputs());
     nb.cell(16);
     // check: grad_surrogate after 30 episodes
-    // 会话在玩第 30 个回合的那个策略网络处，对两个目标分别求了梯度。
+    // 会话在采样第 30 个回合的那个策略网络处，对两个目标分别求了梯度。
     let grads: SurrogateGradients = snap.gradients.clone().expect("每个回合之后都会计算");
-    println!("{:<18} {:>14} {:>14}", "parameter", "∇ mean(r·Â)", "∇ mean(log π·Â)");
+    println!("{:<16} {:>14} {:>14}", "参数", "∇ mean(r·Â)", "∇ mean(log π·Â)");
     for i in [640, 641, 642, 896, 897] {
         let name = grads.label(i).unwrap_or_default();
         println!("{name:<18} {:>14.6e} {:>14.6e}", grads.surrogate[i], grads.log_prob[i]);

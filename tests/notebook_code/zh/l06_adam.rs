@@ -28,7 +28,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["weights"])))).outputs());
     nb.cell(9);
-    // 无论梯度多大，Adam 的一步都接近 lr：一次 `epochs` 步的更新之后，
+    // 无论梯度多大，Adam 每一步的步长都接近 lr：一次 `epochs` 步的更新之后，
     // 没有哪个权重的变化明显超过 epochs × lr。
     nb.show((&Shown(&(for (name, w) in &before {
     let moved = w.data.iter().zip(&after[name].data).map(|(a, b)| (a - b).abs()).fold(0.0_f32, f32::max);

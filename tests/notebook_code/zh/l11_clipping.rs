@@ -32,12 +32,12 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["ratio", "advantage", "surr1", "surr2"])))).outputs());
     nb.cell(7);
-    // 最后一轮中被 clamp 改动的行：surr2 / advantage 就是 clamp 之后的比率。
+    // 最后一轮中被截断改动的行：surr2 / advantage 就是截断之后的比率。
     let eps = config.eps as f32;
     println!("区间 [{}, {}]", 1.0 - eps, 1.0 + eps);
     nb.show((&Shown(&(for t in (0..last.ratio.len()).filter(|&t| last.clipped[t]).take(4) {
     println!(
-        "第 {t:3} 行：比率 {:.4} -> clamp 后 {:.4}",
+        "第 {t:3} 行：比率 {:.4} -> 截断后 {:.4}",
         last.ratio[t],
         last.surr2[t] / trace.advantage[t]
     );

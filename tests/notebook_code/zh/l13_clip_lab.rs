@@ -93,7 +93,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///
         /// - `old_log_probs[i]` 是 `log π_old(a_i|s_i)`，在更新之前就已固定；共 `N` 行，至少 1 行。
         /// - `log_probs_per_epoch` 依次存放 `E` 行、每行 `N` 个数（按行优先排列，
-        ///   `E = log_probs_per_epoch.len() / N`，至少为 1）：第 `e` 行是第 `e` 轮*开始*时、
+        ///   `E = log_probs_per_epoch.len() / N`，至少为 1）：第 `e` 行是第 `e` 轮开始时、
         ///   也就是这一轮的梯度步之前，策略给出的 `log π(a_i|s_i)`。
         /// - `target_kl` 就是 Spinning Up 的 `target_kl`（默认 0.01）。
         ///
@@ -102,7 +102,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///
         /// 讲解见第 13 课（clip-lab）第 5 节“实验 4：在目标 KL 处提前停止”。
         pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {
-            // TODO：在这里写代码；在 tutor 中按 `h` 可逐条显示提示。
+            // TODO：在这里写代码；在本教程中按 `h` 可逐条显示提示。
             // Spinning Up 检验的是 KL 散度的哪一种估计？估计值第一次过大的那一轮，它的梯度步会怎样？
             todo!()
         }

@@ -49,7 +49,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(for bar in 0..10 {
     let end = (bar + 1) * 50;
     let mean: f64 = snap.returns[end - 10..end].iter().sum::<f64>() / 10.0;
-    println!("Iteration {bar}：第 {end} 个回合，回报 {mean:.3}");
+    println!("进度条 {bar}：第 {end} 个回合，最近十个回合的平均回报 {mean:.3}");
 }))).outputs());
     nb.cell(5);
     // 本节的实时数值，来自训练运行 `snap`：

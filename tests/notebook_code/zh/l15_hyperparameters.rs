@@ -24,7 +24,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(snap.show(&["hyper"])))).outputs());
     nb.cell(7);
     println!(
-        "critic_lr = {}（原教程代码的值），对比 {}，即策略网络自己的学习率 {}",
+        "critic_lr = {}（原教程代码的值），实验改成 {}，即策略网络自己的学习率 {}",
         config.critic_lr,
         config.critic_lr / 10.0,
         config.actor_lr

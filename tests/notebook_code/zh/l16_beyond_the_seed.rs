@@ -40,7 +40,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(15);
-        /// 正确的单步 TD 目标：第 `t` 步的价值，等于它得到的奖励，加上价值网络对之后的预期，
+        /// 正确的一步 TD 目标：第 `t` 步的价值，等于它得到的奖励，加上价值网络对之后的预期，
         /// 前提是“之后”确实存在。
         ///
         /// - `rewards[t]` 是 `r_t`；`next_values[t]` 是 `V(s_{t+1})`，即价值网络对第 `t` 步之后
@@ -70,7 +70,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///   `lmbda` 是 λ。
         /// - 返回 `(advantages, returns)`，每行各一个，其中 returns 是 CleanRL 由优势值推出的
         ///   价值网络目标（第 8 课第 6 节的 λ 回报）。
-        /// - 每一行的单步误差按 `td_target_truncation` 的方式自举。优势值绝不跨过回合的结束处，
+        /// - 每一行的一步 TD 误差按 `td_target_truncation` 的方式自举。优势值绝不跨过回合的结束处，
         ///   无论回合以何种方式结束。最后一行之后什么也没有：把那里的优势值当作 0。
         ///
         /// 讲解见第 16 课（beyond-the-seed）第 4 节“固定长度采样、向量化环境与小批量”，

@@ -16,7 +16,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     fn range(r: &[f32]) -> (f32, f32) {
         r.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)))
     }
-    // 原书的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0：20 个回合，每个 200 步。
+    // 书中的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0：20 个回合，每个 200 步。
     let config: PpoContinuousConfig = PpoContinuousConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 20)?;
     let trace: ContinuousUpdateTrace = snap.continuous.clone().expect("已训练 20 个回合");
@@ -42,7 +42,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let within_2 = z.iter().filter(|v| v.abs() < 2.0).count();
     let outside = trace.actions.iter().filter(|a| a.abs() > 2.0).count();
     println!("{within_1} 个力矩（共 {} 个）离 μ 不到一个 σ，{within_2} 个不到两个 σ", z.len());
-    println!("{outside} 个力矩在 [−2, 2] 之外：按采样值存储，由环境限制到这个范围内");
+    println!("{outside} 个力矩在 [−2, 2] 之外：按采样值存储，由环境限幅");
     nb.cell(9);
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["actions", "states"])))).outputs());
@@ -81,7 +81,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         /// - 这批数据有 `N` 行，每个时间步一行。`actions` 和 `mu` 都是 `N × dim`，按行存放：
         ///   第 `i` 行的第 `d` 维位于 `[i * dim + d]`。`mu` 是策略在该行给出的均值。
         /// - 策略对每一维各用一个正态分布独立地抽样，各维之间互不相关。分布的宽度与状态无关：
-        ///   `log_std[d]`（长度为 `dim`）是第 `d` 维标准差的*对数*，所有行共用，和 CleanRL
+        ///   `log_std[d]`（长度为 `dim`）是第 `d` 维标准差的**对数**，所有行共用，和 CleanRL
         ///   一样，每一维一个可学习的数。
         /// - `dim` 至少为 1；`N` 可以为 0。每一行返回一个值（共 `N` 个，不是 `N × dim` 个）：
         ///   该行整个动作的对数密度，类型为 f32。PPO 用它为每个时间步构造一个比率。

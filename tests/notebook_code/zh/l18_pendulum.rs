@@ -16,7 +16,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     fn mean(r: &[f64]) -> f64 {
         r.iter().sum::<f64>() / r.len() as f64
     }
-    // 原书的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0，目前只训练了一个回合。
+    // 书中的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0，目前只训练了一个回合。
     let config: PpoContinuousConfig = PpoContinuousConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 1)?;
     println!("第 1 个回合：回报 {:.1}", snap.returns[0]);
@@ -46,7 +46,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["rewards", "dones"])))).outputs());
     nb.cell(11);
-    // 这里训练 300 个回合（原书训练 2000 个：在终端里运行 `ppo-tutor train --env Pendulum-v1`）。
+    // 这里训练 300 个回合（书中训练 2000 个：在终端里运行 `ppo-tutor train --env Pendulum-v1`）。
     let mut session = Session::new(config.clone(), 0)?;
     let mut maps: Vec<(usize, Snapshot)> = Vec::new();
     for episode in 1..=300 {
@@ -80,7 +80,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         let mean_std = map.std.iter().sum::<f32>() / map.std.len() as f32;
         println!("第 {episode:>3} 个回合之后：网格上 σ 的均值 = {mean_std:.4}");
     }
-    println!("（原书完整训练 2000 个回合会让它变小：在终端里运行 `ppo-tutor train --env Pendulum-v1`）");
+    println!("（书中完整训练 2000 个回合会让它变小：在终端里运行 `ppo-tutor train --env Pendulum-v1`）");
     nb.cell(19);
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["std_map"])))).outputs());

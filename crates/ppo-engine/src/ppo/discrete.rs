@@ -129,12 +129,12 @@ impl AgentConfig for PpoConfig {
         Knob::SEED,
         Knob::value(
             "bootstrap_on_truncation",
-            |c| c.bootstrap_on_truncation.to_string(),
+            |c| knobs::show_switch(c.bootstrap_on_truncation),
             |c, _| c.bootstrap_on_truncation = !c.bootstrap_on_truncation,
         ),
         Knob::value(
             "normalize_advantage",
-            |c| c.normalize_advantage.to_string(),
+            |c| knobs::show_switch(c.normalize_advantage),
             |c, _| c.normalize_advantage = !c.normalize_advantage,
         ),
         Knob::ENV,
@@ -168,7 +168,7 @@ impl AgentConfig for PpoConfig {
         ),
         Knob::value(
             "no_clip",
-            |c| c.no_clip.to_string(),
+            |c| knobs::show_switch(c.no_clip),
             |c, _| c.no_clip = !c.no_clip,
         ),
         Knob::value(

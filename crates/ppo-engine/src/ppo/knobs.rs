@@ -161,6 +161,17 @@ pub fn show_option(v: Option<f64>) -> String {
     v.map_or_else(|| t("off", "关").into(), |v| v.to_string())
 }
 
+/// A switch as the sandbox shows it: `true`/`false` as in the configuration, 开/关 in Chinese.
+#[must_use]
+pub fn show_switch(on: bool) -> String {
+    if on {
+        t("true", "开")
+    } else {
+        t("false", "关")
+    }
+    .into()
+}
+
 /// A learning rate as the sandbox shows it (`3.00e-4`).
 #[must_use]
 pub fn show_rate(v: f64) -> String {
