@@ -200,7 +200,7 @@ fn watch_exercise_files(app: &mut App, watcher: &mut Option<SaveWatcher>, tx: &S
         Err(e) => {
             app.say(crate::tr!(
                 "{}{e}; g still grades",
-                "{}{e}；按 g 仍可评测",
+                "{}{e}；按 g 仍可评分",
                 app::warning()
             ));
         }

@@ -313,7 +313,7 @@ pub fn init(args: &InitArgs) -> anyhow::Result<ExitCode> {
             "{written} starters written, {kept} kept. In {shown}: `ppo-tutor watch` grades on \
              every save, `ppo-tutor grade` shows the score.",
             "写入 {written} 个初始文件，保留 {kept} 个。在 {shown} 中：`ppo-tutor watch` 每次保存都会\
-             评测，`ppo-tutor grade` 显示得分。"
+             评分，`ppo-tutor grade` 显示得分。"
         )
     )?;
     Ok(ExitCode::SUCCESS)

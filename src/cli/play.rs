@@ -132,7 +132,7 @@ fn play_cartpole(args: &PlayArgs, env_id: EnvId) -> anyhow::Result<ExitCode> {
                 let line = if step.terminated {
                     tr!(
                         "episode {episode}: return {total} (the pole fell after {steps} steps)",
-                        "回合 {episode}：回报 {total}（{steps} 步后杆子倒下）"
+                        "回合 {episode}：回报 {total}（{steps} 步后杆倒下）"
                     )
                 } else {
                     tr!(
@@ -287,7 +287,7 @@ fn pendulum_lines(theta: f64, torque: f64) -> Vec<String> {
     PendulumView {
         theta,
         torque,
-        block: Block::bordered().title(t(" torque: arc around the pivot ", " 力矩：绕支点的弧 ")),
+        block: Block::bordered().title(t(" torque: arc around the pivot ", " 力矩：绕转轴的弧 ")),
         color: false,
     }
     .render(area, &mut buf);

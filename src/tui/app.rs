@@ -459,7 +459,7 @@ impl App {
         if names.is_empty() {
             self.say(t(
                 "this lesson has no exercise to grade",
-                "本课没有要评测的练习",
+                "本课没有要评分的练习",
             ));
             return;
         }

@@ -137,7 +137,7 @@ pub fn help() -> Vec<(&'static str, &'static str)> {
             "g",
             t(
                 "grade this lesson's exercise (its exercise.rs)",
-                "评测本课的练习（它的 exercise.rs）",
+                "给本课的练习评分（它的 exercise.rs）",
             ),
         ),
         (

@@ -539,7 +539,7 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         };
         parts.push(tr!(
             "exercise {}: {state} (g grade, h hint)",
-            "练习 {}：{state}（g 评测，h 提示）",
+            "练习 {}：{state}（g 评分，h 提示）",
             exercise.join(", ")
         ));
     }

@@ -117,7 +117,7 @@ pub fn first_build_note(name: &str, backend: Backend, cache: &Path) -> Option<St
         crate::tr!(
             "Compiling candle for the candle exercise's grader in {dir} (the first time only: \
              a few minutes)…",
-            "正在 {dir} 里为 candle 练习的评分程序编译 candle（只有第一次需要，约几分钟）……"
+            "正在 {dir} 里为 candle 练习的评分器编译 candle（只有第一次需要，约几分钟）……"
         )
     })
 }

@@ -119,7 +119,7 @@ impl std::fmt::Display for GradeError {
                 let dir = dir.display();
                 tr!(
                     "cargo could not build the candle grader in {dir}:\n{message}\n(the first build fetches and compiles candle: it needs the crates.io registry or cargo's download cache; delete {dir} to start over)",
-                    "cargo 无法在 {dir} 中构建 candle 评分程序：\n{message}\n（第一次构建要下载并编译 candle，需要能访问 crates.io 或有 cargo 的下载缓存；删除 {dir} 可从头再来）"
+                    "cargo 无法在 {dir} 中构建 candle 评分器：\n{message}\n（第一次构建要下载并编译 candle，需要能访问 crates.io 或有 cargo 的下载缓存；删除 {dir} 即可重新开始）"
                 )
             }
             Self::Content(why) => tr!(
@@ -134,7 +134,7 @@ impl std::fmt::Display for GradeError {
                 let binary = binary.display();
                 tr!(
                     "cannot run the compiled grader {binary}: {reason}",
-                    "无法运行编译好的评分程序 {binary}：{reason}"
+                    "无法运行编译好的评分器 {binary}：{reason}"
                 )
             }
             Self::Write { file, reason } => {

@@ -436,7 +436,7 @@ const CHECK_NAMES: &[(&str, &str)] = &[
     ),
     (
         "every sampled action made more likely",
-        "每个采样到的动作都变得更可能",
+        "每个采样到的动作的概率都提高了",
     ),
     (
         "passes target_kl one epoch before 1.5 × target_kl",
@@ -504,12 +504,12 @@ const CHECK_NAMES: &[(&str, &str)] = &[
     ("every advantage equal", "所有优势值相等"),
     ("advantages smaller than 1", "小于 1 的优势值"),
     ("an episode cut by the time limit", "因时限中断的回合"),
-    ("an episode where the pole fell", "杆子倒下的回合"),
+    ("an episode where the pole fell", "杆倒下的回合"),
     ("terminated and truncated at once", "同时终止和时限中断"),
     ("the first epoch (nothing moved)", "第一轮（什么都没变）"),
     (
         "every action more likely than before",
-        "每个动作都比以前更可能",
+        "每个动作的概率都比以前高",
     ),
     (
         "an action of probability 0 is never chosen",
@@ -523,7 +523,7 @@ const CHECK_NAMES: &[(&str, &str)] = &[
         "a time-limit cut, then a new episode",
         "时限中断后开始新回合",
     ),
-    ("a fall, then a new episode", "杆子倒下后开始新回合"),
+    ("a fall, then a new episode", "杆倒下后开始新回合"),
     ("a rollout that ends mid-episode", "在回合中途结束的采样"),
     ("errors of both signs", "正负两种误差"),
     ("both sides of the band", "区间的两侧"),

@@ -153,7 +153,7 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
             "--max-grad-norm",
             t(
                 "the book's PPOContinuous update does not clip gradients",
-                "书中的 PPOContinuous 更新不裁剪梯度",
+                "书中的 PPOContinuous 更新不做梯度裁剪",
             ),
         ),
         (

@@ -109,10 +109,10 @@ impl ExercisePanel {
     pub fn request_grade(&mut self, names: Vec<String>) -> String {
         self.scroll.top();
         if self.grading {
-            return t("already grading…", "正在评测……").into();
+            return t("already grading…", "正在评分……").into();
         }
         self.grading = true;
-        let status = tr!("grading {}…", "正在评测 {}……", names.join(", "));
+        let status = tr!("grading {}…", "正在评分 {}……", names.join(", "));
         self.request = Some(names);
         status
     }
@@ -180,7 +180,7 @@ impl ExercisePanel {
             Line::styled(
                 t(
                     " g grade (saving the file regrades too) · h next hint · ↑↓ scroll · Esc close",
-                    " g 评测（保存文件也会重新评测）· h 下一条提示 · ↑↓ 滚动 · Esc 关闭",
+                    " g 评分（保存文件也会重新评分）· h 下一条提示 · ↑↓ 滚动 · Esc 关闭",
                 ),
                 theme.dim(),
             ),
@@ -233,12 +233,12 @@ impl ExercisePanel {
                     t(
                         " grading… (the first time compiles, a few seconds; for the candle exercise, \
                          a few minutes)",
-                        " 评测中……（第一次要编译，需要几秒；candle 练习需要几分钟）",
+                        " 评分中……（第一次要编译，需要几秒；candle 练习需要几分钟）",
                     )
                 } else {
                     t(
                         " grading… (the first time compiles, a few seconds)",
-                        " 评测中……（第一次要编译，需要几秒）",
+                        " 评分中……（第一次要编译，需要几秒）",
                     )
                 },
                 theme.dim(),

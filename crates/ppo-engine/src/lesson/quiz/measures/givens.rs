@@ -43,7 +43,7 @@ pub(super) static GIVENS: &[Measure] = &[
     given(
         "episodes",
         "episodes played so far",
-        "到目前为止玩过的回合数",
+        "到目前为止已采样的回合数",
         |s| (s.episodes > 0).then_some(s.episodes as f64),
     ),
     given(

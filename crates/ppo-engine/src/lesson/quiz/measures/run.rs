@@ -140,7 +140,7 @@ pub(super) static RUN: &[Measure] = &[
         name: "kl_at_ratio_max_last",
         about: "KL(π_old ‖ π_θ) at the state of the last epoch's largest-ratio row, between the \
                 policy that played and the last epoch's",
-        about_zh: "最后一轮比率最大那一行的状态上，玩这批数据的策略与最后一轮的策略之间的 KL(π_old ‖ π_θ)",
+        about_zh: "最后一轮比率最大那一行的状态上，采样这批数据的策略与最后一轮的策略之间的 KL(π_old ‖ π_θ)",
         // CartPole only (`trace`): the two-action KL from the taken action's probabilities.
         value: |s| {
             let t = s.trace.as_ref()?;
