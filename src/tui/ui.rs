@@ -355,7 +355,7 @@ fn missing_notes(app: &App, names: &[&str], theme: Theme) -> Vec<Line<'static>> 
         tr!(
             "{}: PPO-Penalty's values, empty while the live agent runs another objective. To see them, press s, set objective to penalty, and Enter retrains.",
             "{}：PPO-惩罚的数值，实时运行的智能体用别的目标时为空。要看到它们，按 s，把 objective 设为 penalty，再按 Enter 重新训练。",
-            missing.join(", ")
+            missing.join(t(", ", "、"))
         ),
         theme.dim(),
     )]
