@@ -5,18 +5,7 @@ use std::process::{Command, Output};
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 use crate::common;
-use common::english;
-
-/// The binary with no language setting at all but `env` (the locale variables and
-/// `PPO_TUTOR_LANG` are removed first).
-fn with_env(env: &[(&str, &str)]) -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    for key in ["PPO_TUTOR_LANG", "LC_ALL", "LC_MESSAGES", "LANG"] {
-        cmd.env_remove(key);
-    }
-    cmd.envs(env.iter().copied());
-    cmd
-}
+use common::{english, with_env};
 
 /// [`with_env`] with its progress file and grading cache in `dir` (not the user's).
 fn sandboxed(dir: &std::path::Path) -> Command {

@@ -14,3 +14,15 @@ pub fn english() -> Command {
         .env("LANG", "C.UTF-8");
     cmd
 }
+
+/// The binary with no language setting at all but `env` (the locale variables and
+/// `PPO_TUTOR_LANG` are removed first).
+#[must_use]
+pub fn with_env(env: &[(&str, &str)]) -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    for key in ["PPO_TUTOR_LANG", "LC_ALL", "LC_MESSAGES", "LANG"] {
+        cmd.env_remove(key);
+    }
+    cmd.envs(env.iter().copied());
+    cmd
+}

@@ -1,19 +1,9 @@
 //! The command line's help and usage errors in Chinese (issue 29 §1): every subcommand's
 //! help, whichever way Chinese is chosen, and one Chinese line for a usage error.
 
-use std::process::Command;
+use crate::common::with_env;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
-
-/// The binary with no language setting but `env`.
-fn with_env(env: &[(&str, &str)]) -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    for key in ["PPO_TUTOR_LANG", "LC_ALL", "LC_MESSAGES", "LANG"] {
-        cmd.env_remove(key);
-    }
-    cmd.envs(env.iter().copied());
-    cmd
-}
 
 /// What clap prints in English and must not be left on a Chinese screen.
 const CLAP_ENGLISH: &[&str] = &[
