@@ -307,10 +307,7 @@ fn train_with_the_penalty_objective() -> TestResult {
             "--objective works only with CartPole",
         ),
     ] {
-        let out = ppo_tutor(&[&["train", "--episodes", "1"][..], args].concat())?;
-        assert_eq!(out.status.code(), Some(2), "{args:?}");
-        let err = stderr(&out);
-        assert!(err.contains(expected), "{args:?}: {err}");
+        train_refuses(args, expected)?;
     }
     Ok(())
 }
@@ -410,10 +407,7 @@ fn train_with_the_line_search_objective() -> TestResult {
             "--objective works only with CartPole",
         ),
     ] {
-        let out = ppo_tutor(&[&["train", "--episodes", "1"][..], args].concat())?;
-        assert_eq!(out.status.code(), Some(2), "{args:?}");
-        let err = stderr(&out);
-        assert!(err.contains(expected), "{args:?}: {err}");
+        train_refuses(args, expected)?;
     }
     Ok(())
 }
@@ -674,5 +668,14 @@ fn train_names_the_update_path_and_candle_can_be_forced() -> TestResult {
         );
         assert!(zh.contains(&zh_line), "{env}: {zh}");
     }
+    Ok(())
+}
+
+/// `train --episodes 1 ARGS` exits with a usage error whose text contains `expected`.
+fn train_refuses(args: &[&str], expected: &str) -> TestResult {
+    let out = ppo_tutor(&[&["train", "--episodes", "1"][..], args].concat())?;
+    assert_eq!(out.status.code(), Some(2), "{args:?}");
+    let err = stderr(&out);
+    assert!(err.contains(expected), "{args:?}: {err}");
     Ok(())
 }
