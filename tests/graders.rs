@@ -14,6 +14,7 @@ use std::time::Duration;
 
 use ppo_tutor::grade::prose::Prose;
 use ppo_tutor::grade::{self, Backend, CheckStatus, Exercise, GradeOptions, Problem, Report};
+use ppo_tutor::i18n::Lang;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -56,6 +57,40 @@ fn grade_text(
     Ok(grade::find(name)?.grade_source(text, "learner_test.rs", &options)?)
 }
 
+/// The English words of `report` read in Chinese (issue 29: none on a Chinese screen
+/// outside code). Code is: the exercise's identifiers (every word of its signature, so its
+/// parameters), file paths, code spans, and what the learner's toolchain printed (the
+/// compiler's errors under a failed build, a panic's own message).
+fn english_in_chinese(report: &Report, exercise: &dyn Exercise) -> Vec<String> {
+    let text = {
+        let _zh = Lang::Zh.scoped();
+        report.render()
+    };
+    // `true`, `false` and `inf` are values (`dones = [false, true, …]`, `[inf, inf]`).
+    let allowed: std::collections::BTreeSet<String> = exercise
+        .signature()
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .chain(["true", "false", "inf"])
+        .filter(|w| !w.is_empty())
+        .map(str::to_string)
+        .collect();
+    let ours = match &report.compile_error {
+        // The summary line only: below it is rustc's output.
+        Some(_) => text.lines().take(2).collect::<Vec<_>>(),
+        None => text
+            .lines()
+            .filter(|l| !l.trim_start().starts_with("panic："))
+            .collect(),
+    };
+    ours.iter()
+        .flat_map(|line| {
+            ppo_tutor::i18n::english_words(line, &allowed)
+                .into_iter()
+                .map(move |w| format!("{w:?} in {line:?}"))
+        })
+        .collect()
+}
+
 /// The plain-Rust exercises of the registry (the candle one has a test of its own).
 fn plain() -> impl Iterator<Item = &'static dyn Exercise> {
     grade::exercises()
@@ -89,6 +124,8 @@ fn every_shipped_starter_fails() -> TestResult {
         );
         let text = report.render();
         assert!(text.contains("todo!() is still there"), "{text}");
+        let english = english_in_chinese(&report, exercise);
+        assert!(english.is_empty(), "{}: {english:#?}", exercise.name());
         let (rel, embedded) = grade::starter(exercise.name()).ok_or("no embedded starter")?;
         assert_eq!(
             std::fs::read_to_string(Path::new(ROOT).join(rel))?,
@@ -128,6 +165,11 @@ fn catalogue(name: &str) -> TestResult {
         );
         let hint = prose.mistake(id);
         assert!(text.contains(hint), "{name}/{id}: hint missing\n{text}");
+        let english = english_in_chinese(&report, grade::find(name)?);
+        assert!(
+            english.is_empty(),
+            "{name}/{id}: English in Chinese: {english:#?}"
+        );
     }
     Ok(())
 }
@@ -213,34 +255,47 @@ fn a_file_that_does_not_compile_shows_rustc_errors() -> TestResult {
         Duration::from_secs(10),
     )?;
     let (summary, compiler) = report.compile_error.clone().ok_or("compiled")?;
+    let summary = summary.in_lang(Lang::En);
     assert!(summary.contains("does not compile"), "{summary}");
     assert!(compiler.contains("error[E0308]"), "{compiler}");
     assert!(compiler.contains("learner_test.rs:2"), "{compiler}");
     assert!(!report.passed());
     assert!(report.render().contains("mismatched types"));
+    let english = english_in_chinese(&report, grade::find("approx_kl")?);
+    assert!(english.is_empty(), "{english:#?}");
     Ok(())
 }
 
 #[test]
 fn a_missing_or_mistyped_function_is_named() -> TestResult {
+    let approx_kl = grade::find("approx_kl")?;
     let report = grade_text("approx_kl", "pub fn other() {}\n", Duration::from_secs(10))?;
+    assert!(english_in_chinese(&report, approx_kl).is_empty());
     let (summary, _) = report.compile_error.ok_or("compiled")?;
+    let (summary, zh) = (summary.in_lang(Lang::En), summary.in_lang(Lang::Zh));
     assert!(summary.contains("has no function `approx_kl`"), "{summary}");
+    assert!(zh.contains("里没有函数 `approx_kl`"), "{zh}");
     let report = grade_text(
         "approx_kl",
         "pub fn approx_kl(old: &[f64], log_probs: &[f64]) -> f64 { 0.0 }\n",
         Duration::from_secs(10),
     )?;
+    assert!(english_in_chinese(&report, approx_kl).is_empty());
     let (summary, _) = report.compile_error.ok_or("compiled")?;
+    let (summary, zh) = (summary.in_lang(Lang::En), summary.in_lang(Lang::Zh));
     assert!(summary.contains("signature"), "{summary}");
+    assert!(zh.contains("与练习要求的签名不符"), "{zh}");
     assert!(summary.contains("pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32"));
     let report = grade_text(
         "approx_kl",
         "fn approx_kl(a: &[f32], b: &[f32]) -> f32 { 0.0 }\n",
         Duration::from_secs(10),
     )?;
+    assert!(english_in_chinese(&report, approx_kl).is_empty());
     let (summary, _) = report.compile_error.ok_or("compiled")?;
+    let (summary, zh) = (summary.in_lang(Lang::En), summary.in_lang(Lang::Zh));
     assert!(summary.contains("private"), "{summary}");
+    assert!(zh.contains("是私有的"), "{zh}");
     Ok(())
 }
 
@@ -259,8 +314,10 @@ fn a_panic_is_reported_with_its_message_and_input() -> TestResult {
         }
         other => return Err(format!("expected a panic, got {other:?}").into()),
     }
-    assert!(failure.hint.contains("past the end"));
+    assert!(failure.hint.get().contains("past the end"));
     assert!(!failure.input.is_empty());
+    let english = english_in_chinese(&report, grade::find("compute_advantage")?);
+    assert!(english.is_empty(), "{english:#?}");
     Ok(())
 }
 
@@ -286,6 +343,8 @@ fn an_endless_loop_is_reported_as_never_returning() -> TestResult {
         report.render()
     );
     assert!(report.render().contains("never returned within 1 s"));
+    let english = english_in_chinese(&report, grade::find("approx_kl")?);
+    assert!(english.is_empty(), "{english:#?}");
     assert!(
         report
             .checks
@@ -581,10 +640,14 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
         if !text.contains(prose.mistake(id)) {
             return Err(format!("ppo_losses/{id}: hint missing\n{text}"));
         }
+        let english = english_in_chinese(&report, exercise);
+        if !english.is_empty() {
+            return Err(format!("ppo_losses/{id}: English in Chinese: {english:#?}"));
+        }
         // A loss pushing the wrong way does not learn: the training check says so.
         let learned = !matches!(
             report.checks.last().map(|c| &c.status),
-            Some(CheckStatus::Failed(f)) if f.detail.contains("did not learn")
+            Some(CheckStatus::Failed(f)) if f.detail.in_lang(Lang::En).contains("did not learn")
         );
         if id == "no_minus_sign" && learned {
             return Err(format!(
@@ -614,6 +677,7 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
     let typo = "use candle_core::{Result, Tensor};\npub fn ppo_losses(probs: &Tensor, actions: &Tensor, old_log_probs: &Tensor, advantage: &Tensor, values: &Tensor, td_target: &Tensor, eps: f64) -> Result<(Tensor, Tensor)> {\n    let x: u32 = \"no\";\n    todo!()\n}\n";
     let report = grade_candle(typo, ten)?;
     let (summary, compiler) = report.compile_error.clone().ok_or("compiled")?;
+    let summary = summary.in_lang(Lang::En);
     assert!(summary.contains("does not compile"), "{summary}");
     assert!(
         compiler.contains("error[E0308]") && compiler.contains("learner_candle.rs:3"),
@@ -621,6 +685,8 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
     );
     let report = grade_candle("pub fn ppo_losses(eps: f32) -> f32 { eps }\n", ten)?;
     let (summary, _) = report.compile_error.ok_or("compiled")?;
+    let (summary, zh) = (summary.in_lang(Lang::En), summary.in_lang(Lang::Zh));
+    assert!(zh.contains("与练习要求的签名不符"), "{zh}");
     assert!(
         summary.contains("signature") && summary.contains(&exercise.signature()),
         "{summary}"
@@ -641,7 +707,7 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
         "{}",
         report.render()
     );
-    assert!(failure.hint.contains("(N, 2)"), "{}", failure.hint);
+    assert!(failure.hint.get().contains("(N, 2)"), "{}", failure.hint);
     let report = grade_candle(
         &body("    let a = (values - td_target)?.sqr()?.mean(0)?;\n    Ok((a.clone(), a))"),
         ten,

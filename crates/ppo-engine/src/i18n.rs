@@ -224,6 +224,228 @@ pub fn pad_left(text: &str, columns: usize) -> String {
     format!("{}{text}", " ".repeat(columns.saturating_sub(width(text))))
 }
 
+/// Interface text kept in both languages until it is shown: a grader's check name, the
+/// reason a check did not run, a quiz measure's description. Written where the thing is
+/// defined, as a pair (`Text::new("a single row", "只有一行")`, or [`text!`] with
+/// arguments), and resolved when rendered ([`Text::get`], `Display`), so a report made
+/// in one language reads in the other after the app's `L` key, and no string is ever
+/// looked up by its English.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Default)]
+pub struct Text {
+    en: std::borrow::Cow<'static, str>,
+    zh: std::borrow::Cow<'static, str>,
+}
+
+impl Text {
+    /// A fixed pair.
+    #[must_use]
+    pub const fn new(en: &'static str, zh: &'static str) -> Self {
+        Self {
+            en: std::borrow::Cow::Borrowed(en),
+            zh: std::borrow::Cow::Borrowed(zh),
+        }
+    }
+
+    /// A pair made at run time (what [`text!`] builds).
+    #[must_use]
+    pub fn owned(en: String, zh: String) -> Self {
+        Self {
+            en: std::borrow::Cow::Owned(en),
+            zh: std::borrow::Cow::Owned(zh),
+        }
+    }
+
+    /// `render` run once in each language (its `t`/`tr!` and `Display`s answer in that
+    /// language): an error's message kept for later, say.
+    #[must_use]
+    pub fn in_each(render: impl Fn() -> String) -> Self {
+        let en = {
+            let _en = Lang::En.scoped();
+            render()
+        };
+        let _zh = Lang::Zh.scoped();
+        Self::owned(en, render())
+    }
+
+    /// The same text in both languages: numbers, values, code, a learner's own message.
+    #[must_use]
+    pub fn same(text: impl Into<String>) -> Self {
+        let text = text.into();
+        Self::owned(text.clone(), text)
+    }
+
+    /// The text in the current language.
+    #[must_use]
+    pub fn get(&self) -> &str {
+        self.in_lang(Lang::current())
+    }
+
+    /// The text in `lang`.
+    #[must_use]
+    pub fn in_lang(&self, lang: Lang) -> &str {
+        lang.pick(&self.en, &self.zh)
+    }
+
+    /// Whether both languages are empty.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.en.is_empty() && self.zh.is_empty()
+    }
+
+    /// Each language's text passed through `f` (a prefix, a wrapper), in that language.
+    #[must_use]
+    pub fn map(&self, f: impl Fn(Lang, &str) -> String) -> Self {
+        Self::owned(f(Lang::En, &self.en), f(Lang::Zh, &self.zh))
+    }
+}
+
+impl std::fmt::Display for Text {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.get())
+    }
+}
+
+/// A [`Text`] formatted in both languages now, shown later in the current one:
+/// `text!("{n} seeded random inputs", "{n} 组由随机种子生成的输入")`.
+#[macro_export]
+macro_rules! text {
+    ($en:literal, $zh:literal $(,)?) => {
+        $crate::i18n::Text::owned(format!($en), format!($zh))
+    };
+    ($en:literal, $zh:literal, $($args:tt)+) => {
+        $crate::i18n::Text::owned(format!($en, $($args)+), format!($zh, $($args)+))
+    };
+}
+
+/// Names a Chinese screen may show in Latin letters besides code spans, flags, file
+/// names, formulas and all-caps abbreviations (reviewed: program, library, algorithm and
+/// environment names, units, the language codes). The tests that look for English on
+/// Chinese screens ([`english_words`]) allow these and nothing else by default.
+pub const ALLOWED_WORDS: &[&str] = &[
+    "ppo-tutor",
+    "Gymnasium",
+    "PyTorch",
+    "Python",
+    "Adam",
+    "softmax",
+    "safetensors",
+    "CartPole",
+    "Pendulum",
+    "CleanRL",
+    "numpy",
+    "Categorical",
+    "Normal",
+    "PPOContinuous",
+    "candle",
+    "evcxr",
+    "cargo",
+    "rustc",
+    "Adam",
+    "Schulman",
+    "ln",
+    "exp",
+    "min",
+    "max",
+    "argmax",
+    "NaN",
+    "markdown",
+    "Rust",
+    "Spinning",
+    "Up",
+    "ppo-engine",
+    "Actor-Critic",
+    "bang-bang",
+    // Cited authors (Williams 1992, Kakade and Langford 2002; Schulman is above) and
+    // Kaiming He's initialisation.
+    "Williams",
+    "Kakade",
+    "Langford",
+    "Kaiming",
+    // Mathematical functions, written as in the formulas.
+    "sigmoid",
+    "log-softmax",
+    "ReLU",
+    "logit",
+    "logits",
+    "sin",
+    "cos",
+    "N·m",
+    "rad",
+    "kg",
+    "fps",
+    "log",
+    "en",
+    "zh",
+];
+
+/// Whether `c` is a CJK character or a full-width punctuation mark (it ends a word).
+#[must_use]
+pub fn is_cjk(c: char) -> bool {
+    // (U+3000 to U+303F, the ideographic punctuation, are in the first range.)
+    matches!(c, '\u{2e80}'..='\u{9fff}' | '\u{ff00}'..='\u{ffef}')
+}
+
+/// The English words in `text`: Latin words outside `code spans` and formulas (a stretch
+/// between Chinese characters with an operator `= * + < > ≤ ≥ Σ √ −` in it), flags (`--seed`),
+/// file names and identifiers (anything with `. _ / = ( [ · ^ \` or a digit in it),
+/// all-caps names (`PPO`, `GAE`), single letters (symbols: `u`, `x`), [`ALLOWED_WORDS`] and `allowed` (a test's own reviewed
+/// names). On a Chinese screen the list should be empty.
+///
+/// ```
+/// use std::collections::BTreeSet;
+/// use ppo_engine::i18n::english_words;
+///
+/// let none = BTreeSet::new();
+/// assert!(english_words("用 `torch.clamp` 截断比率（PPO，--eps 0.2）", &none).is_empty());
+/// assert!(english_words("从后往前：adv = gamma * lmbda * adv + δ，再取 ln 2", &none).is_empty());
+/// assert_eq!(english_words("第 3 次 Iteration：done", &none), ["Iteration", "done"]);
+/// ```
+#[must_use]
+pub fn english_words(text: &str, allowed: &std::collections::BTreeSet<String>) -> Vec<String> {
+    // Drop code spans.
+    let mut plain = String::new();
+    for (i, part) in text.split('`').enumerate() {
+        if i % 2 == 0 {
+            plain.push_str(part);
+        }
+        plain.push(' ');
+    }
+    // Drop formulas: a stretch between Chinese characters that holds an operator
+    // (`adv = gamma * lmbda * adv + δ`, `k < n`, `Σ_a p·(ln p − ln q)`) is code or maths.
+    let mut prose = String::new();
+    for (i, run) in plain.split(is_cjk).enumerate() {
+        if i > 0 {
+            prose.push(' ');
+        }
+        if !run.contains(|c: char| "=*+<>≤≥Σ∑√−".contains(c)) {
+            prose.push_str(run);
+        }
+    }
+    let mut found = Vec::new();
+    for token in prose.split(char::is_whitespace) {
+        let word = token
+            .trim_start_matches(|c: char| "([{<'\"".contains(c))
+            .trim_end_matches(|c: char| ")]}>,;:'\".!?|-…".contains(c));
+        let code_like = word.starts_with('-')
+            || word.contains(|c: char| "._/=([&|·^²ˣ\\".contains(c) || c.is_ascii_digit());
+        let caps = word
+            .chars()
+            .all(|c| c.is_ascii_uppercase() || c == '_' || !c.is_ascii_alphabetic());
+        // A single letter is a symbol (`u`, `x`, `s_t`'s `s`), not a word.
+        let symbol = word.chars().count() == 1;
+        if word.chars().any(|c| c.is_ascii_alphabetic())
+            && !symbol
+            && !code_like
+            && !caps
+            && !ALLOWED_WORDS.contains(&word)
+            && !allowed.contains(word)
+        {
+            found.push(word.to_string());
+        }
+    }
+    found
+}
+
 /// `en` or `zh`, whichever is the current language.
 #[must_use]
 pub fn t(en: &'static str, zh: &'static str) -> &'static str {
@@ -315,6 +537,27 @@ mod tests {
             assert_eq!(crate::tr!("{} of {w}", "{} / {w}", 1, w = 2), "1 of 2");
         }
         assert_eq!(t("quit", "退出"), "退出");
+    }
+
+    #[test]
+    fn a_text_is_shown_in_the_language_current_when_it_is_shown() {
+        let n = 15;
+        let made = {
+            let _en = Lang::En.scoped();
+            crate::text!("{n} seeded random inputs", "{n} 组由随机种子生成的输入")
+        };
+        let _zh = Lang::Zh.scoped();
+        assert_eq!(made.get(), "15 组由随机种子生成的输入");
+        assert_eq!(made.in_lang(Lang::En), "15 seeded random inputs");
+        assert_eq!(
+            Text::new("a single row", "只有一行").to_string(),
+            "只有一行"
+        );
+        let wrapped = made.map(|lang, s| lang.pick(format!("({s})"), format!("（{s}）")));
+        assert_eq!(wrapped.get(), "（15 组由随机种子生成的输入）");
+        assert!(Text::default().is_empty() && !Text::same("1.5").is_empty());
+        let both = Text::in_each(|| t("quit", "退出").to_string());
+        assert_eq!((both.in_lang(Lang::En), both.get()), ("quit", "退出"));
     }
 
     #[test]

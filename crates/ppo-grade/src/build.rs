@@ -18,6 +18,7 @@ use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
 
 use super::error::GradeError;
+use crate::i18n::Text;
 
 /// How an exercise's program is built.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,7 +48,7 @@ pub enum Build {
     /// (paths are the learner's).
     Failed {
         /// What went wrong, in one sentence.
-        summary: String,
+        summary: Text,
         /// The compiler's output.
         compiler: String,
     },
@@ -131,15 +132,27 @@ fn summarize(
     main: &str,
     display: &str,
     compiler: &str,
-) -> String {
+) -> Text {
     if !stderr.contains(&format!("--> {main}")) {
-        return format!("{display} does not compile ({compiler} errors below)");
+        return crate::text!(
+            "{display} does not compile ({compiler}'s errors below)",
+            "{display} 编译不通过（{compiler} 的报错见下）"
+        );
     }
     if stderr.contains("E0425") || stderr.contains(&format!("cannot find function `{name}`")) {
-        format!("{display} has no function `{name}`: write `{signature}`")
+        crate::text!(
+            "{display} has no function `{name}`: write `{signature}`",
+            "{display} 里没有函数 `{name}`：请写出 `{signature}`"
+        )
     } else if stderr.contains("E0603") {
-        format!("`{name}` in {display} is private: declare it `{signature}`")
+        crate::text!(
+            "`{name}` in {display} is private: declare it `{signature}`",
+            "{display} 里的 `{name}` 是私有的：请声明为 `{signature}`"
+        )
     } else {
-        format!("`{name}` in {display} does not have the exercise's signature: `{signature}`")
+        crate::text!(
+            "`{name}` in {display} does not have the exercise's signature: `{signature}`",
+            "{display} 里的 `{name}` 与练习要求的签名不符：应为 `{signature}`"
+        )
     }
 }

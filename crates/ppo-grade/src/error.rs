@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
+use crate::i18n::Text;
 use crate::tr;
 
 /// Why grading could not happen at all (a learner's bad file is a [`Report`], not this).
@@ -22,29 +23,29 @@ pub enum GradeError {
         file: PathBuf,
         /// The exercise.
         exercise: String,
-        /// The I/O error.
-        reason: String,
+        /// The I/O error, in both languages.
+        reason: Text,
     },
     /// `rustc` could not be started.
     NoRustc {
         /// The program tried.
         rustc: PathBuf,
-        /// The I/O error.
-        reason: String,
+        /// The I/O error, in both languages.
+        reason: Text,
     },
     /// The cache folder cannot be written.
     Cache {
         /// The folder.
         dir: PathBuf,
-        /// The I/O error.
-        reason: String,
+        /// The I/O error, in both languages.
+        reason: Text,
     },
     /// `cargo` could not be started (the candle exercise is built with cargo).
     NoCargo {
         /// The program tried.
         cargo: PathBuf,
-        /// The I/O error.
-        reason: String,
+        /// The I/O error, in both languages.
+        reason: Text,
     },
     /// cargo failed for a reason other than the learner's code.
     Cargo {
@@ -61,15 +62,15 @@ pub enum GradeError {
     Run {
         /// The harness.
         binary: PathBuf,
-        /// The I/O error.
-        reason: String,
+        /// The I/O error, in both languages.
+        reason: Text,
     },
     /// Writing a starter back failed.
     Write {
         /// The file.
         file: PathBuf,
-        /// The I/O error.
-        reason: String,
+        /// The I/O error, in both languages.
+        reason: Text,
     },
 }
 

@@ -100,7 +100,10 @@ pub trait Exercise: Sync {
         let rel = self.starter_path();
         let text = self.starter().ok_or_else(|| GradeError::Write {
             file: PathBuf::from(&rel),
-            reason: "no starter is embedded for this exercise".into(),
+            reason: crate::i18n::Text::new(
+                "no starter is embedded for this exercise",
+                "这个练习没有内置的初始文件",
+            ),
         })?;
         let others: Vec<&str> = super::exercises()
             .iter()

@@ -11,17 +11,18 @@
 
 use super::hints;
 use super::learner::Answer;
-use super::prose::Prose;
+use super::prose::Hints;
 use super::report::{CheckReport, CheckStatus, Failure, Problem};
 use super::spec::{Check, Spec};
+use crate::i18n::Text;
 
 /// The learner's, the reference's and the diagnosed mistakes' values on every case.
 pub struct Judge<'a, S: Spec> {
     spec: &'a S,
-    prose: &'a Prose,
+    prose: Hints,
     cases: &'a [S::Case],
     answers: Vec<Answer<S::Reply>>,
-    learner: Vec<Option<Result<S::Value, String>>>,
+    learner: Vec<Option<Result<S::Value, Text>>>,
     reference: Vec<Option<S::Value>>,
     /// The diagnosed mistake's id, per part.
     diagnosis: Vec<Option<&'static str>>,
@@ -31,7 +32,7 @@ impl<'a, S: Spec> Judge<'a, S> {
     /// Judges `answers`, one per case of `cases`.
     pub fn new(
         spec: &'a S,
-        prose: &'a Prose,
+        prose: Hints,
         cases: &'a [S::Case],
         answers: Vec<Answer<S::Reply>>,
     ) -> Self {
@@ -117,10 +118,10 @@ impl<'a, S: Spec> Judge<'a, S> {
     }
 
     /// The hint for a wrong `part`: its diagnosed mistake's, else the prose at `fallback`.
-    fn hint(&self, part: usize, fallback: &str) -> String {
+    fn hint(&self, part: usize, fallback: &str) -> Text {
         match self.diagnosis.get(part).copied().flatten() {
-            Some(id) => self.prose.mistake(id).to_string(),
-            None => self.prose.text(fallback).to_string(),
+            Some(id) => self.prose.mistake(id),
+            None => self.prose.text(fallback),
         }
     }
 
@@ -146,25 +147,37 @@ impl<'a, S: Spec> Judge<'a, S> {
                     }
                     (Some(Err(why)), _) => (
                         Problem::Crashed(why.clone()),
-                        String::new(),
-                        String::new(),
-                        String::new(),
-                        self.prose.text("fallback").to_string(),
+                        Text::default(),
+                        Text::default(),
+                        Text::default(),
+                        self.prose.text("fallback"),
                     ),
                     _ => (
-                        Problem::Crashed("the reference could not be computed".into()),
-                        String::new(),
-                        String::new(),
-                        String::new(),
-                        self.prose.text("fallback").to_string(),
+                        Problem::Crashed(Text::new(
+                            "the reference could not be computed",
+                            "参考答案无法计算",
+                        )),
+                        Text::default(),
+                        Text::default(),
+                        Text::default(),
+                        self.prose.text("fallback"),
                     ),
                 },
                 Answer::NotRun => {
-                    return CheckStatus::NotRun("an earlier case stopped the program".into());
+                    return CheckStatus::NotRun(Text::new(
+                        "an earlier case stopped the program",
+                        "前面的用例让程序停止了",
+                    ));
                 }
                 other => {
                     let (problem, hint) = self.problem(other);
-                    (problem, String::new(), String::new(), String::new(), hint)
+                    (
+                        problem,
+                        Text::default(),
+                        Text::default(),
+                        Text::default(),
+                        hint,
+                    )
                 }
             };
             return CheckStatus::Failed(Box::new(Failure {
@@ -180,25 +193,30 @@ impl<'a, S: Spec> Judge<'a, S> {
     }
 
     /// A failure that is not a value, and its hint.
-    pub fn problem(&self, answer: &Answer<S::Reply>) -> (Problem, String) {
+    pub fn problem(&self, answer: &Answer<S::Reply>) -> (Problem, Text) {
         problem(answer, self.prose)
     }
 }
 
 /// A failure that is not a value, and its hint (`timed_out` in the exercise's prose
 /// overrides the general one).
-pub fn problem<R>(answer: &Answer<R>, prose: &Prose) -> (Problem, String) {
+pub fn problem<R>(answer: &Answer<R>, prose: Hints) -> (Problem, Text) {
     match answer {
-        Answer::Error(m) => (Problem::Error(m.clone()), hints::error(m)),
-        Answer::Panicked(m) => (Problem::Panicked(m.clone()), hints::panic(m)),
+        Answer::Error(m) => (Problem::Error(m.clone()), Text::in_each(|| hints::error(m))),
+        Answer::Panicked(m) => (
+            Problem::Panicked(m.clone()),
+            Text::in_each(|| hints::panic(m)),
+        ),
         Answer::TimedOut(s) => (
             Problem::TimedOut(*s),
             prose
                 .other("timed_out")
-                .unwrap_or(hints::timed_out())
-                .to_string(),
+                .unwrap_or_else(|| Text::in_each(|| hints::timed_out().to_string())),
         ),
-        Answer::Crashed(m) => (Problem::Crashed(m.clone()), hints::crashed().to_string()),
-        Answer::Value(_) | Answer::NotRun => (Problem::Wrong, prose.text("fallback").to_string()),
+        Answer::Crashed(m) => (
+            Problem::Crashed(m.clone()),
+            Text::in_each(|| hints::crashed().to_string()),
+        ),
+        Answer::Value(_) | Answer::NotRun => (Problem::Wrong, prose.text("fallback")),
     }
 }

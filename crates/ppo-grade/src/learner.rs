@@ -15,9 +15,11 @@ use std::time::{Duration, Instant};
 
 use super::build::Program;
 use super::error::GradeError;
+use crate::i18n::Text;
+use crate::text;
 
 /// The name a report gives to code graded in place (a notebook cell).
-pub const IN_PLACE: &str = "notebook cell";
+pub const IN_PLACE: Text = Text::new("notebook cell", "笔记本单元格");
 
 /// How long a function graded in place may take: on all cases together (plain
 /// exercises), or on each call (the candle exercise).
@@ -47,14 +49,14 @@ pub enum Answer<R> {
     /// No answer within the time limit (seconds).
     TimedOut(u64),
     /// The program died (stack overflow, `process::exit`, ...) or answered nonsense.
-    Crashed(String),
+    Crashed(Text),
     /// Not asked: the learner had already stopped.
     NotRun,
 }
 
 impl Answer<String> {
     /// The answer with its text read by `read`; unreadable text is a crash.
-    pub fn and_then<R>(self, read: impl FnOnce(String) -> Result<R, String>) -> Answer<R> {
+    pub fn and_then<R>(self, read: impl FnOnce(String) -> Result<R, Text>) -> Answer<R> {
         match self {
             Self::Value(text) => read(text).map_or_else(Answer::Crashed, Answer::Value),
             Self::Error(m) => Answer::Error(m),
@@ -107,7 +109,7 @@ impl LearnerProcess {
             .spawn()
             .map_err(|e| GradeError::Run {
                 binary: program.binary.clone(),
-                reason: e.to_string(),
+                reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
             })?;
         let (tx, lines) = mpsc::channel();
         if let Some(stdout) = child.stdout.take() {
@@ -174,8 +176,14 @@ impl LearnerProcess {
                     .and_then(|h| h.join().ok())
                     .unwrap_or_default();
                 let stderr = self.program.rename(stderr.trim(), &self.display);
-                let last = stderr.lines().last().unwrap_or("no message");
-                Answer::Crashed(format!("the program stopped ({status}): {last}"))
+                let last = stderr.lines().last().map(str::to_string);
+                let last = last.map_or(Text::new("no message", "没有消息"), Text::same);
+                Answer::Crashed(text!(
+                    "the program stopped ({status}): {last}",
+                    "程序停止了（{status}）：{last}",
+                    status = status.get(),
+                    last = last.get()
+                ))
             }
         }
     }
@@ -189,19 +197,35 @@ impl LearnerProcess {
         } else if let Some(m) = line.strip_prefix("panic ") {
             Answer::Panicked(rename(m))
         } else {
-            Answer::Crashed(format!("unexpected output '{line}'"))
+            Answer::Crashed(text!("unexpected output '{line}'", "意外的输出 '{line}'"))
         }
     }
 
     /// Kills the program (if still running) and says how it ended.
-    fn stop(&mut self) -> String {
+    fn stop(&mut self) -> Text {
         self.stopped = true;
         self.stdin = None;
         let _ = self.child.kill();
-        self.child
-            .wait()
-            .map_or_else(|e| e.to_string(), |s| s.to_string())
+        match self.child.wait() {
+            Ok(status) => exit_status(status),
+            Err(e) => text!("its end unknown: {e}", "无法得知它如何结束：{e}"),
+        }
     }
+}
+
+/// How a program ended: its exit code, or the signal that ended it.
+fn exit_status(status: std::process::ExitStatus) -> Text {
+    if let Some(code) = status.code() {
+        return text!("exit code {code}", "退出码 {code}");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt as _;
+        if let Some(signal) = status.signal() {
+            return text!("signal {signal}", "信号 {signal}");
+        }
+    }
+    Text::same(status.to_string())
 }
 
 impl Drop for LearnerProcess {
@@ -263,7 +287,7 @@ impl<Q: Clone + Send + 'static, R: Send + 'static> Learner<Q, R> for InProcess<Q
         if self.stopped {
             return Answer::NotRun;
         }
-        let stopped = || Answer::Crashed("the grading thread stopped".into());
+        let stopped = || Answer::Crashed(Text::new("the grading thread stopped", "评分线程停止了"));
         let sent = self
             .requests
             .as_ref()

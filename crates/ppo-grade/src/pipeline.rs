@@ -18,14 +18,16 @@ use super::build::{self, Build, Program};
 use super::error::{GradeError, GradeOptions};
 use super::judge::Judge;
 use super::learner::{Answer, InProcess, Learner, LearnerProcess, Quiet, panic_message};
-use super::prose::Prose;
+use super::prose::Hints;
 use super::report::{CheckReport, CheckStatus, Report};
 use super::spec::{Cases, Spec};
+use crate::i18n::Text;
+use crate::text;
 
-fn empty_report(name: &str, display: &str) -> Report {
+fn empty_report(name: &str, display: Text) -> Report {
     Report {
         exercise: name.to_string(),
-        file: display.to_string(),
+        file: display,
         compile_error: None,
         checks: Vec::new(),
         mistake: None,
@@ -33,7 +35,7 @@ fn empty_report(name: &str, display: &str) -> Report {
 }
 
 /// A report for a grading that could not run at all (the grader's own failure).
-pub(crate) fn not_graded(name: &str, display: &str, why: String) -> Report {
+pub(crate) fn not_graded(name: &str, display: Text, why: Text) -> Report {
     Report {
         compile_error: Some((why, String::new())),
         ..empty_report(name, display)
@@ -52,9 +54,9 @@ pub fn grade_source<S: Spec>(
     opts: &GradeOptions,
 ) -> Result<Report, GradeError> {
     let meta = spec.meta();
-    let prose = Prose::of(meta.name)?;
+    let prose = Hints::of(meta.name)?;
     let cases = spec.cases()?;
-    let mut report = empty_report(meta.name, display);
+    let mut report = empty_report(meta.name, Text::same(display));
     let program: Program = match build::build(
         meta.name,
         meta.backend,
@@ -67,10 +69,13 @@ pub fn grade_source<S: Spec>(
         Build::Ready(program) => program,
         Build::Failed { summary, compiler } => {
             report.compile_error = Some((summary, compiler));
-            let not_run = |name: String, cases| CheckReport {
+            let not_run = |name: Text, cases| CheckReport {
                 name,
                 cases,
-                status: CheckStatus::NotRun("the file does not compile".into()),
+                status: CheckStatus::NotRun(Text::new(
+                    "the file does not compile",
+                    "文件编译不通过",
+                )),
             };
             report.checks = cases
                 .checks
@@ -102,20 +107,20 @@ pub fn grade_source<S: Spec>(
 pub fn grade_in_place<S: Spec>(
     spec: &S,
     function: impl Fn(&S::Question) -> Result<S::Reply, String> + Send + 'static,
-    display: &str,
+    display: Text,
     limit: Duration,
 ) -> Report {
     let name = spec.meta().name;
     let _quiet = Quiet::start();
     let graded = catch_unwind(AssertUnwindSafe(|| {
-        let prose = Prose::of(name).map_err(|e| e.to_string())?;
-        let cases = spec.cases().map_err(|e| e.to_string())?;
-        let mut learner =
-            InProcess::start(function).map_err(|e| format!("cannot start a thread: {e}"))?;
-        Ok::<_, String>(judged(
+        let prose = Hints::of(name).map_err(|e| Text::in_each(|| e.to_string()))?;
+        let cases = spec.cases().map_err(|e| Text::in_each(|| e.to_string()))?;
+        let mut learner = InProcess::start(function)
+            .map_err(|e| text!("cannot start a thread: {e}", "无法启动线程：{e}"))?;
+        Ok::<_, Text>(judged(
             spec,
             prose,
-            empty_report(name, display),
+            empty_report(name, display.clone()),
             &cases,
             &mut learner,
             limit,
@@ -127,7 +132,11 @@ pub fn grade_in_place<S: Spec>(
         Err(payload) => not_graded(
             name,
             display,
-            format!("the grader failed: {}", panic_message(payload.as_ref())),
+            text!(
+                "the grader failed: {}",
+                "评分器自身出错：{}",
+                panic_message(payload.as_ref())
+            ),
         ),
     }
 }
@@ -157,7 +166,7 @@ pub fn uncaught_mistakes<S: Spec>(spec: &S) -> Result<Vec<&'static str>, GradeEr
 /// `report` with a line per check and the follow-up checks, from `learner`'s answers.
 fn judged<S: Spec>(
     spec: &S,
-    prose: &Prose,
+    prose: Hints,
     mut report: Report,
     cases: &Cases<S::Case, S::Kind>,
     learner: &mut dyn Learner<S::Question, S::Reply>,
@@ -203,9 +212,12 @@ impl<S: Spec> Learner<S::Question, S::Reply> for Talk<'_, S> {
         self.session
             .ask(&line, deadline, limit)
             .and_then(|payload| {
-                self.spec
-                    .decode(question, &payload)
-                    .ok_or_else(|| format!("unreadable result '{payload}'"))
+                self.spec.decode(question, &payload).ok_or_else(|| {
+                    text!(
+                        "unreadable result '{payload}'",
+                        "无法读取的结果 '{payload}'"
+                    )
+                })
             })
     }
 

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
 use super::error::GradeError;
-use crate::i18n::Lang;
+use crate::i18n::{Lang, Text};
 use crate::lesson::loader::{ExerciseText, embedded_exercises_in};
 
 /// One exercise's prose.
@@ -26,10 +26,17 @@ impl Prose {
     /// [`GradeError::Content`] if an embedded `exercise.toml` (or its `exercise.zh.toml`)
     /// does not parse (a broken build: the content tests catch it first).
     pub fn all() -> Result<&'static BTreeMap<String, Prose>, GradeError> {
+        Self::all_in(Lang::current())
+    }
+
+    /// [`Prose::all`] in `lang`.
+    ///
+    /// # Errors
+    /// As [`Prose::all`].
+    pub fn all_in(lang: Lang) -> Result<&'static BTreeMap<String, Prose>, GradeError> {
         type Table = OnceLock<Result<BTreeMap<String, Prose>, String>>;
         static EN: Table = OnceLock::new();
         static ZH: Table = OnceLock::new();
-        let lang = Lang::current();
         lang.pick(&EN, &ZH)
             .get_or_init(|| {
                 let files = embedded_exercises_in(lang).map_err(|e| e.to_string())?;
@@ -55,7 +62,15 @@ impl Prose {
     /// # Errors
     /// [`GradeError::Content`] if its lesson has no `[[exercise]]` named `name`.
     pub fn of(name: &str) -> Result<&'static Prose, GradeError> {
-        Self::all()?.get(name).ok_or_else(|| {
+        Self::of_in(name, Lang::current())
+    }
+
+    /// [`Prose::of`] in `lang`.
+    ///
+    /// # Errors
+    /// As [`Prose::of`].
+    pub fn of_in(name: &str, lang: Lang) -> Result<&'static Prose, GradeError> {
+        Self::all_in(lang)?.get(name).ok_or_else(|| {
             GradeError::Content(format!(
                 "no [[exercise]] named '{name}' in any lessons/*/exercise.toml"
             ))
@@ -84,5 +99,44 @@ impl Prose {
     #[must_use]
     pub fn other(&self, key: &str) -> Option<&str> {
         self.text.other.get(key).map(String::as_str)
+    }
+}
+
+/// One exercise's hints in both languages, as a report keeps them ([`Text`]: shown in
+/// the language current when the report is rendered).
+#[derive(Debug, Clone, Copy)]
+pub struct Hints {
+    en: &'static Prose,
+    zh: &'static Prose,
+}
+
+impl Hints {
+    /// Exercise `name`'s hints.
+    ///
+    /// # Errors
+    /// As [`Prose::of`], in either language.
+    pub fn of(name: &str) -> Result<Self, GradeError> {
+        Ok(Self {
+            en: Prose::of_in(name, Lang::En)?,
+            zh: Prose::of_in(name, Lang::Zh)?,
+        })
+    }
+
+    /// The hint for mistake `id` ([`Prose::mistake`]).
+    #[must_use]
+    pub fn mistake(&self, id: &str) -> Text {
+        Text::new(self.en.mistake(id), self.zh.mistake(id))
+    }
+
+    /// The text at `key` ([`Prose::text`]).
+    #[must_use]
+    pub fn text(&self, key: &str) -> Text {
+        Text::new(self.en.text(key), self.zh.text(key))
+    }
+
+    /// The `other` text at `key`, if both languages have it ([`Prose::other`]).
+    #[must_use]
+    pub fn other(&self, key: &str) -> Option<Text> {
+        Some(Text::new(self.en.other(key)?, self.zh.other(key)?))
     }
 }

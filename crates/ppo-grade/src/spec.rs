@@ -7,8 +7,9 @@ use std::time::Duration;
 use super::build::{Backend, Source};
 use super::error::GradeError;
 use super::learner::Learner;
-use super::prose::Prose;
+use super::prose::Hints;
 use super::report::CheckReport;
+use crate::i18n::Text;
 
 /// Where an exercise lives and how its learner's file is built.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,11 +46,11 @@ pub struct Difference {
     /// The part that differs (what a mistake concerns).
     pub part: usize,
     /// The reference's result, shown.
-    pub expected: String,
+    pub expected: Text,
     /// The learner's result, shown.
-    pub got: String,
-    /// Where they first differ.
-    pub detail: String,
+    pub got: Text,
+    /// Where they first differ (empty when that says nothing more).
+    pub detail: Text,
     /// The prose key of the hint when no known mistake explains it (`fallback`, or a key of
     /// the exercise's `other` table).
     pub fallback: &'static str,
@@ -58,8 +59,8 @@ pub struct Difference {
 /// A named group of cases: one line of the report.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Check<K> {
-    /// What the cases test, e.g. `every step done`.
-    pub name: String,
+    /// What the cases test, e.g. `every step done`, in both languages.
+    pub name: Text,
     /// What the check compares.
     pub kind: K,
     /// The cases, as indices into the exercise's case list.
@@ -112,7 +113,7 @@ pub trait Spec: Sync + Send + 'static {
     ///
     /// # Errors
     /// A sentence for the report when the reply cannot be judged.
-    fn value(&self, case: &Self::Case, reply: Self::Reply) -> Result<Self::Value, String>;
+    fn value(&self, case: &Self::Case, reply: Self::Reply) -> Result<Self::Value, Text>;
     /// Whether `got` agrees with `want` in `part` (what a mistake concerns).
     fn agrees(&self, got: &Self::Value, want: &Self::Value, part: usize) -> bool;
     /// How `got` differs from `want` for a check of `kind`, if it does.
@@ -122,8 +123,9 @@ pub trait Spec: Sync + Send + 'static {
         got: &Self::Value,
         want: &Self::Value,
     ) -> Option<Difference>;
-    /// The case's input, for a failure: `(parameter, value)` pairs.
-    fn show_input(&self, case: &Self::Case) -> Vec<(String, String)>;
+    /// The case's input, for a failure: `(parameter, value)` pairs (a parameter's name is
+    /// code, the same in both languages, unless it names a setting).
+    fn show_input(&self, case: &Self::Case) -> Vec<(Text, Text)>;
     /// A question as one line to the learner's program.
     fn encode(&self, question: &Self::Question) -> String;
     /// The learner's program's reply to `question` (the text after `ok `).
@@ -133,7 +135,7 @@ pub trait Spec: Sync + Send + 'static {
         false
     }
     /// The names of the checks run after the judged ones (1 case each).
-    fn follow_up_names(&self) -> Vec<String> {
+    fn follow_up_names(&self) -> Vec<Text> {
         Vec::new()
     }
     /// Checks run after the judged ones, with the learner still answering.
@@ -142,7 +144,7 @@ pub trait Spec: Sync + Send + 'static {
         _learner: &mut dyn Learner<Self::Question, Self::Reply>,
         _limit: Duration,
         _diagnosis: Option<&'static str>,
-        _prose: &Prose,
+        _prose: Hints,
     ) -> Vec<CheckReport> {
         Vec::new()
     }

@@ -3,6 +3,9 @@
 
 use std::fmt::Write as _;
 
+use crate::i18n::{Lang, Text};
+use crate::text;
+
 /// The type of one parameter of an exercise function.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {
@@ -101,12 +104,12 @@ impl Arg {
         out
     }
 
-    /// A short rendering for reports (long slices are cut).
+    /// A short rendering for reports (long slices are cut, with their length in words).
     #[must_use]
-    pub fn show(&self) -> String {
+    pub fn show(&self) -> Text {
         match self {
-            Self::F32(x) => format!("{x:?}"),
-            Self::Usize(x) => x.to_string(),
+            Self::F32(x) => Text::same(format!("{x:?}")),
+            Self::Usize(x) => Text::same(x.to_string()),
             Self::F32s(xs) => show_list(xs, |x| format!("{x:?}")),
             Self::F64s(xs) => show_list(xs, |x| format!("{x:?}")),
             Self::Bools(xs) => show_list(xs, ToString::to_string),
@@ -214,45 +217,67 @@ impl Tolerance {
 }
 
 impl Output {
-    /// `None` when `self` (got) is within `tol` of `want`; else where they first differ.
+    /// `None` when `self` (got) is within `tol` of `want`; else where they first differ
+    /// (empty for a single number: the values say it).
     #[must_use]
-    pub fn differs(&self, want: &Self, tol: Tolerance) -> Option<String> {
+    pub fn differs(&self, want: &Self, tol: Tolerance) -> Option<Text> {
+        let lengths = |want: usize, got: usize| {
+            text!(
+                "expected {want} values, got {got}",
+                "应有 {want} 个值，实际 {got} 个"
+            )
+        };
+        let at = |i: usize, want: String, got: String| {
+            text!(
+                "first difference at [{i}]: expected {want}, got {got}",
+                "第一处不同在 [{i}]：应为 {want}，实际为 {got}"
+            )
+        };
         let list = |got: &[f64], want: &[f64]| {
             if got.len() != want.len() {
-                return Some(format!("expected {} values, got {}", want.len(), got.len()));
+                return Some(lengths(want.len(), got.len()));
             }
             got.iter()
                 .zip(want)
                 .position(|(&g, &w)| !tol.close(g, w))
-                .map(|i| {
-                    format!(
-                        "first difference at [{i}]: expected {:?}, got {:?}",
-                        want[i], got[i]
-                    )
-                })
+                .map(|i| at(i, format!("{:?}", want[i]), format!("{:?}", got[i])))
         };
         match (self, want) {
             (Self::F32(g), Self::F32(w)) => {
-                (!tol.close(f64::from(*g), f64::from(*w))).then(String::new)
+                (!tol.close(f64::from(*g), f64::from(*w))).then(Text::default)
             }
-            (Self::Usize(g), Self::Usize(w)) => (g != w).then(String::new),
+            (Self::Usize(g), Self::Usize(w)) => (g != w).then(Text::default),
             (Self::F32s(g), Self::F32s(w)) => list(&widen(g), &widen(w)),
             (Self::F64s(g), Self::F64s(w)) => list(g, w),
             (Self::Bools(g), Self::Bools(w)) => {
                 if g.len() != w.len() {
-                    return Some(format!("expected {} values, got {}", w.len(), g.len()));
+                    return Some(lengths(w.len(), g.len()));
                 }
                 g.iter()
                     .zip(w)
                     .position(|(g, w)| g != w)
-                    .map(|i| format!("first difference at [{i}]: expected {}, got {}", w[i], g[i]))
+                    .map(|i| at(i, w[i].to_string(), g[i].to_string()))
             }
             (Self::F32sPair(g0, g1), Self::F32sPair(w0, w1)) => list(&widen(g0), &widen(w0))
-                .map(|d| format!("in the first vector, {d}"))
+                .map(|d| {
+                    d.map(|lang, d| {
+                        lang.pick(
+                            format!("in the first vector, {d}"),
+                            format!("第一个向量中，{d}"),
+                        )
+                    })
+                })
                 .or_else(|| {
-                    list(&widen(g1), &widen(w1)).map(|d| format!("in the second vector, {d}"))
+                    list(&widen(g1), &widen(w1)).map(|d| {
+                        d.map(|lang, d| {
+                            lang.pick(
+                                format!("in the second vector, {d}"),
+                                format!("第二个向量中，{d}"),
+                            )
+                        })
+                    })
                 }),
-            _ => Some("a result of another type".to_string()),
+            _ => Some(Text::new("a result of another type", "结果的类型不同")),
         }
     }
 
@@ -264,18 +289,23 @@ impl Output {
 
     /// A short rendering for reports.
     #[must_use]
-    pub fn show(&self) -> String {
+    pub fn show(&self) -> Text {
         match self {
-            Self::F32(x) => format!("{x:?}"),
-            Self::Usize(x) => x.to_string(),
+            Self::F32(x) => Text::same(format!("{x:?}")),
+            Self::Usize(x) => Text::same(x.to_string()),
             Self::F32s(xs) => show_list(xs, |x| format!("{x:?}")),
             Self::F64s(xs) => show_list(xs, |x| format!("{x:?}")),
             Self::Bools(xs) => show_list(xs, ToString::to_string),
-            Self::F32sPair(a, b) => format!(
-                "({}, {})",
-                show_list(a, |x| format!("{x:?}")),
-                show_list(b, |x| format!("{x:?}"))
-            ),
+            Self::F32sPair(a, b) => {
+                let (a, b) = (
+                    show_list(a, |x| format!("{x:?}")),
+                    show_list(b, |x| format!("{x:?}")),
+                );
+                Text::owned(
+                    format!("({}, {})", a.in_lang(Lang::En), b.in_lang(Lang::En)),
+                    format!("({}, {})", a.in_lang(Lang::Zh), b.in_lang(Lang::Zh)),
+                )
+            }
         }
     }
 }
@@ -285,13 +315,19 @@ fn widen(xs: &[f32]) -> Vec<f64> {
 }
 
 /// `[a, b, c]`, or the first eight values and a count for longer lists.
-fn show_list<T>(xs: &[T], f: impl Fn(&T) -> String) -> String {
+fn show_list<T>(xs: &[T], f: impl Fn(&T) -> String) -> Text {
     const SHOWN: usize = 8;
-    let items: Vec<String> = xs.iter().take(SHOWN).map(f).collect();
-    if xs.len() > SHOWN {
-        format!("[{}, … ] ({} values)", items.join(", "), xs.len())
+    let items = xs
+        .iter()
+        .take(SHOWN)
+        .map(f)
+        .collect::<Vec<String>>()
+        .join(", ");
+    let n = xs.len();
+    if n > SHOWN {
+        text!("[{items}, … ] ({n} values)", "[{items}, … ]（共 {n} 个值）")
     } else {
-        format!("[{}]", items.join(", "))
+        Text::same(format!("[{items}]"))
     }
 }
 
@@ -323,20 +359,30 @@ mod tests {
         let want = Output::F32s(vec![1.0, 2.0]);
         assert!(Output::F32s(vec![1.000_001, 2.0]).matches(&want, tol));
         let diff = Output::F32s(vec![1.0, 2.1]).differs(&want, tol);
-        assert!(diff.is_some_and(|d| d.contains("[1]")));
+        assert!(diff.is_some_and(|d| d.in_lang(Lang::En).contains("[1]")));
         let diff = Output::F32s(vec![1.0]).differs(&want, tol);
-        assert!(diff.is_some_and(|d| d.contains("expected 2 values, got 1")));
+        assert!(diff.is_some_and(|d| d.in_lang(Lang::En).contains("expected 2 values, got 1")));
         assert!(!Output::F32(f32::NAN).matches(&Output::F32(1.0), tol));
         let want = Output::F32sPair(vec![1.0], vec![2.0]);
         let diff = Output::F32sPair(vec![1.0], vec![2.5]).differs(&want, tol);
-        assert!(diff.is_some_and(|d| d.starts_with("in the second vector")));
+        assert!(diff.is_some_and(|d| {
+            d.in_lang(Lang::En).starts_with("in the second vector")
+                && d.in_lang(Lang::Zh)
+                    .starts_with("第二个向量中，第一处不同在 [0]")
+        }));
         let diff = Output::Bools(vec![true, true]).differs(&Output::Bools(vec![true, false]), tol);
-        assert!(diff.is_some_and(|d| d.contains("[1]")));
+        assert!(diff.is_some_and(|d| d.in_lang(Lang::En).contains("[1]")));
     }
 
     #[test]
     fn long_lists_are_cut() {
         let s = Arg::Usizes((0..20).collect()).show();
-        assert!(s.ends_with("(20 values)"), "{s}");
+        assert!(s.in_lang(Lang::En).ends_with("… ] (20 values)"), "{s:?}");
+        assert!(s.in_lang(Lang::Zh).ends_with("… ]（共 20 个值）"), "{s:?}");
+        let short = Arg::Usizes(vec![1, 2]).show();
+        assert_eq!(
+            (short.in_lang(Lang::En), short.in_lang(Lang::Zh)),
+            ("[1, 2]", "[1, 2]")
+        );
     }
 }

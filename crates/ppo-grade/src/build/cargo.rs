@@ -61,9 +61,15 @@ fn dependency(name: &str) -> Option<String> {
 ///
 /// # Errors
 /// When ppo-tutor's own manifest names no candle dependency (a broken build).
-pub fn manifest(name: &str) -> Result<String, String> {
-    let core = dependency("candle-core").ok_or("ppo-tutor's Cargo.toml has no candle-core")?;
-    let nn = dependency("candle-nn").ok_or("ppo-tutor's Cargo.toml has no candle-nn")?;
+pub fn manifest(name: &str) -> Result<String, crate::i18n::Text> {
+    let missing = |dep| {
+        crate::text!(
+            "ppo-tutor's Cargo.toml has no {dep}",
+            "ppo-tutor 的 Cargo.toml 里没有 {dep}"
+        )
+    };
+    let core = dependency("candle-core").ok_or_else(|| missing("candle-core"))?;
+    let nn = dependency("candle-nn").ok_or_else(|| missing("candle-nn"))?;
     Ok(format!(
         "# Written by ppo-tutor to grade the {name} exercise; rewritten as needed.\n\
          [package]\nname = \"ppo-tutor-grader\"\nversion = \"0.0.0\"\nedition = \"2021\"\n\
@@ -95,7 +101,7 @@ pub(super) fn build(
     let dir = project_dir(name, cache);
     let cache_err = |e: std::io::Error| GradeError::Cache {
         dir: dir.clone(),
-        reason: e.to_string(),
+        reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
     };
     let manifest = manifest(name).map_err(|reason| GradeError::Cache {
         dir: dir.clone(),
@@ -138,7 +144,7 @@ pub(super) fn build(
         .output()
         .map_err(|e| GradeError::NoCargo {
             cargo: cargo.clone(),
-            reason: e.to_string(),
+            reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
         })?;
     let stderr = String::from_utf8_lossy(&out.stderr);
     if out.status.success() && program.binary.is_file() {
@@ -158,7 +164,7 @@ pub(super) fn build(
         &stderr,
         &format!("{ours}main.rs"),
         &program,
-        "the compiler's",
+        "cargo",
     ))
 }
 

@@ -33,7 +33,7 @@ pub(super) fn build(
     }
     let cache_err = |e: std::io::Error| GradeError::Cache {
         dir: dir.clone(),
-        reason: e.to_string(),
+        reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
     };
     std::fs::create_dir_all(&dir).map_err(cache_err)?;
     std::fs::write(dir.join("main.rs"), &source.main).map_err(cache_err)?;
@@ -66,12 +66,12 @@ pub(super) fn build(
         .output()
         .map_err(|e| GradeError::NoRustc {
             rustc: rustc.clone(),
-            reason: e.to_string(),
+            reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
         })?;
     if out.status.success() {
         std::fs::rename(dir.join(&unique), &program.binary).map_err(cache_err)?;
         return Ok(Build::Ready(program));
     }
     let stderr = String::from_utf8_lossy(&out.stderr);
-    Ok(failed(&stderr, "main.rs", &program, "rustc's"))
+    Ok(failed(&stderr, "main.rs", &program, "rustc"))
 }

@@ -57,7 +57,12 @@ fn per_row(
     f: impl Fn(f32, f32) -> f32,
     reduce: fn(std::vec::IntoIter<f32>) -> f32,
 ) -> Output {
-    let rows: Vec<f32> = a.f32s(0).iter().zip(a.f32s(1)).map(|(&o, &n)| f(o, n)).collect();
+    let rows: Vec<f32> = a
+        .f32s(0)
+        .iter()
+        .zip(a.f32s(1))
+        .map(|(&o, &n)| f(o, n))
+        .collect();
     Output::F32(reduce(rows.into_iter()))
 }
 
@@ -79,13 +84,28 @@ fn checks() -> Vec<CheckCases> {
     });
     let single = vec![case(vec![-0.7], vec![-0.2]), case(vec![-0.2], vec![-0.7])];
     let unchanged = vec![case(vec![-0.69, -0.1, -2.3], vec![-0.69, -0.1, -2.3])];
-    let one_sided = vec![case(vec![-1.0, -1.0, -1.0, -1.0], vec![-0.6, -0.7, -0.5, -0.8])];
+    let one_sided = vec![case(
+        vec![-1.0, -1.0, -1.0, -1.0],
+        vec![-0.6, -0.7, -0.5, -0.8],
+    )];
     vec![
         random,
         recorded,
-        check("a single step, either way", single),
-        check("the first epoch (nothing moved)", unchanged),
-        check("every action more likely than before", one_sided),
+        check(
+            Text::new("a single step, either way", "只有一步，两个方向"),
+            single,
+        ),
+        check(
+            Text::new("the first epoch (nothing moved)", "第一轮（什么都没变）"),
+            unchanged,
+        ),
+        check(
+            Text::new(
+                "every action more likely than before",
+                "每个动作的概率都比以前高",
+            ),
+            one_sided,
+        ),
     ]
 }
 

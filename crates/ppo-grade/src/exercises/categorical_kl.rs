@@ -192,14 +192,29 @@ fn checks() -> Vec<CheckCases> {
     ];
     vec![
         random,
-        check("the old policy never takes some actions", zeros),
-        check("rows where the two policies agree (0)", same),
-        check("a single row", one_row),
         check(
-            "PyTorch's kl_divergence of two Categoricals (recorded)",
+            Text::new(
+                "the old policy never takes some actions",
+                "旧策略从不采取某些动作",
+            ),
+            zeros,
+        ),
+        check(
+            Text::new(
+                "rows where the two policies agree (0)",
+                "两个策略一致的行（为 0）",
+            ),
+            same,
+        ),
+        check(Text::new("a single row", "只有一行"), one_row),
+        check(
+            Text::new(
+                "PyTorch's kl_divergence of two Categoricals (recorded)",
+                "PyTorch 对两个 Categorical 分布求 kl_divergence（录制）",
+            ),
             torch_cases(),
         ),
-        check("no rows", empty),
+        check(Text::new("no rows", "没有行"), empty),
     ]
 }
 

@@ -155,9 +155,18 @@ fn checks() -> Vec<CheckCases> {
     vec![
         random,
         recorded,
-        check("values within eps of old: the plain half MSE", within),
-        check("every value moved beyond eps", beyond),
-        check("a single row", single),
+        check(
+            Text::new(
+                "values within eps of old: the plain half MSE",
+                "新旧价值相差不超过 ε：就是普通的半均方误差",
+            ),
+            within,
+        ),
+        check(
+            Text::new("every value moved beyond eps", "每个价值都移动超过了 ε"),
+            beyond,
+        ),
+        check(Text::new("a single row", "只有一行"), single),
     ]
 }
 

@@ -65,7 +65,9 @@ pub const EXERCISE: Plain = Plain {
 /// hints of `ppo-tutor grade compute_advantage`.
 #[must_use]
 pub fn in_place(f: fn(f32, f32, &[f32]) -> Vec<f32>) -> crate::Report {
-    EXERCISE.grade_in_place(std::sync::Arc::new(move |a: Args<'_>| Output::F32s(f(a.f32(0), a.f32(1), a.f32s(2)))))
+    EXERCISE.grade_in_place(std::sync::Arc::new(move |a: Args<'_>| {
+        Output::F32s(f(a.f32(0), a.f32(1), a.f32s(2)))
+    }))
 }
 
 fn gae_backwards(coef: f32, td_delta: &[f32]) -> Vec<f32> {
@@ -113,9 +115,9 @@ fn checks() -> Vec<CheckCases> {
     vec![
         random,
         recorded,
-        check("a single step", single),
-        check("negative TD errors", negative),
-        check("λ = 0 and λ = 1", extremes),
+        check(Text::new("a single step", "只有一步"), single),
+        check(Text::new("negative TD errors", "负的 TD 误差"), negative),
+        check(Text::new("λ = 0 and λ = 1", "λ = 0 和 λ = 1"), extremes),
     ]
 }
 
@@ -134,8 +136,11 @@ mod tests {
         assert_eq!(batches.len(), 3, "the PyTorch fixture replays");
         for b in batches {
             let ours = crate::ppo::compute_advantage(b.config.gamma, b.config.lmbda, &b.td_delta);
-            let reference =
-                sol::gae::compute_advantage(b.config.gamma as f32, b.config.lmbda as f32, &b.td_delta);
+            let reference = sol::gae::compute_advantage(
+                b.config.gamma as f32,
+                b.config.lmbda as f32,
+                &b.td_delta,
+            );
             for (x, y) in ours.iter().zip(&reference) {
                 assert!((x - y).abs() <= 1e-5 + 1e-5 * x.abs(), "{x} vs {y}");
             }

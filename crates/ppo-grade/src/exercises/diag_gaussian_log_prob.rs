@@ -280,18 +280,33 @@ fn checks() -> Vec<CheckCases> {
     let empty = vec![case(Vec::new(), Vec::new(), vec![0.1, -0.7, 0.0], 3)];
     vec![
         random,
-        check("dim = 1: the one-dimensional density", one_dim),
         check(
-            "log σ = 0 in every dimension (CleanRL's initial policy)",
+            Text::new("dim = 1: the one-dimensional density", "dim = 1：一维密度"),
+            one_dim,
+        ),
+        check(
+            Text::new(
+                "log σ = 0 in every dimension (CleanRL's initial policy)",
+                "每个维度 log σ = 0（CleanRL 的初始策略）",
+            ),
             initial,
         ),
-        check("a single row of six dimensions", one_row),
-        check("actions many σ from μ", far),
         check(
-            "PyTorch's Normal.log_prob, recorded: each case one row of its dimensions",
+            Text::new("a single row of six dimensions", "只有一行，六个维度"),
+            one_row,
+        ),
+        check(
+            Text::new("actions many σ from μ", "离 μ 有许多个 σ 的动作"),
+            far,
+        ),
+        check(
+            Text::new(
+                "PyTorch's Normal.log_prob, recorded: each case one row of its dimensions",
+                "录制的 PyTorch Normal.log_prob：每个用例是一行，含其各个维度",
+            ),
             torch_cases(),
         ),
-        check("no rows", empty),
+        check(Text::new("no rows", "没有行"), empty),
     ]
 }
 

@@ -35,27 +35,75 @@ pub const EXERCISE: Plain = Plain {
         },
         Mistake {
             id: "ignores_episode_ends",
-            answer: |a| gae(a, Rule { resets: |_, _| false, ..Rule::RIGHT }),
+            answer: |a| {
+                gae(
+                    a,
+                    Rule {
+                        resets: |_, _| false,
+                        ..Rule::RIGHT
+                    },
+                )
+            },
         },
         Mistake {
             id: "resets_only_on_termination",
-            answer: |a| gae(a, Rule { resets: |term, _| term, ..Rule::RIGHT }),
+            answer: |a| {
+                gae(
+                    a,
+                    Rule {
+                        resets: |term, _| term,
+                        ..Rule::RIGHT
+                    },
+                )
+            },
         },
         Mistake {
             id: "bootstraps_through_termination",
-            answer: |a| gae(a, Rule { masks: |_, _| false, ..Rule::RIGHT }),
+            answer: |a| {
+                gae(
+                    a,
+                    Rule {
+                        masks: |_, _| false,
+                        ..Rule::RIGHT
+                    },
+                )
+            },
         },
         Mistake {
             id: "stops_at_truncation",
-            answer: |a| gae(a, Rule { masks: |term, trunc| term || trunc, ..Rule::RIGHT }),
+            answer: |a| {
+                gae(
+                    a,
+                    Rule {
+                        masks: |term, trunc| term || trunc,
+                        ..Rule::RIGHT
+                    },
+                )
+            },
         },
         Mistake {
             id: "returns_are_td_targets",
-            answer: |a| gae(a, Rule { returns: Returns::TdTargets, ..Rule::RIGHT }),
+            answer: |a| {
+                gae(
+                    a,
+                    Rule {
+                        returns: Returns::TdTargets,
+                        ..Rule::RIGHT
+                    },
+                )
+            },
         },
         Mistake {
             id: "returns_are_advantages",
-            answer: |a| gae(a, Rule { returns: Returns::Advantages, ..Rule::RIGHT }),
+            answer: |a| {
+                gae(
+                    a,
+                    Rule {
+                        returns: Returns::Advantages,
+                        ..Rule::RIGHT
+                    },
+                )
+            },
         },
     ],
     checks,
@@ -127,7 +175,11 @@ fn gae(a: Args<'_>, rule: Rule) -> Output {
     let n = r.len();
     let targets: Vec<f32> = (0..n)
         .map(|t| {
-            let alive = if (rule.masks)(term[t], trunc[t]) { 0.0 } else { 1.0 };
+            let alive = if (rule.masks)(term[t], trunc[t]) {
+                0.0
+            } else {
+                1.0
+            };
             r[t] + gamma * nv[t] * alive
         })
         .collect();
@@ -139,7 +191,11 @@ fn gae(a: Args<'_>, rule: Rule) -> Output {
         (0..n).collect()
     };
     for t in order {
-        let same = if (rule.resets)(term[t], trunc[t]) { 0.0 } else { 1.0 };
+        let same = if (rule.resets)(term[t], trunc[t]) {
+            0.0
+        } else {
+            1.0
+        };
         carry = (targets[t] - v[t]) + gamma * lmbda * same * carry;
         adv[t] = carry;
     }
@@ -168,7 +224,15 @@ fn checks() -> Vec<CheckCases> {
         };
         let values = g.f32s(n, -5.0, 50.0);
         let next_values = g.f32s(n, -5.0, 50.0);
-        case(rewards, values, next_values, terminated, truncated, gamma, lmbda)
+        case(
+            rewards,
+            values,
+            next_values,
+            terminated,
+            truncated,
+            gamma,
+            lmbda,
+        )
     });
     // The recorded CartPole episodes, one after another in one rollout.
     let batches = fixture_batches();
@@ -179,10 +243,16 @@ fn checks() -> Vec<CheckCases> {
         joined.2.extend(&b.next_values);
         joined.3.extend(&b.dones);
     }
-    let config = batches.first().map(|b| b.config.clone()).unwrap_or_default();
+    let config = batches
+        .first()
+        .map(|b| b.config.clone())
+        .unwrap_or_default();
     let n = joined.0.len();
     let recorded = check(
-        "the recorded PyTorch episodes, as one rollout",
+        Text::new(
+            "the recorded PyTorch episodes, as one rollout",
+            "录制的 PyTorch 回合，连成一段采样",
+        ),
         vec![case(
             joined.0,
             joined.1,
@@ -223,9 +293,21 @@ fn checks() -> Vec<CheckCases> {
     vec![
         random,
         recorded,
-        check("a time-limit cut, then a new episode", cut_then_new),
-        check("a fall, then a new episode", fell_then_new),
-        check("a rollout that ends mid-episode", unfinished),
+        check(
+            Text::new(
+                "a time-limit cut, then a new episode",
+                "时限中断后开始新回合",
+            ),
+            cut_then_new,
+        ),
+        check(
+            Text::new("a fall, then a new episode", "杆倒下后开始新回合"),
+            fell_then_new,
+        ),
+        check(
+            Text::new("a rollout that ends mid-episode", "在回合中途结束的采样"),
+            unfinished,
+        ),
     ]
 }
 

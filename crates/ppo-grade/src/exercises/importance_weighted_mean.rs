@@ -263,9 +263,21 @@ fn checks() -> Vec<CheckCases> {
     vec![
         random,
         recorded,
-        check("the same policy: every weight is 1", same_policy),
-        check("a rare action: a large weight", rare),
-        check("six actions per row", many_actions),
+        check(
+            Text::new(
+                "the same policy: every weight is 1",
+                "同一个策略：每个权重都是 1",
+            ),
+            same_policy,
+        ),
+        check(
+            Text::new("a rare action: a large weight", "罕见的动作：很大的权重"),
+            rare,
+        ),
+        check(
+            Text::new("six actions per row", "每行六个动作"),
+            many_actions,
+        ),
     ]
 }
 

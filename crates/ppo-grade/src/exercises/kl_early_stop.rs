@@ -168,10 +168,31 @@ fn checks() -> Vec<CheckCases> {
     vec![
         random,
         recorded,
-        check("never stops: moves both ways that cancel", never),
-        check("every sampled action made more likely", more_likely),
-        check("passes target_kl one epoch before 1.5 × target_kl", margin),
-        check("stops before the first step", before_first),
+        check(
+            Text::new(
+                "never stops: moves both ways that cancel",
+                "从不停止：两个方向的变化相互抵消",
+            ),
+            never,
+        ),
+        check(
+            Text::new(
+                "every sampled action made more likely",
+                "每个采样到的动作的概率都提高了",
+            ),
+            more_likely,
+        ),
+        check(
+            Text::new(
+                "passes target_kl one epoch before 1.5 × target_kl",
+                "越过 target_kl 比越过 1.5 × target_kl 早一轮",
+            ),
+            margin,
+        ),
+        check(
+            Text::new("stops before the first step", "在第一步之前就停止"),
+            before_first,
+        ),
     ]
 }
 

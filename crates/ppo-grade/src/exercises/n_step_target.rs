@@ -257,10 +257,25 @@ fn checks() -> Vec<CheckCases> {
     vec![
         random,
         recorded,
-        check("n = 1 is the TD target", one_step),
-        check("every step done", every_step_done),
-        check("no done at all: bootstrap at the rollout's end", no_done),
-        check("an episode ends inside the window", done_inside),
+        check(
+            Text::new("n = 1 is the TD target", "n = 1 就是 TD 目标"),
+            one_step,
+        ),
+        check(
+            Text::new("every step done", "每一步都结束"),
+            every_step_done,
+        ),
+        check(
+            Text::new(
+                "no done at all: bootstrap at the rollout's end",
+                "没有一步结束：在采样段末尾自举",
+            ),
+            no_done,
+        ),
+        check(
+            Text::new("an episode ends inside the window", "回合在窗口之内结束"),
+            done_inside,
+        ),
     ]
 }
 

@@ -61,17 +61,19 @@ use self::cases::Case;
 use self::mistakes::{MISTAKES, Part};
 use self::protocol::{Inputs, LossesFn, Reply};
 use crate::build::{Backend, Source};
+use crate::error::GradeError;
+use crate::i18n::{Text, t};
 use crate::judge;
 use crate::learner::{Answer, Learner};
-use crate::prose::Prose;
-use crate::report::{CheckReport, CheckStatus, Failure, Problem, Report};
-use crate::pipeline;
-use crate::spec::{Cases, Check, Difference, Meta, Spec};
-use crate::value::Arg;
-use crate::error::GradeError;
 use crate::learner::{IN_PLACE, IN_PLACE_LIMIT};
+use crate::pipeline;
 use crate::ppo::train::mean_last;
 use crate::ppo::{PpoConfig, PpoError, Trainer};
+use crate::prose::Hints;
+use crate::report::{CheckReport, CheckStatus, Failure, Problem, Report};
+use crate::spec::{Cases, Check, Difference, Meta, Spec};
+use crate::text;
+use crate::value::Arg;
 
 /// The signature the learner writes.
 pub const SIGNATURE: &str = "pub fn ppo_losses(probs: &Tensor, actions: &Tensor, \
@@ -258,9 +260,10 @@ pub fn answering(losses: LossesFn) -> impl FnMut(&Inputs) -> Result<Reply, Strin
 
 /// The name of the training check.
 #[must_use]
-pub fn training_check_name() -> String {
-    format!(
-        "plugged into the agent, CartPole learns ({TRAIN_EPISODES} episodes, seed {TRAIN_SEED})"
+pub fn training_check_name() -> Text {
+    text!(
+        "plugged into the agent, CartPole learns ({TRAIN_EPISODES} episodes, seed {TRAIN_SEED})",
+        "接入智能体后 CartPole 能学会（{TRAIN_EPISODES} 个回合，随机种子 {TRAIN_SEED}）"
     )
 }
 
@@ -383,39 +386,53 @@ impl Spec for PpoLosses {
             .iter()
             .map(|k| (k + 1).to_string())
             .collect();
-        let check = |name: String, kind, cases: std::ops::Range<usize>| Check {
+        let check = |name: Text, kind, cases: std::ops::Range<usize>| Check {
             name,
             kind,
             cases: cases.collect(),
         };
         let checks = vec![
             check(
-                format!(
+                text!(
                     "losses on the recorded PyTorch episodes, epochs {}",
+                    "录制的 PyTorch 回合上的损失（第 {} 轮）",
                     epochs.join(", ")
                 ),
                 CheckKind::Losses,
                 0..f,
             ),
             check(
-                format!("losses on {r} seeded random batches"),
+                text!(
+                    "losses on {r} seeded random batches",
+                    "{r} 个由随机种子生成的批次上的损失"
+                ),
                 CheckKind::Losses,
                 f..f + r,
             ),
             check(
-                "losses on edge cases (a single step, only negative advantages with every \
-                 ratio outside 1 ± ε, every ratio exactly 1)"
-                    .into(),
+                Text::new(
+                    "losses on edge cases (a single step, only negative advantages with every \
+                     ratio outside 1 ± ε, every ratio exactly 1)",
+                    "边界情况上的损失（只有一步；优势值全为负且每个比率都在 1 ± ε 之外；每个比率恰为 1）",
+                ),
                 CheckKind::Losses,
                 f + r..f + r + e,
             ),
             check(
-                "gradients into the actor's and the critic's weights".into(),
+                Text::new(
+                    "gradients into the actor's and the critic's weights",
+                    "传到策略网络和价值网络权重上的梯度",
+                ),
                 CheckKind::Gradients,
                 0..f + r + e,
             ),
         ];
-        let all = c.fixture.into_iter().chain(c.random).chain(c.edge).collect();
+        let all = c
+            .fixture
+            .into_iter()
+            .chain(c.random)
+            .chain(c.edge)
+            .collect();
         Ok(Cases { all, checks })
     }
 
@@ -435,9 +452,13 @@ impl Spec for PpoLosses {
         protocol::evaluate(MISTAKES.get(index)?.answer, &case.inputs).ok()
     }
 
-    fn value(&self, case: &Case, reply: Reply) -> Result<Outcome, String> {
-        let grads = gradients(case, &reply)
-            .map_err(|_| "the gradients could not be carried to the weights".to_string())?;
+    fn value(&self, case: &Case, reply: Reply) -> Result<Outcome, Text> {
+        let grads = gradients(case, &reply).map_err(|_| {
+            Text::new(
+                "the gradients could not be carried to the weights",
+                "梯度无法传回到权重上",
+            )
+        })?;
         Ok(Outcome { reply, grads })
     }
 
@@ -451,20 +472,20 @@ impl Spec for PpoLosses {
             CheckKind::Losses => {
                 let part = Part::BOTH.into_iter().find(|&p| !got.loss_ok(want, p))?;
                 let show = |o: &Outcome| {
-                    format!(
+                    Text::same(format!(
                         "actor_loss = {:?}, critic_loss = {:?}",
                         o.reply.actor_loss, o.reply.critic_loss
-                    )
+                    ))
                 };
                 let which = match part {
-                    Part::Actor => "the actor loss differs",
-                    Part::Critic => "the critic loss differs",
+                    Part::Actor => Text::new("the actor loss differs", "策略网络的损失不同"),
+                    Part::Critic => Text::new("the critic loss differs", "价值网络的损失不同"),
                 };
                 Some(Difference {
                     part: part.index(),
                     expected: show(want),
                     got: show(got),
-                    detail: which.into(),
+                    detail: which,
                     fallback: "fallback",
                 })
             }
@@ -487,21 +508,29 @@ impl Spec for PpoLosses {
                 let (p, i) = first_difference(g, w).unwrap_or((0, 0));
                 let show = |v: &[Vec<f32>]| {
                     let values = v.get(p).cloned().unwrap_or_default();
-                    format!("∂{loss}/∂{} = {}", names[p], Arg::F32s(values).show())
+                    Arg::F32s(values)
+                        .show()
+                        .map(|_, shown| format!("∂{loss}/∂{} = {shown}", names[p]))
                 };
                 let at = |v: &[Vec<f32>]| v.get(p).and_then(|x| x.get(i)).copied().unwrap_or(0.0);
                 Some(Difference {
                     part: part.index(),
                     expected: show(w),
                     got: show(g),
-                    detail: format!("{}[{i}]: expected {:?}, got {:?}", names[p], at(w), at(g)),
+                    detail: text!(
+                        "{}[{i}]: expected {:?}, got {:?}",
+                        "{}[{i}]：应为 {:?}，实际为 {:?}",
+                        names[p],
+                        at(w),
+                        at(g)
+                    ),
                     fallback: "gradients",
                 })
             }
         }
     }
 
-    fn show_input(&self, case: &Case) -> Vec<(String, String)> {
+    fn show_input(&self, case: &Case) -> Vec<(Text, Text)> {
         let inputs = &case.inputs;
         let pairs: Vec<[f32; 2]> = inputs
             .probs
@@ -510,22 +539,28 @@ impl Spec for PpoLosses {
             .collect();
         let actions: Vec<usize> = inputs.actions.iter().map(|&a| a as usize).collect();
         vec![
-            ("probs".into(), Arg::Pairs(pairs).show()),
-            ("actions".into(), Arg::Usizes(actions).show()),
+            (Text::new("probs", "probs"), Arg::Pairs(pairs).show()),
+            (Text::new("actions", "actions"), Arg::Usizes(actions).show()),
             (
-                "old_log_probs".into(),
+                Text::new("old_log_probs", "old_log_probs"),
                 Arg::F32s(inputs.old_log_probs.clone()).show(),
             ),
             (
-                "advantage".into(),
+                Text::new("advantage", "advantage"),
                 Arg::F32s(inputs.advantage.clone()).show(),
             ),
-            ("values".into(), Arg::F32s(inputs.values.clone()).show()),
             (
-                "td_target".into(),
+                Text::new("values", "values"),
+                Arg::F32s(inputs.values.clone()).show(),
+            ),
+            (
+                Text::new("td_target", "td_target"),
                 Arg::F32s(inputs.td_target.clone()).show(),
             ),
-            ("eps".into(), format!("{:?}", inputs.eps)),
+            (
+                Text::new("eps", "eps"),
+                Text::same(format!("{:?}", inputs.eps)),
+            ),
         ]
     }
 
@@ -541,7 +576,7 @@ impl Spec for PpoLosses {
         true
     }
 
-    fn follow_up_names(&self) -> Vec<String> {
+    fn follow_up_names(&self) -> Vec<Text> {
         vec![training_check_name()]
     }
 
@@ -550,7 +585,7 @@ impl Spec for PpoLosses {
         learner: &mut dyn Learner<Inputs, Reply>,
         limit: Duration,
         diagnosis: Option<&'static str>,
-        prose: &Prose,
+        prose: Hints,
     ) -> Vec<CheckReport> {
         vec![CheckReport {
             name: training_check_name(),
@@ -565,35 +600,48 @@ fn training(
     learner: &mut dyn Learner<Inputs, Reply>,
     limit: Duration,
     diagnosed: Option<&'static str>,
-    prose: &Prose,
+    prose: Hints,
 ) -> CheckStatus {
     if learner.is_stopped() {
-        return CheckStatus::NotRun("an earlier case stopped the program".into());
+        return CheckStatus::NotRun(Text::new(
+            "an earlier case stopped the program",
+            "前面的用例让程序停止了",
+        ));
     }
     let mut failure: Option<Answer<Reply>> = None;
     let result = {
-        let mut answer = |inputs: &Inputs| {
-            match learner.ask(inputs, std::time::Instant::now() + limit, limit) {
+        let mut answer =
+            |inputs: &Inputs| match learner.ask(inputs, std::time::Instant::now() + limit, limit) {
                 Answer::Value(reply) => Ok(reply),
-                Answer::NotRun => Err("the program had stopped".to_string()),
+                Answer::NotRun => Err(t("the program had stopped", "程序已经停止").to_string()),
                 other => {
                     failure = Some(other);
-                    Err("the learner's function gave no losses".to_string())
+                    Err(t(
+                        "the learner's function gave no losses",
+                        "你的函数没有给出损失",
+                    )
+                    .to_string())
                 }
-            }
-        };
+            };
         train(&mut answer, TRAIN_SEED, TRAIN_EPISODES)
     };
     let input = vec![
-        ("seed".to_string(), TRAIN_SEED.to_string()),
-        ("episodes".to_string(), TRAIN_EPISODES.to_string()),
+        (
+            Text::new("seed", "随机种子"),
+            Text::same(TRAIN_SEED.to_string()),
+        ),
+        (
+            Text::new("episodes", "回合数"),
+            Text::same(TRAIN_EPISODES.to_string()),
+        ),
     ];
-    let expected = format!(
+    let expected = text!(
         "a mean of the last {TRAIN_WINDOW} returns of at least {LEARNS_AT} (the reference \
-         solution: {REFERENCE_MEAN})"
+         solution: {REFERENCE_MEAN})",
+        "最后 {TRAIN_WINDOW} 个回合的平均回报至少为 {LEARNS_AT}（参考答案：{REFERENCE_MEAN}）"
     );
     let hint = diagnosed.map_or_else(|| prose.text("training"), |id| prose.mistake(id));
-    let failed = |problem, got: String, detail: String, hint: String| {
+    let failed = |problem, got: Text, detail: Text, hint: Text| {
         CheckStatus::Failed(Box::new(Failure {
             problem,
             input: input.clone(),
@@ -612,23 +660,27 @@ fn training(
             let every: Vec<f64> = returns.iter().step_by(20).copied().collect();
             failed(
                 Problem::Wrong,
-                format!("a mean of {mean:.1}"),
-                format!(
-                    "CartPole did not learn: the returns every 20 episodes were {}",
-                    Arg::F64s(every).show()
-                ),
-                hint.to_string(),
+                text!("a mean of {mean:.1}", "平均 {mean:.1}"),
+                Arg::F64s(every).show().map(|lang, every| {
+                    lang.pick(
+                        format!(
+                            "CartPole did not learn: the returns every 20 episodes were {every}"
+                        ),
+                        format!("CartPole 没有学会：每隔 20 个回合的回报为 {every}"),
+                    )
+                }),
+                hint.clone(),
             )
         }
         (Err(_), Some(answer)) => {
             let (problem, hint) = judge::problem(&answer, prose);
-            failed(problem, String::new(), String::new(), hint)
+            failed(problem, Text::default(), Text::default(), hint)
         }
         (Err(e), None) => failed(
             Problem::Wrong,
-            e.to_string(),
-            "training stopped".into(),
-            hint.to_string(),
+            Text::in_each(|| e.to_string()),
+            Text::new("training stopped", "训练中止了"),
+            hint,
         ),
     }
 }

@@ -82,7 +82,9 @@ pub const EXERCISE: Plain = Plain {
 /// hints of `ppo-tutor grade sample_action`.
 #[must_use]
 pub fn in_place(f: fn(&[f32], f32) -> usize) -> crate::Report {
-    EXERCISE.grade_in_place(std::sync::Arc::new(move |a: Args<'_>| Output::Usize(f(a.f32s(0), a.f32(1)))))
+    EXERCISE.grade_in_place(std::sync::Arc::new(move |a: Args<'_>| {
+        Output::Usize(f(a.f32s(0), a.f32(1)))
+    }))
 }
 
 /// The checks, with their cases (deterministic: seeded).
@@ -132,8 +134,20 @@ fn checks() -> Vec<CheckCases> {
     vec![
         random,
         policy,
-        check("an action of probability 0 is never chosen", zero),
-        check("probabilities summing a hair below u", near_one),
+        check(
+            Text::new(
+                "an action of probability 0 is never chosen",
+                "概率为 0 的动作永远不会被选中",
+            ),
+            zero,
+        ),
+        check(
+            Text::new(
+                "probabilities summing a hair below u",
+                "概率之和比 u 略小一点",
+            ),
+            near_one,
+        ),
     ]
 }
 

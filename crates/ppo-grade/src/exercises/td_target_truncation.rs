@@ -135,9 +135,18 @@ fn checks() -> Vec<CheckCases> {
     vec![
         random,
         recorded,
-        check("an episode cut by the time limit", cut),
-        check("an episode where the pole fell", fell),
-        check("terminated and truncated at once", both),
+        check(
+            Text::new("an episode cut by the time limit", "因时限中断的回合"),
+            cut,
+        ),
+        check(
+            Text::new("an episode where the pole fell", "杆倒下的回合"),
+            fell,
+        ),
+        check(
+            Text::new("terminated and truncated at once", "同时终止和时限中断"),
+            both,
+        ),
     ]
 }
 

@@ -28,7 +28,11 @@ pub const EXERCISE: Plain = Plain {
     mistakes: &[
         Mistake {
             id: "zero_advantage_forgotten",
-            answer: |a| rows(a, |r, adv, lo, hi| (adv > 0.0 && r > hi) || (adv < 0.0 && r < lo)),
+            answer: |a| {
+                rows(a, |r, adv, lo, hi| {
+                    (adv > 0.0 && r > hi) || (adv < 0.0 && r < lo)
+                })
+            },
         },
         Mistake {
             id: "sides_swapped",
@@ -118,17 +122,19 @@ fn checks() -> Vec<CheckCases> {
         eps,
     )];
     let zero_advantage = vec![case(vec![1.0, 1.5, 0.5], vec![0.0; 3], eps)];
-    let bounds = vec![case(
-        vec![hi, lo, hi, lo],
-        vec![1.0, -1.0, -1.0, 1.0],
-        eps,
-    )];
+    let bounds = vec![case(vec![hi, lo, hi, lo], vec![1.0, -1.0, -1.0, 1.0], eps)];
     vec![
         random,
         recorded,
-        check("each side of the band, each sign", four_corners),
-        check("a zero advantage", zero_advantage),
-        check("ratios exactly at 1 ± ε", bounds),
+        check(
+            Text::new("each side of the band, each sign", "区间两侧，正负都有"),
+            four_corners,
+        ),
+        check(Text::new("a zero advantage", "优势值为 0"), zero_advantage),
+        check(
+            Text::new("ratios exactly at 1 ± ε", "比率恰好等于 1 ± ε"),
+            bounds,
+        ),
     ]
 }
 
