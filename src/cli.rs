@@ -14,6 +14,7 @@ use crate::i18n::{Lang, t};
 pub mod args;
 pub mod cartpole;
 pub mod dev;
+pub mod errors;
 pub mod grade;
 pub mod help_zh;
 pub mod lab;
@@ -160,7 +161,7 @@ where
         // The reader went away (`ppo-tutor cartpole ... | head`): nothing left to say.
         Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
         Err(err) => {
-            eprintln!("{}{err:#}", error_prefix());
+            eprintln!("{}{}", error_prefix(), errors::render(&err));
             ExitCode::FAILURE
         }
     }
@@ -298,14 +299,20 @@ fn usage_error_zh(err: &clap::Error) -> String {
         ErrorKind::ValueValidation => {
             let value = value.unwrap_or_default();
             // Our own parsers explain in Chinese (or in both languages, then the Chinese
-            // half); a parser of the standard library only in English: then no reason.
-            let why = std::error::Error::source(err)
-                .map(ToString::to_string)
-                .map(|m| match m.split_once(" / ") {
-                    Some((_, zh)) if has_chinese(zh) => zh.to_string(),
-                    _ => m,
+            // half); a number parser of the standard library in English, which
+            // `errors::parse_reason` says in Chinese; any other reason in English is left out.
+            let source = std::error::Error::source(err);
+            let why = source
+                .and_then(errors::parse_reason)
+                .or_else(|| {
+                    source
+                        .map(ToString::to_string)
+                        .map(|m| match m.split_once(" / ") {
+                            Some((_, zh)) if has_chinese(zh) => zh.to_string(),
+                            _ => m,
+                        })
+                        .filter(|m| has_chinese(m))
                 })
-                .filter(|m| has_chinese(m))
                 .map(|m| format!("：{m}"))
                 .unwrap_or_default();
             format!("'{arg}' 的值 '{value}' 无效{why}")
@@ -568,7 +575,12 @@ mod tests {
             (
                 &["show", "td-target", "--step", "x"][..],
                 "ValueValidation",
-                "'x' 无效",
+                "'x' 无效：不是整数",
+            ),
+            (
+                &["train", "--eps", "abc"][..],
+                "ValueValidation",
+                "'abc' 无效：不是数",
             ),
             (
                 &["train", "--seeds", "0-2", "--seed", "3"][..],

@@ -80,7 +80,7 @@ pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
                 super::error_prefix(),
                 t_(
                     "give --actions 0,1,... or --policy random|lean",
-                    "请给出 --actions 0,1,... 或 --policy random|lean"
+                    "请给出 --actions 0,1,...，或者 --policy random 或 --policy lean"
                 ),
                 super::see_help()
             );
@@ -102,7 +102,8 @@ pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
         );
     }
     if args.json {
-        let mut value = serde_json::to_value(&t).context("encoding the trajectory")?;
+        let mut value =
+            serde_json::to_value(&t).context(t_("encoding the trajectory", "编码轨迹"))?;
         if let Some(map) = value.as_object_mut() {
             map.insert("env".into(), args.env_id.as_str().into());
             if args.resets > 0 && !map.contains_key("next_resets") {

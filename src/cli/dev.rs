@@ -82,16 +82,20 @@ const ROOT: &str = env!("CARGO_MANIFEST_DIR");
 fn notebook_code() -> anyhow::Result<ExitCode> {
     let root = std::path::Path::new(ROOT);
     if !root.join("notebooks").join("src").is_dir() {
-        anyhow::bail!(
-            "{} has no notebooks/src: run `{}` in a checkout of ppo-tutor",
-            root.display(),
-            crate::generator::native::REGENERATE_CODE
-        );
+        let (shown, command) = (root.display(), crate::generator::native::REGENERATE_CODE);
+        anyhow::bail!(crate::tr!(
+            "{shown} has no notebooks/src: run `{command}` in a checkout of ppo-tutor",
+            "{shown} 中没有 notebooks/src：请在 ppo-tutor 的仓库副本中运行 `{command}`"
+        ));
     }
     let written = crate::generator::native::write_all(root)?;
+    let n = written.len();
     println!(
-        "wrote {} files in tests/notebook_code/; check them with `cargo test --test notebook_code`",
-        written.len()
+        "{}",
+        crate::tr!(
+            "wrote {n} files in tests/notebook_code/; check them with `cargo test --test notebook_code`",
+            "已在 tests/notebook_code/ 中写入 {n} 个文件；请用 `cargo test --test notebook_code` 检查"
+        )
     );
     Ok(ExitCode::SUCCESS)
 }
@@ -100,22 +104,27 @@ fn notebook_code() -> anyhow::Result<ExitCode> {
 fn notebook_markdown() -> anyhow::Result<ExitCode> {
     let root = std::path::Path::new(ROOT);
     let changed = crate::generator::native::write_markdown(root)?;
+    let (n, names) = (changed.len(), changed.join(", "));
     println!(
-        "{} notebooks changed ({}); check them with `cargo test --test notebook_code`",
-        changed.len(),
-        changed.join(", ")
+        "{}",
+        crate::tr!(
+            "{n} notebooks changed ({names}); check them with `cargo test --test notebook_code`",
+            "{n} 个笔记本有改动（{names}）；请用 `cargo test --test notebook_code` 检查"
+        )
     );
     Ok(ExitCode::SUCCESS)
 }
 
 #[cfg(any(test, not(feature = "notebook-runner")))]
 fn no_runner_message() -> String {
-    format!(
-        "error: `ppo-tutor dev notebooks` executes the notebooks on the evcxr engine, which \
-         this build leaves out (cargo feature `notebook-runner`); in the repository, run:\n  \
-         {}",
-        crate::generator::build::REGENERATE
-    )
+    let command = crate::generator::build::REGENERATE;
+    let why = crate::tr!(
+        "`ppo-tutor dev notebooks` executes the notebooks on the evcxr engine, which this build \
+         leaves out (cargo feature `notebook-runner`); in the repository, run:\n  {command}",
+        "`ppo-tutor dev notebooks` 要在 evcxr 引擎上执行笔记本，而这次构建没有包含它（cargo 特性 \
+         `notebook-runner`）；请在仓库中运行：\n  {command}"
+    );
+    format!("{}{why}", super::error_prefix())
 }
 
 #[cfg(not(feature = "notebook-runner"))]

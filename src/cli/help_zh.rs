@@ -707,29 +707,6 @@ fn push_spec(text: &mut String, spec: &str) {
     text.push_str(spec);
 }
 
-/// Names and words a Chinese help may hold besides code spans, flags, file names, env
-/// variables and all-caps abbreviations (reviewed: program, library and environment
-/// names, units, the language codes).
-#[cfg(test)]
-const ALLOWED: &[&str] = &[
-    "ppo-tutor",
-    "Gymnasium",
-    "PyTorch",
-    "PPOContinuous",
-    "candle",
-    "evcxr",
-    "cargo",
-    "markdown",
-    "Rust",
-    "Spinning",
-    "Up",
-    "N·m",
-    "fps",
-    "log",
-    "en",
-    "zh",
-];
-
 /// The identifiers a user types: every subcommand's name, every argument's id and long
 /// name, every possible value.
 #[cfg(test)]
@@ -749,48 +726,14 @@ pub(crate) fn identifiers(cmd: &Command, out: &mut std::collections::BTreeSet<St
     }
 }
 
-/// Whether `c` is a CJK character or a full-width punctuation mark (it ends a word).
-#[cfg(test)]
-fn is_cjk(c: char) -> bool {
-    // (U+3000 to U+303F, the ideographic punctuation, are in the first range.)
-    matches!(c, '\u{2e80}'..='\u{9fff}' | '\u{ff00}'..='\u{ffef}')
-}
-
-/// The English words in `text` outside `code spans`, flags, file names, formulas,
-/// all-caps names and the `allowed` words.
+/// The English words in `text` outside code spans, flags, file names, formulas, all-caps
+/// names, the reviewed names of [`ppo_engine::i18n::ALLOWED_WORDS`] and `allowed`.
 #[cfg(test)]
 pub(crate) fn english_words(
     text: &str,
     allowed: &std::collections::BTreeSet<String>,
 ) -> Vec<String> {
-    // Drop code spans.
-    let mut plain = String::new();
-    for (i, part) in text.split('`').enumerate() {
-        if i % 2 == 0 {
-            plain.push_str(part);
-        }
-        plain.push(' ');
-    }
-    let mut found = Vec::new();
-    for token in plain.split(|c: char| c.is_whitespace() || is_cjk(c)) {
-        let word = token
-            .trim_start_matches(|c: char| "([{<'\"".contains(c))
-            .trim_end_matches(|c: char| ")]}>,;:'\".!?|-…".contains(c));
-        let code_like = word.starts_with('-')
-            || word.contains(|c: char| "._/=(·^\\".contains(c) || c.is_ascii_digit());
-        let caps = word
-            .chars()
-            .all(|c| c.is_ascii_uppercase() || c == '_' || !c.is_ascii_alphabetic());
-        if word.chars().any(|c| c.is_ascii_alphabetic())
-            && !code_like
-            && !caps
-            && !ALLOWED.contains(&word)
-            && !allowed.contains(word)
-        {
-            found.push(word.to_string());
-        }
-    }
-    found
+    ppo_engine::i18n::english_words(text, allowed)
 }
 
 #[cfg(test)]

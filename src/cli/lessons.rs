@@ -116,7 +116,10 @@ pub fn render_step(
             }
             Some(t) => {
                 let stats = t.stats().map_or(String::new(), |(lo, hi, mean)| {
-                    format!(" min {lo:.6} max {hi:.6} mean {mean:.6}")
+                    tr!(
+                        " min {lo:.6} max {hi:.6} mean {mean:.6}",
+                        " 最小 {lo:.6} 最大 {hi:.6} 均值 {mean:.6}"
+                    )
                 });
                 let _ = writeln!(out, "## {name} {}{stats}", t.shape_text());
                 let cols = t.cols();

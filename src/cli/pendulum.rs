@@ -104,7 +104,8 @@ pub fn run(args: &PendulumArgs) -> anyhow::Result<ExitCode> {
         );
     }
     if args.json {
-        let mut value = serde_json::to_value(&t).context("encoding the trajectory")?;
+        let mut value =
+            serde_json::to_value(&t).context(t_("encoding the trajectory", "编码轨迹"))?;
         if let Some(map) = value.as_object_mut() {
             map.insert("env".into(), ENV_ID.into());
             if args.resets > 0 && !map.contains_key("next_resets") {

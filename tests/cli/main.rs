@@ -10,3 +10,4 @@ mod pendulum;
 mod pendulum_train;
 mod ppo;
 mod trust_region;
+mod zh_output;

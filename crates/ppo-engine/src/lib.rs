@@ -22,6 +22,7 @@
 //! The engine never imports a face: the terminal app, the notebooks and the graders all
 //! drive the same engine.
 
+pub mod causes;
 pub mod env;
 pub mod i18n;
 pub mod lesson;

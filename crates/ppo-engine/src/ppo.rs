@@ -84,9 +84,9 @@ use crate::env::EnvError;
 
 /// What can go wrong in the PPO engine. Messages say what, where, and what to do.
 #[derive(Debug, thiserror::Error)]
+// Display below, in the current language (thiserror writes only `source` and `From`).
 pub enum PpoError {
     /// A hyper-parameter outside its range.
-    #[error("invalid {field} = {value}: expected {expected}")]
     InvalidConfig {
         /// The field's name as in [`PpoConfig`] (and the `--flag` of `ppo-tutor train`).
         field: &'static str,
@@ -96,9 +96,6 @@ pub enum PpoError {
         expected: &'static str,
     },
     /// Training produced a NaN or infinite number.
-    #[error(
-        "training diverged at episode {episode}: {what}; lower the learning rates or enable --max-grad-norm"
-    )]
     Diverged {
         /// The episode (0-based) whose acting or update hit the non-finite value.
         episode: usize,
@@ -106,16 +103,12 @@ pub enum PpoError {
         what: String,
     },
     /// A non-finite value inside one update or action (the trainer adds the episode).
-    #[error("{0} is not finite (NaN or infinite)")]
     NonFinite(String),
     /// An update was asked for an empty batch.
-    #[error("the batch is empty: an update needs at least one transition")]
     EmptyBatch,
     /// A batch whose columns have different lengths or hold invalid values.
-    #[error("invalid batch: {0}")]
     InvalidBatch(String),
     /// A key missing from a replay or checkpoint file.
-    #[error("{file}: missing key '{key}' (expected {expected})")]
     MissingKey {
         /// The file read.
         file: String,
@@ -125,7 +118,6 @@ pub enum PpoError {
         expected: String,
     },
     /// A value of the wrong shape or type in a replay or checkpoint file.
-    #[error("{file}: '{key}' has {got}, expected {expected}")]
     WrongShape {
         /// The file read.
         file: String,
@@ -137,7 +129,6 @@ pub enum PpoError {
         got: String,
     },
     /// A file that could not be read or parsed at all.
-    #[error("{file}: {reason}")]
     File {
         /// The file.
         file: String,
@@ -145,9 +136,6 @@ pub enum PpoError {
         reason: String,
     },
     /// `moving_average` needs an odd window no longer than the series plus one.
-    #[error(
-        "moving_average: window {window} does not fit {len} values (needs an odd window <= len + 1)"
-    )]
     InvalidWindow {
         /// The window asked for.
         window: usize,
@@ -155,9 +143,85 @@ pub enum PpoError {
         len: usize,
     },
     /// The environment refused a step.
-    #[error(transparent)]
-    Env(#[from] EnvError),
+    Env(EnvError),
     /// A candle tensor operation failed (a bug: shapes are checked before).
-    #[error("tensor operation failed: {0}")]
     Candle(#[from] candle_core::Error),
+}
+
+impl From<EnvError> for PpoError {
+    fn from(e: EnvError) -> Self {
+        Self::Env(e)
+    }
+}
+
+/// `text` after a Chinese word: with a space before it when it starts with a Latin letter, a
+/// digit or a bracket (`应为 f32 张量`, `应为形状 [2]`).
+fn spaced(text: &str) -> String {
+    match text.chars().next() {
+        Some(c) if c.is_ascii_alphanumeric() || "[(".contains(c) => format!(" {text}"),
+        _ => text.to_string(),
+    }
+}
+
+impl std::fmt::Display for PpoError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::tr;
+        let text = match self {
+            Self::InvalidConfig {
+                field,
+                value,
+                expected,
+            } => tr!(
+                "invalid {field} = {value}: expected {expected}",
+                "{field} = {value} 无效：应为 {expected}"
+            ),
+            Self::Diverged { episode, what } => tr!(
+                "training diverged at episode {episode}: {what}; lower the learning rates or enable --max-grad-norm",
+                "训练在第 {episode} 个回合发散：{what}；请调低学习率，或加上 --max-grad-norm"
+            ),
+            Self::NonFinite(what) => tr!(
+                "{what} is not finite (NaN or infinite)",
+                "{what} 不是有限数（NaN 或无穷大）"
+            ),
+            Self::EmptyBatch => tr!(
+                "the batch is empty: an update needs at least one transition",
+                "这一批数据是空的：一次更新至少需要一条转移"
+            ),
+            Self::InvalidBatch(why) => tr!("invalid batch: {why}", "这一批数据无效：{why}"),
+            Self::MissingKey {
+                file,
+                key,
+                expected,
+            } => {
+                let wanted = spaced(expected);
+                tr!(
+                    "{file}: missing key '{key}' (expected {expected})",
+                    "{file}：缺少键 '{key}'（应为{wanted}）"
+                )
+            }
+            Self::WrongShape {
+                file,
+                key,
+                expected,
+                got,
+            } => {
+                let (wanted, found) = (spaced(expected), spaced(got));
+                tr!(
+                    "{file}: '{key}' has {got}, expected {expected}",
+                    "{file}：'{key}' 应为{wanted}，实际是{found}"
+                )
+            }
+            Self::File { file, reason } => tr!("{file}: {reason}", "{file}：{reason}"),
+            Self::InvalidWindow { window, len } => tr!(
+                "moving_average: window {window} does not fit {len} values (needs an odd window <= len + 1)",
+                "moving_average：窗口 {window} 不适合 {len} 个值（窗口须为奇数，且不超过 len + 1）"
+            ),
+            Self::Env(e) => return std::fmt::Display::fmt(e, f),
+            Self::Candle(e) => {
+                let said = crate::causes::message(e);
+                tr!("tensor operation failed: {said}", "{said}")
+            }
+        };
+        f.write_str(&text)
+    }
 }

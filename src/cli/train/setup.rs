@@ -129,7 +129,7 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
                 "the book's PPOContinuous ends every episode at Pendulum-v1's 200-step time limit \
                  (done = terminated or truncated) and its update has no bootstrap from V(s')",
                 "书中的 PPOContinuous 让每个回合都在 Pendulum-v1 的 200 步时限处结束\
-                 （done = terminated or truncated），更新时也不从 V(s') 自举",
+                 （`done = terminated or truncated`），更新时也不从 V(s') 自举",
             ),
         ),
         (

@@ -19,6 +19,7 @@
 //! `actor.fc_mu` / `actor.fc_std` the Pendulum one. Loading one agent's checkpoint as the
 //! other is refused with a message naming both.
 
+use crate::i18n::t;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -67,10 +68,14 @@ impl CheckpointKind {
     /// How to write a checkpoint of this kind, for error messages.
     fn how_to_save(self) -> &'static str {
         match self {
-            Self::CartPolePpo => "write one with `ppo-tutor train --save FILE.safetensors`",
-            Self::PendulumPpoContinuous => {
-                "write one with `ppo-tutor train --env Pendulum-v1 --save FILE.safetensors`"
-            }
+            Self::CartPolePpo => t(
+                "write one with `ppo-tutor train --save FILE.safetensors`",
+                "可用 `ppo-tutor train --save FILE.safetensors` 生成一个",
+            ),
+            Self::PendulumPpoContinuous => t(
+                "write one with `ppo-tutor train --env Pendulum-v1 --save FILE.safetensors`",
+                "可用 `ppo-tutor train --env Pendulum-v1 --save FILE.safetensors` 生成一个",
+            ),
         }
     }
 
@@ -132,7 +137,14 @@ pub fn write_checkpoint(
     safetensors::serialize_to_file(tensors, Some(kind.metadata()), path).map_err(|e| {
         PpoError::File {
             file: path.display().to_string(),
-            reason: format!("cannot write the checkpoint: {e}"),
+            reason: {
+                // (in English the error's own text: the same as before)
+                let said = crate::causes::message(&e);
+                crate::tr!(
+                    "cannot write the checkpoint: {said}",
+                    "无法写入检查点：{said}"
+                )
+            },
         }
     })
 }
@@ -146,35 +158,46 @@ pub fn write_checkpoint(
 /// a number type.
 pub fn read_checkpoint(path: &Path, want: CheckpointKind) -> Result<NamedWeights, PpoError> {
     let file = path.display().to_string();
-    let unreadable = |e: String| PpoError::File {
-        file: file.clone(),
-        reason: format!(
-            "not a readable safetensors checkpoint ({e}); {}",
-            want.how_to_save()
-        ),
+    let unreadable = |e: &(dyn std::error::Error + 'static)| {
+        let (said, how) = (crate::causes::message(e), want.how_to_save());
+        PpoError::File {
+            file: file.clone(),
+            reason: crate::tr!(
+                "not a readable safetensors checkpoint ({said}); {how}",
+                "不是可读取的 safetensors 检查点（{said}）；{how}"
+            ),
+        }
     };
-    let bytes = std::fs::read(path).map_err(|e| unreadable(e.to_string()))?;
+    let bytes = std::fs::read(path).map_err(|e| unreadable(&e))?;
     let metadata = safetensors::SafeTensors::read_metadata(&bytes)
-        .map_err(|e| unreadable(e.to_string()))?
+        .map_err(|e| unreadable(&e))?
         .1
         .metadata()
         .clone()
         .unwrap_or_default();
-    let tensors = candle_core::safetensors::load_buffer(&bytes, &Device::Cpu)
-        .map_err(|e| unreadable(e.to_string()))?;
+    let tensors =
+        candle_core::safetensors::load_buffer(&bytes, &Device::Cpu).map_err(|e| unreadable(&e))?;
     let names: Vec<String> = tensors.keys().cloned().collect();
     let found = match CheckpointKind::from_metadata(&metadata) {
-        Some(kind) => Some((kind, "its metadata says so".to_string())),
-        None => CheckpointKind::from_names(&names).map(|k| (k, format!("it has {}", k.telltale()))),
+        Some(kind) => Some((
+            kind,
+            t("its metadata says so", "文件的元数据如此标明").to_string(),
+        )),
+        None => CheckpointKind::from_names(&names).map(|k| {
+            let telltale = k.telltale();
+            (k, crate::tr!("it has {telltale}", "文件中有 {telltale}"))
+        }),
     };
     if let Some((found, evidence)) = found
         && found != want
     {
         return Err(PpoError::File {
             file,
-            reason: format!(
+            reason: crate::tr!(
                 "this checkpoint holds a {} agent for {} ({evidence}), not a {} agent for {}: \
                  load it as a {} agent, or {}",
+                "这个检查点保存的是 {1} 上的 {0} 智能体（{evidence}），不是 {3} 上的 {2} 智能体：\
+                 请把它当作 {4} 的智能体加载，或者{5}",
                 found.algorithm(),
                 found.env(),
                 want.algorithm(),
@@ -194,7 +217,7 @@ pub fn read_checkpoint(path: &Path, want: CheckpointKind) -> Result<NamedWeights
             .map_err(|e| PpoError::WrongShape {
                 file: file.clone(),
                 key: name.clone(),
-                expected: "an f32 tensor".into(),
+                expected: crate::i18n::t("an f32 tensor", "f32 张量").into(),
                 got: format!("{:?} ({e})", t.dtype()),
             })?;
         weights.insert(name, WeightTensor { shape, data });
@@ -220,23 +243,29 @@ pub(crate) fn check_against(
             return Err(PpoError::MissingKey {
                 file: source.into(),
                 key: (*name).into(),
-                expected: format!("an f32 tensor of shape {shape:?}"),
+                expected: crate::tr!(
+                    "an f32 tensor of shape {shape:?}",
+                    "形状 {shape:?} 的 f32 张量"
+                ),
             });
         };
         if w.shape != *shape || w.data.len() != shape.iter().product::<usize>() {
             return Err(PpoError::WrongShape {
                 file: source.into(),
                 key: (*name).into(),
-                expected: format!("shape {shape:?} (hidden width {hidden_dim})"),
-                got: format!("shape {:?}", w.shape),
+                expected: crate::tr!(
+                    "shape {shape:?} (hidden width {hidden_dim})",
+                    "形状 {shape:?}（隐藏层宽度 {hidden_dim}）"
+                ),
+                got: crate::tr!("shape {:?}", "形状 {:?}", w.shape),
             });
         }
         if let Some(i) = w.data.iter().position(|x| !x.is_finite()) {
             return Err(PpoError::WrongShape {
                 file: source.into(),
                 key: (*name).into(),
-                expected: "finite values".into(),
-                got: format!("{} at flat index {i}", w.data[i]),
+                expected: t("finite values", "有限数值").into(),
+                got: crate::tr!("{} at flat index {i}", "展平后下标 {i} 处的 {}", w.data[i]),
             });
         }
     }
@@ -245,7 +274,7 @@ pub(crate) fn check_against(
             file: source.into(),
             key: extra.clone(),
             expected: only.into(),
-            got: "an unknown tensor".into(),
+            got: t("an unknown tensor", "一个未知的张量").into(),
         });
     }
     Ok(())
@@ -272,15 +301,18 @@ pub fn read_sized(
             return Err(PpoError::WrongShape {
                 file,
                 key: key.into(),
-                expected: format!("shape [hidden, {state_dim}]"),
-                got: format!("shape {other:?}"),
+                expected: crate::tr!("shape [hidden, {state_dim}]", "形状 [hidden, {state_dim}]"),
+                got: crate::tr!("shape {other:?}", "形状 {other:?}"),
             });
         }
         None => {
             return Err(PpoError::MissingKey {
                 file,
                 key: key.into(),
-                expected: format!("an f32 tensor of shape [hidden, {state_dim}]"),
+                expected: crate::tr!(
+                    "an f32 tensor of shape [hidden, {state_dim}]",
+                    "形状 [hidden, {state_dim}] 的 f32 张量"
+                ),
             });
         }
     };

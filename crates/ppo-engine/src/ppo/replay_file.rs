@@ -3,6 +3,7 @@
 //! discrete PPO, the book's `PPOContinuous`, ...), told apart by the weights of its first
 //! case ([`OnPolicyAgent::replays`]).
 
+use crate::i18n::t;
 use serde_json::Value;
 
 use super::PpoError;
@@ -22,7 +23,10 @@ use crate::run::{Environment, RunConfig, RunVisitor};
 pub fn replay_any(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError> {
     let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
         file: file.into(),
-        reason: format!("not valid JSON ({e})"),
+        reason: {
+            let said = crate::causes::message(&e);
+            crate::tr!("not valid JSON ({said})", "{said}")
+        },
     })?;
     let weights = root
         .get("cases")
@@ -67,6 +71,22 @@ impl RunVisitor for Replay<'_> {
     }
 }
 
+/// What a case's `hyper` holds, for errors (both agents' recordings).
+pub(crate) fn hyper_expected() -> &'static str {
+    t(
+        "an object with actor_lr, critic_lr, gamma, lmbda, epochs, eps, hidden_dim",
+        "含 actor_lr、critic_lr、gamma、lmbda、epochs、eps、hidden_dim 的对象",
+    )
+}
+
+/// What a case's `batch` holds, for errors (both agents' recordings).
+pub(crate) fn batch_expected() -> &'static str {
+    t(
+        "an object with states, actions, rewards, next_states, dones",
+        "含 states、actions、rewards、next_states、dones 的对象",
+    )
+}
+
 /// A weight as nested JSON lists: `(out, in)` rows for a matrix, a flat list for a bias.
 pub(crate) fn nested(w: &WeightTensor) -> Value {
     let num = |x: &f32| Value::from(f64::from(*x));
@@ -101,12 +121,15 @@ impl Reader<'_> {
     ) -> Result<Vec<T>, PpoError> {
         let root: Value = serde_json::from_str(text).map_err(|e| PpoError::File {
             file: self.file.into(),
-            reason: format!("not valid JSON ({e})"),
+            reason: {
+                let said = crate::causes::message(&e);
+                crate::tr!("not valid JSON ({said})", "{said}")
+            },
         })?;
         let cases = self.array(
-            self.key(&root, "", "cases", "a list of cases")?,
+            self.key(&root, "", "cases", t("a list of cases", "用例列表"))?,
             "cases",
-            "a list of cases",
+            t("a list of cases", "用例列表"),
         )?;
         cases
             .iter()
@@ -125,10 +148,12 @@ impl Reader<'_> {
 
     pub(crate) fn wrong(&self, key: &str, expected: &str, got: &Value) -> PpoError {
         let got = match got {
-            Value::Array(a) => format!("a list of {} entries", a.len()),
-            Value::Object(_) => "an object".into(),
-            Value::String(s) if s.chars().count() <= 40 => format!("the string {s:?}"),
-            Value::String(_) => "a string".into(),
+            Value::Array(a) => crate::tr!("a list of {} entries", "含 {} 项的列表", a.len()),
+            Value::Object(_) => t("an object", "一个对象").into(),
+            Value::String(s) if s.chars().count() <= 40 => {
+                crate::tr!("the string {s:?}", "字符串 {s:?}")
+            }
+            Value::String(_) => t("a string", "一个字符串").into(),
             Value::Null => "null".into(),
             other => format!("{other}"),
         };
@@ -182,7 +207,7 @@ impl Reader<'_> {
         }
         a.iter()
             .enumerate()
-            .map(|(i, x)| Ok(self.number(x, &format!("{path}[{i}]"), "a number")? as f32))
+            .map(|(i, x)| Ok(self.number(x, &format!("{path}[{i}]"), t("a number", "数"))? as f32))
             .collect()
     }
 
@@ -196,7 +221,7 @@ impl Reader<'_> {
         let mut out = NamedWeights::new();
         for (name, shape) in shapes {
             let key = format!("{path}.{name}");
-            let expected = format!("a list of shape {shape:?}");
+            let expected = crate::tr!("a list of shape {shape:?}", "形状 {shape:?} 的列表");
             let v = self.key(w, path, name, &expected)?;
             let data = match shape.as_slice() {
                 [rows, cols] => {

@@ -45,6 +45,9 @@ pub fn check_weights(
         &parameter_shapes(hidden_dim),
         hidden_dim,
         source,
-        "only the ten actor./critic. parameters of the Gaussian policy",
+        crate::i18n::t(
+            "only the ten actor./critic. parameters of the Gaussian policy",
+            "只有高斯策略的 actor./critic. 十个参数",
+        ),
     )
 }

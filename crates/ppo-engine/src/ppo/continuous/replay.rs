@@ -15,6 +15,7 @@
 //! state; [`ContinuousReplayOutput`] holds what the fixture's `expected` and `weights_after`
 //! hold, with the same key names and shapes (columns as `(N, 1)` lists of one-element lists).
 
+use crate::i18n::t;
 use serde::Serialize;
 use serde_json::{Map, Value};
 
@@ -23,7 +24,7 @@ use super::params::parameter_shapes;
 use super::{PpoContinuousConfig, STATE_DIM};
 use crate::ppo::PpoError;
 use crate::ppo::model::NamedWeights;
-use crate::ppo::replay_file::{Reader, nested};
+use crate::ppo::replay_file::{Reader, batch_expected, hyper_expected, nested};
 
 /// One case to replay.
 #[derive(Debug, Clone)]
@@ -130,20 +131,20 @@ pub fn replay_continuous_case(
     })
 }
 
-const HYPER: &str = "an object with actor_lr, critic_lr, gamma, lmbda, epochs, eps, hidden_dim";
-const BATCH: &str = "an object with states, actions, rewards, next_states, dones";
-
 fn parse_case(r: &Reader<'_>, case: &Value, path: &str) -> Result<ContinuousReplayCase, PpoError> {
     let config = hyper(
         r,
-        r.key(case, path, "hyper", HYPER)?,
+        r.key(case, path, "hyper", hyper_expected())?,
         &format!("{path}.hyper"),
     )?;
     let weights = r.key(
         case,
         path,
         "weights_before",
-        "the ten actor./critic. tensors",
+        t(
+            "the ten actor./critic. tensors",
+            "actor./critic. 的十个张量",
+        ),
     )?;
     let weights_before = r.named_tensors(
         weights,
@@ -152,7 +153,7 @@ fn parse_case(r: &Reader<'_>, case: &Value, path: &str) -> Result<ContinuousRepl
     )?;
     let batch = batch(
         r,
-        r.key(case, path, "batch", BATCH)?,
+        r.key(case, path, "batch", batch_expected())?,
         &format!("{path}.batch"),
     )?;
     Ok(ContinuousReplayCase {
@@ -171,18 +172,18 @@ fn hyper(r: &Reader<'_>, h: &Value, path: &str) -> Result<PpoContinuousConfig, P
         )
     };
     let count = |key: &str| -> Result<usize, PpoError> {
-        let expected = "a positive integer";
+        let expected = t("a positive integer", "正整数");
         let v = r.key(h, path, key, expected)?;
         v.as_u64()
             .and_then(|n| usize::try_from(n).ok())
             .ok_or_else(|| r.wrong(&format!("{path}.{key}"), expected, v))
     };
     let config = PpoContinuousConfig {
-        actor_lr: num("actor_lr", "a number > 0")?,
-        critic_lr: num("critic_lr", "a number > 0")?,
-        gamma: num("gamma", "a number in (0, 1]")?,
-        lmbda: num("lmbda", "a number in [0, 1]")?,
-        eps: num("eps", "a number in (0, 1)")?,
+        actor_lr: num("actor_lr", t("a number > 0", "大于 0 的数"))?,
+        critic_lr: num("critic_lr", t("a number > 0", "大于 0 的数"))?,
+        gamma: num("gamma", t("a number in (0, 1]", "(0, 1] 内的数"))?,
+        lmbda: num("lmbda", t("a number in [0, 1]", "[0, 1] 内的数"))?,
+        eps: num("eps", t("a number in (0, 1)", "(0, 1) 内的数"))?,
         epochs: count("epochs")?,
         hidden_dim: count("hidden_dim")?,
         ..PpoContinuousConfig::default()
@@ -199,17 +200,20 @@ fn batch(r: &Reader<'_>, b: &Value, path: &str) -> Result<ContinuousTransitions,
             expected,
         )
     };
-    let n = column("actions", "a list of N torques")?.len();
+    let n = column("actions", t("a list of N torques", "N 个力矩的列表"))?.len();
     if n == 0 {
         return Err(r.wrong(
             &format!("{path}.actions"),
-            "at least one transition",
+            t("at least one transition", "至少一条转移"),
             &Value::Array(vec![]),
         ));
     }
     let numbers = |key: &str, what: &str| -> Result<Vec<f32>, PpoError> {
         // f64 in the file, rounded to f32 as `torch.tensor(..., dtype=torch.float)` does
-        let expected = format!("a list of {n} {what} (one per step)");
+        let expected = crate::tr!(
+            "a list of {n} {what} (one per step)",
+            "{n} 个{what}的列表，每步一个"
+        );
         r.floats(
             r.key(b, path, key, &expected)?,
             &format!("{path}.{key}"),
@@ -218,7 +222,10 @@ fn batch(r: &Reader<'_>, b: &Value, path: &str) -> Result<ContinuousTransitions,
         )
     };
     let rows = |key: &str| -> Result<Vec<[f32; 3]>, PpoError> {
-        let expected = format!("a list of shape [{n}, {STATE_DIM}] (one observation per step)");
+        let expected = crate::tr!(
+            "a list of shape [{n}, {STATE_DIM}] (one observation per step)",
+            "形状 [{n}, {STATE_DIM}] 的列表，每步一个观测"
+        );
         let list = column(key, &expected)?;
         if list.len() != n {
             let got = Value::Array(list.clone());
@@ -243,14 +250,19 @@ fn batch(r: &Reader<'_>, b: &Value, path: &str) -> Result<ContinuousTransitions,
         .iter()
         .enumerate()
         .map(|(t, d)| {
-            d.as_bool()
-                .ok_or_else(|| r.wrong(&format!("{path}.dones[{t}]"), "true or false", d))
+            d.as_bool().ok_or_else(|| {
+                r.wrong(
+                    &format!("{path}.dones[{t}]"),
+                    crate::i18n::t("true or false", "true 或 false"),
+                    d,
+                )
+            })
         })
         .collect::<Result<Vec<bool>, _>>()?;
     Ok(ContinuousTransitions {
         states: rows("states")?,
-        actions: numbers("actions", "torques")?,
-        rewards: numbers("rewards", "rewards")?,
+        actions: numbers("actions", t("torques", "力矩"))?,
+        rewards: numbers("rewards", t("rewards", "奖励"))?,
         next_states: rows("next_states")?,
         dones,
     })

@@ -212,7 +212,7 @@ impl Agent {
                     .ok_or_else(|| PpoError::MissingKey {
                         file: source.to_string(),
                         key,
-                        expected: "a tensor".into(),
+                        expected: crate::i18n::t("a tensor", "张量").into(),
                     })
             };
             Ok(Linear::from_data(

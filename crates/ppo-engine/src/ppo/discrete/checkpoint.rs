@@ -39,7 +39,10 @@ pub fn check_weights(
         &parameter_shapes(hidden_dim),
         hidden_dim,
         source,
-        "only the eight actor./critic. parameters",
+        crate::i18n::t(
+            "only the eight actor./critic. parameters",
+            "只有 actor./critic. 的八个参数",
+        ),
     )
 }
 

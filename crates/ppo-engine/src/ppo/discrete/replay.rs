@@ -25,6 +25,7 @@
 //! (`actor.fc_mu`, `actor.fc_std`); [`replay_file::replay_any`](crate::ppo::replay_file::replay_any)
 //! tells the two apart by those keys and [`continuous::replay`](super::continuous::replay) runs it.
 
+use crate::i18n::t;
 use serde::Serialize;
 use serde_json::{Map, Value};
 
@@ -32,7 +33,7 @@ use super::checkpoint::parameter_shapes;
 use super::{Agent, Objective, PpoConfig, Transitions};
 use crate::ppo::PpoError;
 use crate::ppo::model::NamedWeights;
-use crate::ppo::replay_file::{Reader, nested};
+use crate::ppo::replay_file::{Reader, batch_expected, hyper_expected, nested};
 
 /// One case to replay.
 #[derive(Debug, Clone)]
@@ -163,12 +164,12 @@ impl Reader<'_> {
             },
         };
         let hpath = format!("{path}.hyper");
-        let hyper = self.key(case, path, "hyper", HYPER)?;
+        let hyper = self.key(case, path, "hyper", hyper_expected())?;
         let mut config = self.hyper(hyper, &hpath)?;
         let mut beta_before = None;
         if objective == Objective::Penalty {
             let num = |key: &str| -> Result<f64, PpoError> {
-                let expected = "a number > 0 (PPO-Penalty)";
+                let expected = t("a number > 0 (PPO-Penalty)", "大于 0 的数（PPO-惩罚）");
                 self.number(
                     self.key(hyper, &hpath, key, expected)?,
                     &format!("{hpath}.{key}"),
@@ -184,9 +185,11 @@ impl Reader<'_> {
             config.validate()?;
             let recorded = case.get("expected").and_then(|e| e.get("beta_before"));
             beta_before = Some(match recorded {
-                Some(v) => {
-                    self.number(v, &format!("{path}.expected.beta_before"), "a number > 0")?
-                }
+                Some(v) => self.number(
+                    v,
+                    &format!("{path}.expected.beta_before"),
+                    t("a number > 0", "大于 0 的数"),
+                )?,
                 None => config.beta_init,
             });
         }
@@ -195,11 +198,14 @@ impl Reader<'_> {
             case,
             path,
             "weights_before",
-            "the eight actor./critic. tensors",
+            t(
+                "the eight actor./critic. tensors",
+                "actor./critic. 的八个张量",
+            ),
         )?;
         let weights_before = self.weights(weights, &wpath, config.hidden_dim)?;
         let batch = self.batch(
-            self.key(case, path, "batch", BATCH)?,
+            self.key(case, path, "batch", batch_expected())?,
             &format!("{path}.batch"),
         )?;
         Ok(ReplayCase {
@@ -219,18 +225,18 @@ impl Reader<'_> {
             )
         };
         let count = |key: &str| -> Result<usize, PpoError> {
-            let expected = "a positive integer";
+            let expected = t("a positive integer", "正整数");
             let v = self.key(h, path, key, expected)?;
             v.as_u64()
                 .and_then(|n| usize::try_from(n).ok())
                 .ok_or_else(|| self.wrong(&format!("{path}.{key}"), expected, v))
         };
         let config = PpoConfig {
-            actor_lr: num("actor_lr", "a number > 0")?,
-            critic_lr: num("critic_lr", "a number > 0")?,
-            gamma: num("gamma", "a number in (0, 1]")?,
-            lmbda: num("lmbda", "a number in [0, 1]")?,
-            eps: num("eps", "a number in (0, 1)")?,
+            actor_lr: num("actor_lr", t("a number > 0", "大于 0 的数"))?,
+            critic_lr: num("critic_lr", t("a number > 0", "大于 0 的数"))?,
+            gamma: num("gamma", t("a number in (0, 1]", "(0, 1] 内的数"))?,
+            lmbda: num("lmbda", t("a number in [0, 1]", "[0, 1] 内的数"))?,
+            eps: num("eps", t("a number in (0, 1)", "(0, 1) 内的数"))?,
             epochs: count("epochs")?,
             hidden_dim: count("hidden_dim")?,
             ..PpoConfig::default()
@@ -251,10 +257,16 @@ impl Reader<'_> {
                 expected,
             )
         };
-        let actions_v = column("actions", "a list of N actions (0 or 1)")?;
+        let actions_v = column(
+            "actions",
+            t("a list of N actions (0 or 1)", "N 个动作（0 或 1）的列表"),
+        )?;
         let n = actions_v.len();
         let rows = |key: &str| -> Result<Vec<[f32; 4]>, PpoError> {
-            let expected = format!("a list of shape [{n}, 4] (one observation per action)");
+            let expected = crate::tr!(
+                "a list of shape [{n}, 4] (one observation per action)",
+                "形状 [{n}, 4] 的列表，每个动作一个观测"
+            );
             let list = column(key, &expected)?;
             if list.len() != n {
                 return Err(self.wrong(
@@ -273,14 +285,20 @@ impl Reader<'_> {
         };
         let states = rows("states")?;
         let next_states = rows("next_states")?;
-        let expected = format!("a list of {n} numbers (one per action)");
+        let expected = crate::tr!(
+            "a list of {n} numbers (one per action)",
+            "{n} 个数的列表，每个动作一个"
+        );
         let rewards = self.floats(
             self.key(b, path, "rewards", &expected)?,
             &format!("{path}.rewards"),
             Some(n),
             &expected,
         )?;
-        let dones_expected = format!("a list of {n} booleans (one per action)");
+        let dones_expected = crate::tr!(
+            "a list of {n} booleans (one per action)",
+            "{n} 个布尔值的列表，每个动作一个"
+        );
         let dones_v = column("dones", &dones_expected)?;
         if dones_v.len() != n {
             return Err(self.wrong(
@@ -293,8 +311,13 @@ impl Reader<'_> {
             .iter()
             .enumerate()
             .map(|(t, d)| {
-                d.as_bool()
-                    .ok_or_else(|| self.wrong(&format!("{path}.dones[{t}]"), "true or false", d))
+                d.as_bool().ok_or_else(|| {
+                    self.wrong(
+                        &format!("{path}.dones[{t}]"),
+                        crate::i18n::t("true or false", "true 或 false"),
+                        d,
+                    )
+                })
             })
             .collect::<Result<Vec<bool>, _>>()?;
         let actions = actions_v
@@ -302,13 +325,17 @@ impl Reader<'_> {
             .enumerate()
             .map(|(t, a)| match a.as_u64() {
                 Some(a @ 0..=1) => Ok(a as usize),
-                _ => Err(self.wrong(&format!("{path}.actions[{t}]"), "0 or 1", a)),
+                _ => Err(self.wrong(
+                    &format!("{path}.actions[{t}]"),
+                    crate::i18n::t("0 or 1", "0 或 1"),
+                    a,
+                )),
             })
             .collect::<Result<Vec<usize>, _>>()?;
         if n == 0 {
             return Err(self.wrong(
                 &format!("{path}.actions"),
-                "at least one transition",
+                t("at least one transition", "至少一条转移"),
                 &Value::Array(vec![]),
             ));
         }
@@ -322,9 +349,6 @@ impl Reader<'_> {
         })
     }
 }
-
-const HYPER: &str = "an object with actor_lr, critic_lr, gamma, lmbda, epochs, eps, hidden_dim";
-const BATCH: &str = "an object with states, actions, rewards, next_states, dones";
 
 #[cfg(test)]
 mod tests {
