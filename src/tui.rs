@@ -79,7 +79,7 @@ pub fn run() -> anyhow::Result<()> {
     let (progress, warning) = Progress::load(&path);
     let mut app = App::new(course, progress, Some(path));
     if let Some(w) = warning {
-        app.say(format!("{}{w}", app::warning()));
+        app.warn(&w);
     }
     let (tx, rx) = mpsc::channel::<Event>();
     let (cmd_tx, cmd_rx) = mpsc::channel::<Command>();
@@ -198,11 +198,7 @@ fn watch_exercise_files(app: &mut App, watcher: &mut Option<SaveWatcher>, tx: &S
     }) {
         Ok(w) => *watcher = Some(w),
         Err(e) => {
-            app.say(crate::tr!(
-                "{}{e}; g still grades",
-                "{}{e}；按 g 仍可评分",
-                app::warning()
-            ));
+            app.warn(&crate::tr!("{e}; g still grades", "{e}；按 g 仍可评分"));
         }
     }
 }

@@ -957,11 +957,9 @@ fn each_face_s_status_line_goes_when_it_closes() -> TestResult {
         );
     }
 
-    let warning = format!(
-        "{}the progress file was corrupt",
-        ppo_tutor::tui::app::warning()
-    );
-    app.say(warning.clone());
+    app.warn("the progress file was corrupt");
+    let warning = app.status.text().to_string();
+    assert_eq!(warning, "warning: the progress file was corrupt");
     app.update(Action::Help);
     app.update(Action::Back);
     open(&mut app, "cartpole")?;
@@ -1110,10 +1108,7 @@ fn the_key_bar_keeps_help_and_quit_at_80x24() -> TestResult {
         let keys = text.lines().nth(22).ok_or("no key bar")?;
         assert!(keys.contains(help) && keys.contains(quit), "{keys}");
         assert!(keys.contains("←/→"), "{keys}");
-        app.say(format!(
-            "{}a long warning about /some/long/path/.ppo-tutor-state.json",
-            ppo_tutor::tui::app::warning()
-        ));
+        app.warn("a long warning about /some/long/path/.ppo-tutor-state.json");
         let text = screen(&app, 80, 24)?;
         let status = text.lines().nth(23).ok_or("no status line")?;
         assert!(status.contains("/some/long/path"), "{status}");

@@ -22,9 +22,9 @@ use super::keys::Action;
 use super::widgets::lab::LabState;
 use super::worker::{Command, WorkerEvent};
 
+pub use super::components::Message;
 pub use super::components::exercise::Graded;
 pub use super::components::lab::LAB_SEEDS;
-pub use super::components::{WARNING, is_warning, warning};
 pub use super::run::{ParkedRun, PreviousCurve, Run, TrainState, return_text};
 
 /// Which face covers the lesson, if any (each face's state is its component in [`App`]).
@@ -167,6 +167,11 @@ impl App {
         self.status.set(Owner::App, text);
     }
 
+    /// Shows a warning on the status line (`warning: ` and `text`), kept until it is read.
+    pub fn warn(&mut self, text: &str) {
+        self.status.warn(Owner::App, text);
+    }
+
     /// Switches the language live (the `L` key): English ⇄ 中文. The course is reloaded in
     /// the new language at the same lesson, step and overlay; an answer being typed and
     /// the verdict shown are cleared (they were written in the old language).
@@ -204,10 +209,9 @@ impl App {
                 );
             }
             Err(e) => {
-                self.say(crate::tr!(
-                    "{}could not load the lessons in {}: {e}",
-                    "{}无法加载{}课程：{e}",
-                    warning(),
+                self.warn(&crate::tr!(
+                    "could not load the lessons in {}: {e}",
+                    "无法加载{}课程：{e}",
                     next.name()
                 ));
             }
@@ -523,7 +527,7 @@ impl App {
     /// Applies an experiment's progress or its end.
     pub fn on_lab(&mut self, experiment: Experiment, state: LabState) {
         if let Some(said) = self.lab.on_event(experiment, state) {
-            self.say(said);
+            self.status.say(Owner::App, said);
         }
     }
 

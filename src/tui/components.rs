@@ -23,26 +23,17 @@ use ratatui::widgets::{Block, Borders, Clear, Widget};
 use super::keys::Action;
 use super::theme::Theme;
 use super::widgets::text;
-use crate::i18n::{Lang, t};
+use crate::i18n::t;
 use crate::lesson::{Course, Lesson, Progress, Snapshot, Step};
 
-/// Prefix of a status message that episode updates must not overwrite (English; see
-/// [`warning`] for the current language's).
-pub const WARNING: &str = "warning: ";
-
-/// The current language's prefix of a status message that episode updates must not
-/// overwrite: `warning: ` or `警告：`.
-#[must_use]
-pub fn warning() -> &'static str {
-    t(WARNING, "警告：")
-}
-
-/// Whether `status` is a warning (in either language), which episode updates keep.
-#[must_use]
-pub fn is_warning(status: &str) -> bool {
-    Lang::ALL
-        .iter()
-        .any(|l| status.starts_with(l.pick(WARNING, "警告：")))
+/// Something a face has to say on the status line: news, or a warning that stays until
+/// it is read (episode updates do not replace it).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Message {
+    /// News: replaced by the next message.
+    Info(String),
+    /// A warning (without its `warning: ` prefix, which the status line adds).
+    Warning(String),
 }
 
 /// Which face set a status message.
@@ -66,6 +57,7 @@ pub enum Owner {
 pub struct Status {
     text: String,
     owner: Owner,
+    warning: bool,
 }
 
 impl Status {
@@ -84,13 +76,28 @@ impl Status {
     /// Whether the message is a warning, which stays until the learner reads it.
     #[must_use]
     pub fn is_warning(&self) -> bool {
-        is_warning(&self.text)
+        self.warning
     }
 
     /// Sets the message on behalf of `owner`.
     pub fn set(&mut self, owner: Owner, text: impl Into<String>) {
         self.text = text.into();
         self.owner = owner;
+        self.warning = false;
+    }
+
+    /// Sets a warning on behalf of `owner`: `warning: ` (`警告：`) and `text`.
+    pub fn warn(&mut self, owner: Owner, text: &str) {
+        self.set(owner, format!("{}{text}", t("warning: ", "警告：")));
+        self.warning = true;
+    }
+
+    /// Says `message` on behalf of `owner`.
+    pub fn say(&mut self, owner: Owner, message: Message) {
+        match message {
+            Message::Info(text) => self.set(owner, text),
+            Message::Warning(text) => self.warn(owner, &text),
+        }
     }
 
     /// Clears the message if the face `owner` set it and it is not a warning (the face
@@ -112,6 +119,7 @@ impl Status {
     pub fn clear(&mut self) {
         self.text.clear();
         self.owner = Owner::App;
+        self.warning = false;
     }
 }
 
@@ -301,6 +309,7 @@ impl Scroll {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::i18n::Lang;
     use ratatui::text::Line;
 
     fn rows(scroll: &Scroll, total: usize, height: u16) -> Vec<String> {
@@ -356,9 +365,19 @@ mod tests {
         );
         status.close(Owner::Quiz);
         assert_eq!(status.text(), "");
-        status.set(Owner::Quiz, format!("{WARNING}cannot save"));
+        status.set(Owner::Quiz, "warning: not one, only words");
+        assert!(
+            !status.is_warning(),
+            "a warning is said as one, not recognised by its words"
+        );
+        status.warn(Owner::Quiz, "cannot save");
         status.close(Owner::Quiz);
         assert!(status.is_warning(), "a warning stays until read");
+        assert!(status.text().ends_with("cannot save"));
+        status.clear_unless_warning();
+        assert!(status.is_warning());
+        status.clear();
+        assert!(!status.is_warning() && status.text().is_empty());
         status.set(Owner::App, "paused");
         status.close(Owner::App);
         assert_eq!(status.text(), "paused", "the lesson view's messages stay");

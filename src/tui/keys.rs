@@ -78,7 +78,10 @@ pub fn help() -> Vec<(&'static str, &'static str)> {
     vec![
         ("→ / n", t("next step", "下一节")),
         ("← / p", t("previous step", "上一节")),
-        ("j / k, wheel", t("scroll the explanation", "滚动讲解")),
+        (
+            t("j / k, wheel", "j / k、滚轮"),
+            t("scroll the explanation", "滚动讲解"),
+        ),
         (
             "J / K, < / >",
             t(

@@ -27,6 +27,7 @@ mod work_folder;
 pub use trust_region::{trust_region_svg, trust_region_table};
 pub use work_folder::{Claim, claim_in, claim_work_folder};
 
+use crate::i18n::t;
 use crate::lesson::{Mark, RunConfig, Session, Snapshot, TensorView};
 use crate::plot::{PlotError, return_plot_svg};
 use crate::ppo::lab::{Experiment, LabResult};
@@ -135,14 +136,21 @@ pub fn escape(text: &str) -> String {
 }
 
 /// Background colour of a marked entry (the terminal app's colours, light).
-fn mark_style(mark: Mark) -> &'static str {
-    match mark {
-        Mark::Plain => "",
-        Mark::Clipped => " style=\"background:#ffd8a8\" title=\"clipped: outside 1 ± ε\"",
-        Mark::Done => " style=\"background:#dee2e6\" title=\"done: V(s') is dropped\"",
-        Mark::Positive => " style=\"background:#d3f9d8\" title=\"positive advantage\"",
-        Mark::Negative => " style=\"background:#ffe3e3\" title=\"negative advantage\"",
-    }
+fn mark_style(mark: Mark) -> String {
+    let (colour, title) = match mark {
+        Mark::Plain => return String::new(),
+        Mark::Clipped => (
+            "#ffd8a8",
+            t("clipped: outside 1 ± ε", "被截断：在 1 ± ε 之外"),
+        ),
+        Mark::Done => (
+            "#dee2e6",
+            t("done: V(s') is dropped", "回合结束：V(s') 一项被去掉"),
+        ),
+        Mark::Positive => ("#d3f9d8", t("positive advantage", "优势值为正")),
+        Mark::Negative => ("#ffe3e3", t("negative advantage", "优势值为负")),
+    };
+    format!(" style=\"background:{colour}\" title=\"{}\"", escape(title))
 }
 
 /// The rows shown: all when there are few, else the first and last few.
@@ -190,18 +198,21 @@ fn caption_html(t: &TensorView) -> String {
 
 fn caption_parts(t: &TensorView) -> (String, String, String) {
     let stats = t.stats().map_or(String::new(), |(lo, hi, mean)| {
-        format!(" · min {lo:.6} · max {hi:.6} · mean {mean:.6}")
+        crate::tr!(
+            " · min {lo:.6} · max {hi:.6} · mean {mean:.6}",
+            " · 最小 {lo:.6} · 最大 {hi:.6} · 均值 {mean:.6}"
+        )
     });
     let mut marks = String::new();
-    for (mark, what) in [
-        (Mark::Clipped, "clipped"),
-        (Mark::Done, "done"),
-        (Mark::Positive, "positive"),
-        (Mark::Negative, "negative"),
-    ] {
+    for mark in [Mark::Clipped, Mark::Done, Mark::Positive, Mark::Negative] {
         let n = t.count(mark);
         if n > 0 {
-            let _ = write!(marks, " · {n} {what}");
+            marks.push_str(&match mark {
+                Mark::Clipped => crate::tr!(" · {n} clipped", " · {n} 个被截断"),
+                Mark::Done => crate::tr!(" · {n} done", " · {n} 处回合结束"),
+                Mark::Positive => crate::tr!(" · {n} positive", " · {n} 个为正"),
+                Mark::Negative | Mark::Plain => crate::tr!(" · {n} negative", " · {n} 个为负"),
+            });
         }
     }
     let head = format!("{} {}", t.name, t.shape_text().trim_end());

@@ -218,8 +218,11 @@ impl ExercisePanel {
                 ),
                 theme.title(),
             ));
+            // A hint may hold code spans (`done`): drawn as code, as in the lesson text.
             for (i, hint) in hints.iter().take(self.hints_shown).enumerate() {
-                lines.push(Line::raw(format!(" {}. {hint}", i + 1)));
+                let mut spans = vec![Span::raw(format!(" {}. ", i + 1))];
+                spans.extend(text::inline(hint, theme));
+                lines.push(Line::from(spans));
             }
         }
         if self.grading {
@@ -261,7 +264,9 @@ impl ExercisePanel {
                     theme.title(),
                 ));
                 for (name, idea) in exercise.names().iter().zip(&exercise.ideas) {
-                    lines.push(Line::raw(format!(" {name}: {idea}")));
+                    let mut spans = vec![Span::raw(format!(" {name}: "))];
+                    spans.extend(text::inline(idea, theme));
+                    lines.push(Line::from(spans));
                 }
             }
             let mut solutions: Vec<&str> = names

@@ -7,7 +7,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::widgets::Widget;
 
-use super::{panel, warning};
+use super::{Message, panel};
 use crate::i18n::t;
 use crate::ppo::PpoConfig;
 use crate::ppo::lab::Experiment;
@@ -66,15 +66,18 @@ impl Lab {
     }
 
     /// Applies an experiment's progress or its end; its end is said.
-    pub fn on_event(&mut self, experiment: Experiment, state: LabState) -> Option<String> {
+    pub fn on_event(&mut self, experiment: Experiment, state: LabState) -> Option<Message> {
         let said = match &state {
-            LabState::Done(_) => Some(tr!("lab {}: done", "实验 {}：完成", experiment.name())),
-            LabState::Failed(m) => Some(tr!(
-                "{}lab {}: {m}",
-                "{}实验 {}：{m}",
-                warning(),
+            LabState::Done(_) => Some(Message::Info(tr!(
+                "lab {}: done",
+                "实验 {}：完成",
                 experiment.name()
-            )),
+            ))),
+            LabState::Failed(m) => Some(Message::Warning(tr!(
+                "lab {}: {m}",
+                "实验 {}：{m}",
+                experiment.name()
+            ))),
             LabState::Running { .. } => None,
         };
         self.states.insert(experiment, state);

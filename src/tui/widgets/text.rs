@@ -9,6 +9,7 @@ mod table;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
+pub use inline::inline;
 pub use markdown::{markdown, reflow};
 
 pub use crate::i18n::{pad_left, pad_right, width};

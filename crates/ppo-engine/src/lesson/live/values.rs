@@ -340,11 +340,24 @@ pub const LIVE: &[LiveValue] = &[
         view: |n, s| {
             let g = s.gradients.as_ref()?;
             let mut t = TensorView::new(n, vec![2], "float32", vec![]);
-            for (label, v) in [
-                ("max |surrogate − log π| =", g.max_abs_diff()),
-                ("max |log π gradient|    =", g.max_abs()),
-            ] {
-                t.labels.push(format!("{label} {v:.3e}"));
+            let rows = [
+                (
+                    crate::i18n::t("max |surrogate − log π|", "两个梯度之差的最大绝对值"),
+                    g.max_abs_diff(),
+                ),
+                (
+                    crate::i18n::t("max |log π gradient|", "log π 梯度的最大绝对值"),
+                    g.max_abs(),
+                ),
+            ];
+            let width = rows
+                .iter()
+                .map(|(label, _)| crate::i18n::width(label))
+                .max()
+                .unwrap_or(0);
+            for (label, v) in rows {
+                let label = crate::i18n::pad_right(label, width);
+                t.labels.push(format!("{label} = {v:.3e}"));
                 t.values.push(f64::from(v));
                 t.marks.push(Mark::Plain);
             }

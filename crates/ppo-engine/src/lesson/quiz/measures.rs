@@ -21,17 +21,15 @@ mod givens;
 mod run;
 
 use super::super::Snapshot;
-use crate::i18n::t;
+use crate::i18n::Text;
 
 /// A number a prediction is graded against, measured on the running agent.
 #[derive(Debug)]
 pub struct Measure {
     /// The name a question's `predict`, `answer_from` or `{{…}}` uses.
     pub name: &'static str,
-    /// What it is, in words (shown with the revealed value).
-    pub about: &'static str,
-    /// [`Measure::about`] in Chinese.
-    pub about_zh: &'static str,
+    /// What it is, in words, in both languages (shown with the revealed value).
+    pub about: Text,
     /// Its value in a snapshot, `None` before anything computed it.
     pub value: fn(&Snapshot) -> Option<f64>,
     /// 0 for a number; `n` for the index (0 to `n − 1`) of the true one of a question's `n`
@@ -63,8 +61,8 @@ pub enum Basis {
 impl Measure {
     /// What it is, in words, in the current language.
     #[must_use]
-    pub fn describe(&self) -> &'static str {
-        t(self.about, self.about_zh)
+    pub fn describe(&self) -> &str {
+        self.about.get()
     }
 
     /// Whether its value depends on the run: it follows from numbers of the run the

@@ -2,6 +2,7 @@
 //! settings. Each names its fact; no two questions of the course ask the same one.
 
 use super::{Basis, Measure, Snapshot, lambda};
+use crate::i18n::Text;
 
 /// The fact that every ratio of an update's first epoch is 1 (θ = θ_old), which several
 /// measures read; the course asks it once.
@@ -11,8 +12,10 @@ const RATIO_ONE: &str = "every ratio is exactly 1 in epoch 1 (θ = θ_old)";
 pub(super) static FACTS: &[Measure] = &[
     Measure {
         name: "batch_rows",
-        about: "transitions in the latest episode's batch",
-        about_zh: "最新回合批次中的状态转移数",
+        about: Text::new(
+            "transitions in the latest episode's batch",
+            "最新回合批次中的状态转移数",
+        ),
         value: |s| match &s.continuous {
             Some(c) => Some(c.rewards.len() as f64),
             None => Some(s.trace.as_ref()?.rewards.len() as f64),
@@ -22,8 +25,10 @@ pub(super) static FACTS: &[Measure] = &[
     },
     Measure {
         name: "dones_count",
-        about: "rows of the latest batch with done = 1",
-        about_zh: "最新批次中 done = 1 的行数",
+        about: Text::new(
+            "rows of the latest batch with done = 1",
+            "最新批次中 done = 1 的行数",
+        ),
         value: |s| {
             let dones = match &s.continuous {
                 Some(c) => &c.dones,
@@ -36,88 +41,101 @@ pub(super) static FACTS: &[Measure] = &[
     },
     Measure {
         name: "obs_dim",
-        about: "numbers in one CartPole observation",
-        about_zh: "一个 CartPole 观测中的数的个数",
+        about: Text::new(
+            "numbers in one CartPole observation",
+            "一个 CartPole 观测中的数的个数",
+        ),
         value: |s| s.trace.as_ref()?.states.first().map(|o| o.len() as f64),
         choices: 0,
         basis: Basis::Fact("a CartPole observation is four numbers"),
     },
     Measure {
         name: "actor_parameters",
-        about: "trainable parameters of the actor",
-        about_zh: "策略网络的可训练参数个数",
+        about: Text::new(
+            "trainable parameters of the actor",
+            "策略网络的可训练参数个数",
+        ),
         value: |s| parameters(s, "actor."),
         choices: 0,
         basis: Basis::Fact("the actor has 898 parameters"),
     },
     Measure {
         name: "critic_parameters",
-        about: "trainable parameters of the critic",
-        about_zh: "价值网络的可训练参数个数",
+        about: Text::new(
+            "trainable parameters of the critic",
+            "价值网络的可训练参数个数",
+        ),
         value: |s| parameters(s, "critic."),
         choices: 0,
         basis: Basis::Fact("the critic has 769 parameters"),
     },
     Measure {
         name: "probs_row_sum",
-        about: "π(left|s_0) + π(right|s_0) for the batch's first row",
-        about_zh: "批次第一行的 π(left|s_0) + π(right|s_0)",
+        about: Text::new(
+            "π(left|s_0) + π(right|s_0) for the batch's first row",
+            "批次第一行的 π(left|s_0) + π(right|s_0)",
+        ),
         value: |s| s.probs.first().map(|p| f64::from(p[0]) + f64::from(p[1])),
         choices: 0,
         basis: Basis::Fact("softmax rows sum to 1"),
     },
     Measure {
         name: "entropy_max",
-        about: "the largest entropy of a policy over CartPole's actions, in nats",
-        about_zh: "CartPole 动作上策略熵的最大值（单位 nat）",
+        about: Text::new(
+            "the largest entropy of a policy over CartPole's actions, in nats",
+            "CartPole 动作上策略熵的最大值（单位 nat）",
+        ),
         value: |s| s.probs.first().map(|p| (p.len() as f64).ln()),
         choices: 0,
         basis: Basis::Fact("the entropy of two actions is at most ln 2"),
     },
     Measure {
         name: "td_target_last",
-        about: "the TD target of the batch's last row",
-        about_zh: "批次最后一行的 TD 目标",
+        about: Text::new(
+            "the TD target of the batch's last row",
+            "批次最后一行的 TD 目标",
+        ),
         value: |s| s.trace.as_ref()?.td_target.last().map(|&v| f64::from(v)),
         choices: 0,
         basis: Basis::Fact("done masks V(s') on the last row: its TD target is its reward"),
     },
     Measure {
         name: "gamma_lambda",
-        about: "γ·λ of the run",
-        about_zh: "本次运行的 γ·λ",
+        about: Text::new("γ·λ of the run", "本次运行的 γ·λ"),
         value: |s| Some(s.gamma * lambda(s)?),
         choices: 0,
         basis: Basis::Fact("γλ = 0.931"),
     },
     Measure {
         name: "discount_50",
-        about: "γ^50, the weight of a reward 50 steps ahead",
-        about_zh: "γ^50，即 50 步之后一个奖励的权重",
+        about: Text::new(
+            "γ^50, the weight of a reward 50 steps ahead",
+            "γ^50，即 50 步之后一个奖励的权重",
+        ),
         value: |s| Some(s.gamma.powi(50)),
         choices: 0,
         basis: Basis::Fact("γ^50 ≈ 0.364"),
     },
     Measure {
         name: "horizon_gamma",
-        about: "1/(1 − γ)",
-        about_zh: "1/(1 − γ)",
+        about: Text::new("1/(1 − γ)", "1/(1 − γ)"),
         value: |s| Some(1.0 / (1.0 - s.gamma)),
         choices: 0,
         basis: Basis::Fact("the horizon 1/(1 − γ)"),
     },
     Measure {
         name: "horizon_gae",
-        about: "1/(1 − γλ)",
-        about_zh: "1/(1 − γλ)",
+        about: Text::new("1/(1 − γλ)", "1/(1 − γλ)"),
         value: |s| Some(1.0 / (1.0 - s.gamma * lambda(s)?)),
         choices: 0,
         basis: Basis::Fact("GAE's horizon 1/(1 − γλ)"),
     },
     Measure {
         name: "advantage_last_minus_td_delta_last",
-        about: "Â_T − δ_T for the batch's last row",
-        about_zh: "批次最后一行的 Â_T − δ_T",
+        about: Text::new(
+            "Â_T − δ_T for the batch's last row",
+            "批次最后一行的 Â_T − δ_T",
+        ),
         value: |s| {
             let t = s.trace.as_ref()?;
             Some(f64::from(*t.advantage.last()?) - f64::from(*t.td_delta.last()?))
@@ -127,48 +145,51 @@ pub(super) static FACTS: &[Measure] = &[
     },
     Measure {
         name: "ratio_epoch1_min",
-        about: "the smallest ratio in epoch 1",
-        about_zh: "第 1 轮中最小的比率",
+        about: Text::new("the smallest ratio in epoch 1", "第 1 轮中最小的比率"),
         value: |s| first_ratios(s).map(min),
         choices: 0,
         basis: Basis::Fact(RATIO_ONE),
     },
     Measure {
         name: "ratio_epoch1_max",
-        about: "the largest ratio in epoch 1",
-        about_zh: "第 1 轮中最大的比率",
+        about: Text::new("the largest ratio in epoch 1", "第 1 轮中最大的比率"),
         value: |s| first_ratios(s).map(max),
         choices: 0,
         basis: Basis::Fact(RATIO_ONE),
     },
     Measure {
         name: "clipped_rows_epoch1",
-        about: "rows with the clip active in epoch 1",
-        about_zh: "第 1 轮中截断生效的行数",
+        about: Text::new(
+            "rows with the clip active in epoch 1",
+            "第 1 轮中截断生效的行数",
+        ),
         value: |s| first_epoch(s, |e| e.clipped.iter().filter(|c| **c).count() as f64),
         choices: 0,
         basis: Basis::Fact(RATIO_ONE),
     },
     Measure {
         name: "clip_frac_epoch1",
-        about: "the clip fraction of epoch 1",
-        about_zh: "第 1 轮的截断比例（clip fraction）",
+        about: Text::new(
+            "the clip fraction of epoch 1",
+            "第 1 轮的截断比例（clip fraction）",
+        ),
         value: |s| first_epoch(s, |e| f64::from(e.clip_fraction)),
         choices: 0,
         basis: Basis::Fact(RATIO_ONE),
     },
     Measure {
         name: "approx_kl_epoch1",
-        about: "approx_kl in epoch 1",
-        about_zh: "第 1 轮的 approx_kl",
+        about: Text::new("approx_kl in epoch 1", "第 1 轮的 approx_kl"),
         value: |s| first_epoch(s, |e| f64::from(e.approx_kl)),
         choices: 0,
         basis: Basis::Fact(RATIO_ONE),
     },
     Measure {
         name: "actor_loss_epoch1_plus_mean_advantage",
-        about: "the actor loss of epoch 1 plus the batch's mean advantage",
-        about_zh: "第 1 轮的策略网络损失加上批次的平均优势值",
+        about: Text::new(
+            "the actor loss of epoch 1 plus the batch's mean advantage",
+            "第 1 轮的策略网络损失加上批次的平均优势值",
+        ),
         value: |s| {
             let t = s.trace.as_ref()?;
             let mean =
@@ -180,16 +201,17 @@ pub(super) static FACTS: &[Measure] = &[
     },
     Measure {
         name: "epochs_run",
-        about: "epochs the latest update ran",
-        about_zh: "最新一次更新运行的轮数",
+        about: Text::new("epochs the latest update ran", "最新一次更新运行的轮数"),
         value: |s| Some(s.trace.as_ref()?.epochs_run() as f64),
         choices: 0,
         basis: Basis::Fact("without target_kl every update runs its 10 epochs"),
     },
     Measure {
         name: "grad_max_diff",
-        about: "the largest difference between the two policy gradients at θ_old",
-        about_zh: "θ_old 处两种策略梯度之间的最大差值",
+        about: Text::new(
+            "the largest difference between the two policy gradients at θ_old",
+            "θ_old 处两种策略梯度之间的最大差值",
+        ),
         value: |s| {
             let g = s.gradients.as_ref()?;
             Some(f64::from(g.max_abs_diff()))
@@ -199,24 +221,30 @@ pub(super) static FACTS: &[Measure] = &[
     },
     Measure {
         name: "adv_norm_mean",
-        about: "the mean of the normalised advantages",
-        about_zh: "归一化后优势值的均值",
+        about: Text::new(
+            "the mean of the normalised advantages",
+            "归一化后优势值的均值",
+        ),
         value: |s| normalised(s).map(|(mean, _)| mean),
         choices: 0,
         basis: Basis::Fact("normalised advantages have mean 0"),
     },
     Measure {
         name: "adv_norm_std",
-        about: "the unbiased standard deviation of the normalised advantages",
-        about_zh: "归一化后优势值的无偏标准差",
+        about: Text::new(
+            "the unbiased standard deviation of the normalised advantages",
+            "归一化后优势值的无偏标准差",
+        ),
         value: |s| normalised(s).map(|(_, std)| std),
         choices: 0,
         basis: Basis::Fact("normalised advantages have standard deviation 1"),
     },
     Measure {
         name: "moving_average_window",
-        about: "the window of the seed's moving average",
-        about_zh: "原教程代码中移动平均的窗口大小",
+        about: Text::new(
+            "the window of the seed's moving average",
+            "原教程代码中移动平均的窗口大小",
+        ),
         value: |_| Some(crate::lesson::live::session::MOVING_AVERAGE_WINDOW as f64),
         choices: 0,
         basis: Basis::Fact("the seed smooths over 9 episodes"),

@@ -2,6 +2,7 @@
 //! learner to compute a run measure's answer from.
 
 use super::{Basis, Measure, Snapshot, at, batch, extreme_row, from_end, hyper};
+use crate::i18n::Text;
 
 /// A given: a number, shown, never asked.
 const fn given(
@@ -12,8 +13,7 @@ const fn given(
 ) -> Measure {
     Measure {
         name,
-        about,
-        about_zh,
+        about: Text::new(about, about_zh),
         value,
         choices: 0,
         basis: Basis::Given,

@@ -3,14 +3,17 @@
 //! checks that the two agree, and that the value differs from run to run.
 
 use super::{Basis, Measure, at, batch, clipped_objective, extreme_row, from_end, hyper};
+use crate::i18n::Text;
 use crate::lesson::Environment;
 
 /// The run measures.
 pub(super) static RUN: &[Measure] = &[
     Measure {
         name: "log_prob_taken_first",
-        about: "log π_θ(a_0|s_0), the log-probability of the first row's action",
-        about_zh: "log π_θ(a_0|s_0)，第一行所取动作的对数概率",
+        about: Text::new(
+            "log π_θ(a_0|s_0), the log-probability of the first row's action",
+            "log π_θ(a_0|s_0)，第一行所取动作的对数概率",
+        ),
         value: |s| at(&s.trace.as_ref()?.old_log_probs, 0),
         choices: 0,
         basis: Basis::Run {
@@ -20,8 +23,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "theta_next_last",
-        about: "the pole angle of the observation that ended the episode",
-        about_zh: "结束该回合的那个观测中的杆角",
+        about: Text::new(
+            "the pole angle of the observation that ended the episode",
+            "结束该回合的那个观测中的杆角",
+        ),
         value: |s| {
             s.trace
                 .as_ref()?
@@ -39,8 +44,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "right_per_100_first",
-        about: "pushes to the right expected in 100 visits to the first state",
-        about_zh: "在第一个状态上访问 100 次，预期向右推的次数",
+        about: Text::new(
+            "pushes to the right expected in 100 visits to the first state",
+            "在第一个状态上访问 100 次，预期向右推的次数",
+        ),
         value: |s| s.probs.first().map(|p| 100.0 * f64::from(p[1])),
         choices: 0,
         basis: Basis::Run {
@@ -50,8 +57,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "mc_advantage_first",
-        about: "G_0 − V(s_0), REINFORCE-with-baseline's weight on the first action",
-        about_zh: "G_0 − V(s_0)，带基线的 REINFORCE 对第一个动作的权重",
+        about: Text::new(
+            "G_0 − V(s_0), REINFORCE-with-baseline's weight on the first action",
+            "G_0 − V(s_0)，带基线的 REINFORCE 对第一个动作的权重",
+        ),
         value: |s| {
             let t = s.trace.as_ref()?;
             let g = crate::lesson::live::values::return_to_go(&t.rewards, &t.dones, s.gamma);
@@ -66,8 +75,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "logit_gap_first",
-        about: "z_0 − z_1, the actor's logit difference in the first state",
-        about_zh: "z_0 − z_1，策略网络在第一个状态上两个 logit 之差",
+        about: Text::new(
+            "z_0 − z_1, the actor's logit difference in the first state",
+            "z_0 − z_1，策略网络在第一个状态上两个 logit 之差",
+        ),
         value: |s| {
             let p = s.probs.first()?;
             Some((f64::from(p[0]) / f64::from(p[1])).ln())
@@ -80,8 +91,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "adam_first_step_fc2_bias0",
-        about: "how far Adam's first step (t = 1) moves fc2.bias[0] with this gradient",
-        about_zh: "以这个梯度走 Adam 的第一步（t = 1）时，fc2.bias[0] 移动的量",
+        about: Text::new(
+            "how far Adam's first step (t = 1) moves fc2.bias[0] with this gradient",
+            "以这个梯度走 Adam 的第一步（t = 1）时，fc2.bias[0] 移动的量",
+        ),
         value: |s| {
             let lr = hyper(s, "actor_lr")?;
             let g = super::measure("grad_fc2_bias0").and_then(|m| (m.value)(s))?;
@@ -95,8 +108,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "td_delta_first",
-        about: "δ_0, the TD error of the batch's first row",
-        about_zh: "δ_0，批次第一行的 TD 误差",
+        about: Text::new(
+            "δ_0, the TD error of the batch's first row",
+            "δ_0，批次第一行的 TD 误差",
+        ),
         value: |s| at(&s.trace.as_ref()?.td_delta, 0),
         choices: 0,
         basis: Basis::Run {
@@ -107,8 +122,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "gae_last3",
-        about: "Â_{T−3}, the GAE advantage of the batch's third-to-last row",
-        about_zh: "Â_{T−3}，批次倒数第三行的 GAE 优势值",
+        about: Text::new(
+            "Â_{T−3}, the GAE advantage of the batch's third-to-last row",
+            "Â_{T−3}，批次倒数第三行的 GAE 优势值",
+        ),
         // The λ-return less the value: the advantage before any normalisation.
         value: |s| {
             let t = s.trace.as_ref()?;
@@ -127,8 +144,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "ratio_last_first",
-        about: "the first row's ratio in the update's last epoch",
-        about_zh: "更新最后一轮中第一行的比率",
+        about: Text::new(
+            "the first row's ratio in the update's last epoch",
+            "更新最后一轮中第一行的比率",
+        ),
         value: |s| at(batch(s)?.epochs.last()?.ratio, 0),
         choices: 0,
         basis: Basis::Run {
@@ -138,9 +157,11 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "kl_at_ratio_max_last",
-        about: "KL(π_old ‖ π_θ) at the state of the last epoch's largest-ratio row, between the \
-                policy that played and the last epoch's",
-        about_zh: "最后一轮比率最大那一行的状态上，采样这批数据的策略与最后一轮的策略之间的 KL(π_old ‖ π_θ)",
+        about: Text::new(
+            "KL(π_old ‖ π_θ) at the state of the last epoch's largest-ratio row, between the \
+             policy that played and the last epoch's",
+            "最后一轮比率最大那一行的状态上，采样这批数据的策略与最后一轮的策略之间的 KL(π_old ‖ π_θ)",
+        ),
         // CartPole only (`trace`): the two-action KL from the taken action's probabilities.
         value: |s| {
             let t = s.trace.as_ref()?;
@@ -158,8 +179,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "trpo_c",
-        about: "TRPO's C = 4·γ·max|A| / (1 − γ)², with the batch's largest |Â| for max|A|",
-        about_zh: "TRPO 的 C = 4·γ·max|A| / (1 − γ)²，用批次中最大的 |Â| 代替 max|A|",
+        about: Text::new(
+            "TRPO's C = 4·γ·max|A| / (1 − γ)², with the batch's largest |Â| for max|A|",
+            "TRPO 的 C = 4·γ·max|A| / (1 − γ)²，用批次中最大的 |Â| 代替 max|A|",
+        ),
         value: |s| {
             let adv = &s.trace.as_ref()?.advantage;
             let largest = adv.iter().map(|a| f64::from(a.abs())).reduce(f64::max)?;
@@ -173,9 +196,11 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "pull_at_ratio_max_last",
-        about: "what the clipped objective does to the ratio of the last epoch's largest-ratio \
-                row (0 pushes it up, 1 down, 2 nothing)",
-        about_zh: "截断后的目标对最后一轮比率最大那一行的比率的作用（0 向上推，1 向下推，2 不推）",
+        about: Text::new(
+            "what the clipped objective does to the ratio of the last epoch's largest-ratio \
+             row (0 pushes it up, 1 down, 2 nothing)",
+            "截断后的目标对最后一轮比率最大那一行的比率的作用（0 向上推，1 向下推，2 不推）",
+        ),
         value: |s| {
             if !clipped_objective(s) {
                 return None;
@@ -196,8 +221,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "loss_term_ratio_min_last",
-        about: "−min(r·Â, clip(r, 1 − ε, 1 + ε)·Â) of the last epoch's smallest-ratio row",
-        about_zh: "最后一轮比率最小那一行的 −min(r·Â, clip(r, 1 − ε, 1 + ε)·Â)",
+        about: Text::new(
+            "−min(r·Â, clip(r, 1 − ε, 1 + ε)·Â) of the last epoch's smallest-ratio row",
+            "最后一轮比率最小那一行的 −min(r·Â, clip(r, 1 − ε, 1 + ε)·Â)",
+        ),
         value: |s| {
             if !clipped_objective(s) {
                 return None;
@@ -215,8 +242,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "clip_frac_last",
-        about: "clip_frac, the clip fraction of the update's last epoch",
-        about_zh: "clip_frac，更新最后一轮的截断比例",
+        about: Text::new(
+            "clip_frac, the clip fraction of the update's last epoch",
+            "clip_frac，更新最后一轮的截断比例",
+        ),
         value: |s| {
             let t = s.trace.as_ref()?;
             t.epochs.last().map(|e| f64::from(e.clip_fraction))
@@ -235,8 +264,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "moving_average_second",
-        about: "the seed's moving average at index 1",
-        about_zh: "原教程代码的移动平均在下标 1 处的值",
+        about: Text::new(
+            "the seed's moving average at index 1",
+            "原教程代码的移动平均在下标 1 处的值",
+        ),
         value: |s| s.moving_average.get(1).copied(),
         choices: 0,
         basis: Basis::Run {
@@ -246,8 +277,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "env_steps",
-        about: "environment steps of the run so far",
-        about_zh: "本次运行到目前为止的环境时间步数",
+        about: Text::new(
+            "environment steps of the run so far",
+            "本次运行到目前为止的环境时间步数",
+        ),
         value: |s| (s.env == Environment::CartPole).then(|| s.returns.iter().sum()),
         choices: 0,
         basis: Basis::Run {
@@ -257,8 +290,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "adv_norm_first",
-        about: "Â_0 after CleanRL's normalisation",
-        about_zh: "经 CleanRL 归一化之后的 Â_0",
+        about: Text::new(
+            "Â_0 after CleanRL's normalisation",
+            "经 CleanRL 归一化之后的 Â_0",
+        ),
         value: |s| {
             let adv = &s.trace.as_ref()?.advantage;
             if adv.len() < 2 {
@@ -274,8 +309,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "log_density_first",
-        about: "log N(a_0; μ, σ), the first row's old log-density",
-        about_zh: "log N(a_0; μ, σ)，第一行的旧对数密度",
+        about: Text::new(
+            "log N(a_0; μ, σ), the first row's old log-density",
+            "log N(a_0; μ, σ)，第一行的旧对数密度",
+        ),
         value: |s| at(&s.continuous.as_ref()?.old_log_probs, 0),
         choices: 0,
         basis: Basis::Run {
@@ -288,8 +325,10 @@ pub(super) static RUN: &[Measure] = &[
     },
     Measure {
         name: "reward_first",
-        about: "the reward of the batch's first Pendulum step",
-        about_zh: "批次第一个倒立摆时间步的奖励",
+        about: Text::new(
+            "the reward of the batch's first Pendulum step",
+            "批次第一个倒立摆时间步的奖励",
+        ),
         value: |s| at(&s.continuous.as_ref()?.rewards, 0),
         choices: 0,
         basis: Basis::Run {
