@@ -223,6 +223,18 @@ fn label((en, zh): (&'static str, &'static str)) -> &'static str {
     t(en, zh)
 }
 
+/// A panic's message as the learner's program printed it (Rust's own words), with the
+/// place the harness adds (` (at file:line:column)`) in the current language.
+fn panic_line(message: &str) -> String {
+    match message.rsplit_once(" (at ") {
+        Some((said, place)) if place.ends_with(')') => {
+            let place = &place[..place.len() - 1];
+            tr!("{said} (at {place})", "{said}（位于 {place}）")
+        }
+        _ => message.to_string(),
+    }
+}
+
 fn render_failure(out: &mut String, f: &Failure) {
     let input: Vec<String> = f.input.iter().map(|(n, v)| format!("{n} = {v}")).collect();
     let _ = writeln!(out, "      {}{}", label(INPUT), input.join(", "));
@@ -232,7 +244,7 @@ fn render_failure(out: &mut String, f: &Failure) {
             let _ = writeln!(out, "      {}{}", label(GOT), f.got);
         }
         Problem::Panicked(m) => {
-            let _ = writeln!(out, "      {}{m}", label(PANICKED));
+            let _ = writeln!(out, "      {}{}", label(PANICKED), panic_line(m));
         }
         Problem::TimedOut(s) => {
             let _ = writeln!(
@@ -332,6 +344,19 @@ mod tests {
         for (en, zh) in LABELS {
             assert_eq!((width(en), width(zh)), (10, 10), "{en:?} {zh:?}");
         }
+    }
+
+    #[test]
+    fn a_panic_s_place_reads_in_the_current_language() {
+        let m = "not yet implemented (at lessons/07-td-target/exercise.rs:37:5)";
+        let _zh = Lang::Zh.scoped();
+        assert_eq!(
+            panic_line(m),
+            "not yet implemented（位于 lessons/07-td-target/exercise.rs:37:5）"
+        );
+        assert_eq!(panic_line("index out of bounds"), "index out of bounds");
+        let _en = Lang::En.scoped();
+        assert_eq!(panic_line(m), m);
     }
 
     #[test]
