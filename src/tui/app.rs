@@ -660,6 +660,7 @@ impl App {
         if let Some(path) = &self.progress_path
             && let Err(e) = self.progress.save(path)
         {
+            let e = ppo_engine::causes::message(&e);
             self.say(crate::tr!(
                 "could not save progress to {}: {e}",
                 "无法把进度保存到 {}：{e}",

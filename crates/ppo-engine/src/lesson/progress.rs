@@ -183,8 +183,9 @@ impl Progress {
             Err(e) => (
                 Self::default(),
                 Some(crate::tr!(
-                    "could not read {file} ({e}); starting fresh",
-                    "无法读取 {file}（{e}）；从头开始"
+                    "could not read {file} ({}); starting fresh",
+                    "无法读取 {file}（{}）；从头开始",
+                    crate::causes::message(&e)
                 )),
             ),
             Ok(text) => match serde_json::from_str::<Self>(&text) {
