@@ -708,9 +708,8 @@ fn push_spec(text: &mut String, spec: &str) {
 }
 
 /// The identifiers a user types: every subcommand's name, every argument's id and long
-/// name, every possible value.
-#[cfg(test)]
-pub(crate) fn identifiers(cmd: &Command, out: &mut std::collections::BTreeSet<String>) {
+/// name, every possible value and its aliases (what a Chinese screen may quote as code).
+pub fn identifiers(cmd: &Command, out: &mut std::collections::BTreeSet<String>) {
     out.insert(cmd.get_name().to_string());
     for arg in cmd.get_arguments() {
         out.insert(arg.get_id().to_string());
@@ -718,7 +717,7 @@ pub(crate) fn identifiers(cmd: &Command, out: &mut std::collections::BTreeSet<St
             out.insert(long.to_string());
         }
         for value in arg.get_possible_values() {
-            out.insert(value.get_name().to_string());
+            out.extend(value.get_name_and_aliases().map(ToString::to_string));
         }
     }
     for sub in cmd.get_subcommands() {

@@ -26,3 +26,27 @@ pub fn with_env(env: &[(&str, &str)]) -> Command {
     cmd.envs(env.iter().copied());
     cmd
 }
+
+/// The tensors of a CartPole checkpoint, zeros, with `critic.fc2.weight` of the wrong shape
+/// (`[1, 64]`: the hidden width is 128), for the tests of a checkpoint that does not fit.
+///
+/// # Errors
+/// candle cannot make a tensor.
+pub fn cartpole_tensors_with_a_wrong_shape()
+-> candle_core::Result<std::collections::HashMap<&'static str, candle_core::Tensor>> {
+    use candle_core::{DType, Device, Tensor};
+    let mut tensors = std::collections::HashMap::new();
+    for (name, shape) in [
+        ("actor.fc1.weight", vec![128, 4]),
+        ("actor.fc1.bias", vec![128]),
+        ("actor.fc2.weight", vec![2, 128]),
+        ("actor.fc2.bias", vec![2]),
+        ("critic.fc1.weight", vec![128, 4]),
+        ("critic.fc1.bias", vec![128]),
+        ("critic.fc2.weight", vec![1, 64]),
+        ("critic.fc2.bias", vec![1]),
+    ] {
+        tensors.insert(name, Tensor::zeros(shape, DType::F32, &Device::Cpu)?);
+    }
+    Ok(tensors)
+}

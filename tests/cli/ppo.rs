@@ -1,9 +1,7 @@
 //! `ppo-tutor train`, `replay` and `play` as a user runs them, including bad input.
 
-use std::collections::HashMap;
 use std::process::Output;
 
-use candle_core::{Device, Tensor};
 use serde_json::Value;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
@@ -446,20 +444,8 @@ fn replay_names_a_missing_key_and_a_wrong_shape() -> TestResult {
 fn play_names_a_tensor_of_the_wrong_shape() -> TestResult {
     let dir = tempfile::tempdir()?;
     let file = dir.path().join("bad.safetensors");
-    let dev = &Device::Cpu;
-    let mut tensors = HashMap::new();
-    for (name, shape) in [
-        ("actor.fc1.weight", vec![128, 4]),
-        ("actor.fc1.bias", vec![128]),
-        ("actor.fc2.weight", vec![2, 128]),
-        ("actor.fc2.bias", vec![2]),
-        ("critic.fc1.weight", vec![128, 4]),
-        ("critic.fc1.bias", vec![128]),
-        ("critic.fc2.weight", vec![1, 64]), // wrong: the hidden width is 128
-        ("critic.fc2.bias", vec![1]),
-    ] {
-        tensors.insert(name, Tensor::zeros(shape, candle_core::DType::F32, dev)?);
-    }
+    // `critic.fc2.weight` is [1, 64]: the hidden width is 128.
+    let mut tensors = crate::common::cartpole_tensors_with_a_wrong_shape()?;
     candle_core::safetensors::save(&tensors, &file)?;
     let out = ppo_tutor(&["play", "--load", path(&file)?, "--no-render"])?;
     let err = stderr(&out);

@@ -39,6 +39,7 @@ use std::process::Command;
 
 use clap::CommandFactory as _;
 use ppo_tutor::cli::Cli;
+use ppo_tutor::cli::help_zh::identifiers;
 use ppo_tutor::i18n::english_words;
 
 use crate::common::with_env;
@@ -132,24 +133,6 @@ fn leaves(cmd: &clap::Command, prefix: &str, out: &mut Vec<String>) {
         } else {
             leaves(sub, &path, out);
         }
-    }
-}
-
-/// The identifiers a user types: every subcommand's name, argument id, long flag and
-/// possible value.
-fn identifiers(cmd: &clap::Command, out: &mut BTreeSet<String>) {
-    out.insert(cmd.get_name().to_string());
-    for arg in cmd.get_arguments() {
-        out.insert(arg.get_id().to_string());
-        if let Some(long) = arg.get_long() {
-            out.insert(long.to_string());
-        }
-        for value in arg.get_possible_values() {
-            out.extend(value.get_name_and_aliases().map(ToString::to_string));
-        }
-    }
-    for sub in cmd.get_subcommands() {
-        identifiers(sub, out);
     }
 }
 
@@ -303,20 +286,7 @@ fn with_body(
 /// A CartPole checkpoint with one tensor of the wrong shape, one with a tensor missing, and a
 /// file that is not a checkpoint.
 fn bad_checkpoints(dir: &Path) -> Result<[PathBuf; 3], Box<dyn std::error::Error>> {
-    use candle_core::{DType, Device, Tensor};
-    let mut tensors = std::collections::HashMap::new();
-    for (name, shape) in [
-        ("actor.fc1.weight", vec![128, 4]),
-        ("actor.fc1.bias", vec![128]),
-        ("actor.fc2.weight", vec![2, 128]),
-        ("actor.fc2.bias", vec![2]),
-        ("critic.fc1.weight", vec![128, 4]),
-        ("critic.fc1.bias", vec![128]),
-        ("critic.fc2.weight", vec![1, 64]),
-        ("critic.fc2.bias", vec![1]),
-    ] {
-        tensors.insert(name, Tensor::zeros(shape, DType::F32, &Device::Cpu)?);
-    }
+    let mut tensors = crate::common::cartpole_tensors_with_a_wrong_shape()?;
     let shape = dir.join("shape.safetensors");
     candle_core::safetensors::save(&tensors, &shape)?;
     tensors.remove("actor.fc2.bias");
