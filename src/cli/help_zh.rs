@@ -688,11 +688,8 @@ fn localise_arg(mut arg: clap::Arg, cmd_key: &str, lookup: &mut dyn Lookup) -> c
         };
         let zh: Option<Vec<&'static str>> = names.iter().map(|n| lookup.value_name(n)).collect();
         if let Some(zh) = zh {
-            // clap counts a Chinese character as one column: the help goes on the line
-            // below the flag, where nothing needs aligning.
-            if zh.iter().any(|n| !n.is_ascii()) {
-                arg = arg.next_line_help(true);
-            }
+            // clap's `unicode` feature measures a Chinese character as two columns, so the
+            // help column lines up after Chinese value names too.
             arg = arg.value_names(zh);
         }
     }
