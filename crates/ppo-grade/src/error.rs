@@ -76,6 +76,12 @@ pub enum GradeError {
 
 impl std::error::Error for GradeError {}
 
+/// A lower layer's error (`io`, `serde_json`, …) as a [`GradeError`]'s `reason`: its
+/// message in both languages ([`ppo_engine::causes::message`]).
+pub(crate) fn reason(e: &(dyn std::error::Error + 'static)) -> Text {
+    Text::in_each(|| ppo_engine::causes::message(e))
+}
+
 impl std::fmt::Display for GradeError {
     /// The message in the current language (flags, paths and commands as they are).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

@@ -109,7 +109,7 @@ impl LearnerProcess {
             .spawn()
             .map_err(|e| GradeError::Run {
                 binary: program.binary.clone(),
-                reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
+                reason: crate::error::reason(&e),
             })?;
         let (tx, lines) = mpsc::channel();
         if let Some(stdout) = child.stdout.take() {

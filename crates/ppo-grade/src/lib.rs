@@ -128,7 +128,7 @@ pub fn grade(name: &str, file: Option<&Path>, opts: &GradeOptions) -> Result<Rep
     let source = std::fs::read_to_string(&path).map_err(|e| GradeError::Read {
         file: path.clone(),
         exercise: name.to_string(),
-        reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
+        reason: crate::error::reason(&e),
     })?;
     exercise.grade_source(&source, &path.display().to_string(), opts)
 }

@@ -43,7 +43,7 @@ pub fn restore(
         let file = file.to_path_buf();
         move |e: std::io::Error| GradeError::Write {
             file,
-            reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
+            reason: crate::error::reason(&e),
         }
     };
     if let Some(dir) = path.parent() {

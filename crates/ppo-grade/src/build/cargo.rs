@@ -101,7 +101,7 @@ pub(super) fn build(
     let dir = project_dir(name, cache);
     let cache_err = |e: std::io::Error| GradeError::Cache {
         dir: dir.clone(),
-        reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
+        reason: crate::error::reason(&e),
     };
     let manifest = manifest(name).map_err(|reason| GradeError::Cache {
         dir: dir.clone(),
@@ -144,7 +144,7 @@ pub(super) fn build(
         .output()
         .map_err(|e| GradeError::NoCargo {
             cargo: cargo.clone(),
-            reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
+            reason: crate::error::reason(&e),
         })?;
     let stderr = String::from_utf8_lossy(&out.stderr);
     if out.status.success() && program.binary.is_file() {

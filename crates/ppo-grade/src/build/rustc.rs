@@ -33,7 +33,7 @@ pub(super) fn build(
     }
     let cache_err = |e: std::io::Error| GradeError::Cache {
         dir: dir.clone(),
-        reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
+        reason: crate::error::reason(&e),
     };
     std::fs::create_dir_all(&dir).map_err(cache_err)?;
     std::fs::write(dir.join("main.rs"), &source.main).map_err(cache_err)?;
@@ -66,7 +66,7 @@ pub(super) fn build(
         .output()
         .map_err(|e| GradeError::NoRustc {
             rustc: rustc.clone(),
-            reason: crate::i18n::Text::in_each(|| ppo_engine::causes::message(&e)),
+            reason: crate::error::reason(&e),
         })?;
     if out.status.success() {
         std::fs::rename(dir.join(&unique), &program.binary).map_err(cache_err)?;
