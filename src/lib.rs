@@ -13,12 +13,15 @@
 //! - [`tui`]: the terminal app (ratatui), training on a worker thread; [`watch`]: grading
 //!   on save.
 //! - [`cli`]: the `ppo-tutor` command line (the binary only parses arguments and calls it).
+//! - [`screenshot`]: the README's pictures, the app's own screens painted to PNG
+//!   (`ppo-tutor dev screenshots`).
 //!
 //! The engine never imports a face; the terminal app, the notebooks and the graders all
 //! drive the same engine.
 
 pub mod cli;
 pub mod generator;
+pub mod screenshot;
 pub mod tui;
 pub mod watch;
 

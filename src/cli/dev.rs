@@ -5,6 +5,8 @@
 //! `notebooks/src/`, executing every cell on the evcxr engine. evcxr is behind the cargo
 //! feature `notebook-runner`; without it the command says how to run it
 //! ([`REGENERATE`](crate::generator::build::REGENERATE)) and exits with code 2.
+//! `dev screenshots` redraws the README's pictures from the app's screens
+//! ([`crate::screenshot`]).
 
 use std::process::ExitCode;
 
@@ -53,6 +55,16 @@ pub enum DevCommand {
                       repository run:\n  cargo run -- dev notebook-markdown"
     )]
     NotebookMarkdown,
+    /// Redraw the README's pictures (assets/screens/*.png) from the app's own screens.
+    #[command(
+        long_about = "Redraw the README's pictures, assets/screens/{en,zh}-{lesson,training,exercise}.png, \
+                      from the app's own screens: each is drawn at 160×50 as the tutor draws it \
+                      (a real training run with seed 0, a real grading) and painted with the \
+                      fonts in assets/fonts/. `cargo test --test cli screenshots` fails while a \
+                      committed picture differs from what the app draws. In the repository \
+                      run:\n  cargo run --release -- dev screenshots"
+    )]
+    Screenshots,
 }
 
 /// Arguments of `dev notebooks`.
@@ -72,6 +84,7 @@ pub fn run(args: &DevArgs) -> anyhow::Result<ExitCode> {
         DevCommand::Notebooks(args) => notebooks(args),
         DevCommand::NotebookCode => notebook_code(),
         DevCommand::NotebookMarkdown => notebook_markdown(),
+        DevCommand::Screenshots => screenshots(),
     }
 }
 
@@ -110,6 +123,30 @@ fn notebook_markdown() -> anyhow::Result<ExitCode> {
         crate::tr!(
             "{n} notebooks changed ({names}); check them with `cargo test --test notebook_code`",
             "{n} 个笔记本有改动（{names}）；请用 `cargo test --test notebook_code` 检查"
+        )
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `dev screenshots`: redraws the README's pictures and says which changed.
+fn screenshots() -> anyhow::Result<ExitCode> {
+    let written = crate::screenshot::write_all(std::path::Path::new(ROOT))?;
+    for w in &written {
+        let path = &w.path;
+        println!(
+            "{}",
+            if w.changed {
+                crate::tr!("{path}: redrawn", "{path}：已重新绘制")
+            } else {
+                crate::tr!("{path}: unchanged", "{path}：没有变化")
+            }
+        );
+    }
+    println!(
+        "{}",
+        crate::tr!(
+            "check them with `cargo test --test cli screenshots`, and look at the changed ones",
+            "请用 `cargo test --test cli screenshots` 检查，并看一看改动了的图片"
         )
     );
     Ok(ExitCode::SUCCESS)

@@ -417,6 +417,14 @@ pub const HELP_ZH: &[(&str, &str)] = &[
         "dev.notebook-markdown#long",
         "按各课重写 notebooks/*.ipynb 和 notebooks/zh/*.ipynb 的 markdown 单元格，保留每个代码单元格及其保存的输出：适用于改了某课的文字或锚点引用的代码的情况，几秒钟完成，不需要 evcxr。代码单元格与配方不一致的笔记本会被拒绝（它们的输出已经过时：请运行 `dev notebooks`）。在仓库里运行：\n  `cargo run -- dev notebook-markdown`",
     ),
+    (
+        "dev.screenshots",
+        "用应用自己的屏幕重新绘制 `README.md` 里的图片（assets/screens/*.png）",
+    ),
+    (
+        "dev.screenshots#long",
+        "用应用自己的屏幕重新绘制 `README.md` 里的图片 assets/screens/{en,zh}-{lesson,training,exercise}.png：每张都像教程那样画在 160×50 的屏幕上（真实的训练，随机种子 0；真实的评分），再用 assets/fonts/ 里的字体画成图片。已提交的图片与应用现在画出的不同时，`cargo test --test cli screenshots` 会失败。在仓库里运行：\n  `cargo run --release -- dev screenshots`",
+    ),
 ];
 
 /// Value names in Chinese, keyed by the name the code gives (or clap derives from the id).

@@ -1,6 +1,6 @@
 //! The command line, run as a user runs it (the built binary), in one test binary: the
 //! lessons and exercise commands, training, replay and checkpoints of both agents, and
-//! their errors.
+//! their errors; and the READMEs' pictures `dev screenshots` draws.
 
 mod common;
 
@@ -9,5 +9,6 @@ mod help_zh;
 mod pendulum;
 mod pendulum_train;
 mod ppo;
+mod screenshots;
 mod trust_region;
 mod zh_output;

@@ -56,6 +56,11 @@ const NOT_RUN: &[(&str, &str)] = &[
         "dev notebook-markdown",
         "rewrites the notebooks' markdown cells in the checkout the binary was built from",
     ),
+    (
+        "dev screenshots",
+        "redraws assets/screens/*.png in the checkout the binary was built from \
+         (tests/cli/screenshots.rs draws the same pictures without writing them)",
+    ),
     #[cfg(feature = "notebook-runner")]
     (
         "dev notebooks",
