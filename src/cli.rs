@@ -463,10 +463,11 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Reset(args)) => grade::reset(&args),
         Some(Command::Init(args)) => grade::init(&args),
         Some(Command::Dev(args)) => dev::run(&args),
-        None => {
-            crate::tui::run()?;
-            Ok(ExitCode::SUCCESS)
-        }
+        // The language was chosen for this run, or the app takes the one last chosen in it.
+        None => crate::tui::run(
+            cli.lang.is_some()
+                || std::env::var_os("PPO_TUTOR_LANG").is_some_and(|v| !v.is_empty()),
+        ),
     }
 }
 

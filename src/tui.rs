@@ -55,28 +55,38 @@ pub enum Event {
         usize,
         Result<Box<crate::ppo::trust_region::TrustRegionProbe>, String>,
     ),
+    /// The process was asked to end (SIGTERM, SIGHUP, SIGINT from outside): the app saves
+    /// the progress and restores the terminal, as `q` does.
+    Signal(i32),
 }
 
 /// Frames per second of the cart-pole animation.
 const TICK: Duration = Duration::from_millis(50);
 
-/// Runs the tutor in the terminal until the learner quits.
+/// Runs the tutor in the terminal until the learner quits (success) or a signal ends it
+/// (128 + the signal's number, as a shell reports it). Unless the language was chosen
+/// for this run (`chosen`: `--lang` or `PPO_TUTOR_LANG`), the one last chosen in the app
+/// with `L` (kept in the progress file) is used.
 ///
 /// # Errors
-/// No terminal attached, the lessons cannot be loaded, or terminal I/O fails.
-pub fn run() -> anyhow::Result<()> {
+/// No terminal attached, the lessons cannot be loaded, terminal I/O fails, or the progress
+/// could not be saved when leaving (the error says where and why).
+pub fn run(chosen: bool) -> anyhow::Result<std::process::ExitCode> {
     if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
         anyhow::bail!(crate::tr!(
             "ppo-tutor needs an interactive terminal; without one, use `ppo-tutor lessons` and `ppo-tutor show <id> [--step N]`",
             "ppo-tutor 需要交互式终端；没有终端时，请用 `ppo-tutor lessons` 和 `ppo-tutor show <id> [--step N]`"
         ));
     }
+    let path = Progress::default_path();
+    let (progress, warning) = Progress::load(&path);
+    if !chosen && let Some(lang) = progress.language() {
+        lang.set_current();
+    }
     let course = Course::embedded().context(crate::i18n::t(
         "loading the embedded lessons",
         "加载内置课程",
     ))?;
-    let path = Progress::default_path();
-    let (progress, warning) = Progress::load(&path);
     let mut app = App::new(course, progress, Some(path));
     if let Some(w) = warning {
         app.warn(&w);
@@ -89,6 +99,7 @@ pub fn run() -> anyhow::Result<()> {
     spawn_input(tx.clone());
     spawn_ticker(tx.clone());
     let theme = theme::Theme::from_env();
+    spawn_signals(tx.clone());
     let mut terminal = ratatui::init();
     let _ = crossterm::execute!(std::io::stdout(), EnableMouseCapture);
     // Start with one episode so every live value has something to show.
@@ -98,9 +109,37 @@ pub fn run() -> anyhow::Result<()> {
     ratatui::restore();
     let _ = cmd_tx.send(Command::Quit);
     let _ = worker.join();
-    app.save_progress();
-    result
+    // Once more, with the run's end recorded; an error now is the last word, on stderr.
+    if let Err(said) = app.save_progress() {
+        result?;
+        anyhow::bail!(said);
+    }
+    result?;
+    Ok(app.signal.map_or(std::process::ExitCode::SUCCESS, |sig| {
+        std::process::ExitCode::from(u8::try_from(128 + sig).unwrap_or(1))
+    }))
 }
+
+/// Turns SIGTERM, SIGHUP and SIGINT into [`Event::Signal`]: the loop then leaves as on `q`,
+/// restoring the terminal (a default SIGTERM would leave it in the alternate screen with
+/// the cursor hidden).
+#[cfg(unix)]
+fn spawn_signals(tx: Sender<Event>) {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGTERM, SIGHUP, SIGINT]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        for signal in signals.forever() {
+            if tx.send(Event::Signal(signal)).is_err() {
+                return;
+            }
+        }
+    });
+}
+
+#[cfg(not(unix))]
+fn spawn_signals(_tx: Sender<Event>) {}
 
 fn event_loop(
     terminal: &mut ratatui::DefaultTerminal,
@@ -117,6 +156,9 @@ fn event_loop(
         if watched_lesson != Some(app.lesson) {
             watched_lesson = Some(app.lesson);
             watch_exercise_files(app, &mut watcher, tx);
+        }
+        if let Ok(size) = terminal.size() {
+            app.resize(size.width, size.height);
         }
         terminal.draw(|f| f.render_widget(&ui::View { app, theme }, f.area()))?;
         let Ok(event) = rx.recv() else { return Ok(()) };
@@ -152,6 +194,8 @@ pub fn handle(app: &mut App, event: Event) {
         Event::Lab(experiment, state) => app.on_lab(experiment, state),
         Event::Saved => app.on_saved(),
         Event::Probe(episodes, result) => app.on_probe(episodes, result),
+        Event::Signal(signal) => app.on_signal(signal),
+        Event::Input(event::Event::Resize(width, height)) => app.resize(width, height),
         Event::Input(event::Event::Key(key)) => {
             let context = keys::Context {
                 overlay_open: app.overlay != app::Overlay::None
@@ -159,10 +203,15 @@ pub fn handle(app: &mut App, event: Event) {
                 sandbox_open: app.overlay == app::Overlay::Sandbox,
                 quiz_open: app.overlay == app::Overlay::Quiz,
             };
-            if let Some(action) = keys::map(key, context) {
+            // While the screen only says it is too small, keys would act unseen: only
+            // quitting does.
+            if let Some(action) = keys::map(key, context)
+                && (!app.too_small || action == Action::Quit)
+            {
                 app.update(action);
             }
         }
+        Event::Input(event::Event::Mouse(_)) if app.too_small => {}
         Event::Input(event::Event::Mouse(m)) => match m.kind {
             MouseEventKind::ScrollDown => app.update(Action::ScrollDown),
             MouseEventKind::ScrollUp => app.update(Action::ScrollUp),

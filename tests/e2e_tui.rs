@@ -235,3 +235,164 @@ fn walk(words: &Words) -> TestResult {
     assert!(saved.contains(&last.id), "progress not saved: {saved}");
     Ok(())
 }
+
+/// The app in a 160×50 pseudo-terminal: its child, its screen, every byte it wrote, and
+/// its keyboard (which keeps the terminal open).
+type Spawned = (
+    Box<dyn portable_pty::Child + Send + Sync>,
+    Screen,
+    Arc<Mutex<Vec<u8>>>,
+    Keyboard,
+);
+
+/// Keys for the app: the pseudo-terminal's writer, and its master, kept open with it.
+struct Keyboard {
+    writer: Box<dyn Write + Send>,
+    _master: Box<dyn portable_pty::MasterPty + Send>,
+}
+
+impl Keyboard {
+    fn write_all(&mut self, bytes: &[u8]) -> std::io::Result<()> {
+        self.writer.write_all(bytes)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.writer.flush()
+    }
+}
+
+/// The app started in `dir` (its progress file `state.json` there) in an English locale
+/// with no language set, then with `env` set.
+
+fn spawn_app(
+    dir: &std::path::Path,
+    env: &[(&str, &str)],
+) -> Result<Spawned, Box<dyn std::error::Error>> {
+    let pty = native_pty_system().openpty(PtySize {
+        rows: 50,
+        cols: 160,
+        pixel_width: 0,
+        pixel_height: 0,
+    })?;
+    let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    cmd.env("PPO_TUTOR_STATE", dir.join("state.json"));
+    cmd.env("TERM", "xterm-256color");
+    cmd.env_remove("PPO_TUTOR_LANG");
+    cmd.env("LANG", "C.UTF-8");
+    cmd.env_remove("LC_ALL");
+    cmd.env_remove("LC_MESSAGES");
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    cmd.cwd(dir);
+    let child = pty.slave.spawn_command(cmd)?;
+    drop(pty.slave);
+    let parser = Arc::new(Mutex::new(vt100::Parser::new(50, 160, 0)));
+    let raw = Arc::new(Mutex::new(Vec::<u8>::new()));
+    let mut reader = pty.master.try_clone_reader()?;
+    let (sink, bytes) = (Arc::clone(&parser), Arc::clone(&raw));
+    std::thread::spawn(move || {
+        let mut buf = [0_u8; 8192];
+        while let Ok(n) = reader.read(&mut buf) {
+            if n == 0 {
+                break;
+            }
+            if let Ok(mut p) = sink.lock() {
+                p.process(&buf[..n]);
+            }
+            if let Ok(mut b) = bytes.lock() {
+                b.extend_from_slice(&buf[..n]);
+            }
+        }
+    });
+    let writer = pty.master.take_writer()?;
+    let keys = Keyboard {
+        writer,
+        _master: pty.master,
+    };
+    Ok((child, Screen { parser }, raw, keys))
+}
+
+/// Waits for `child` to exit (at most 20 s).
+fn exit_of(
+    child: &mut Box<dyn portable_pty::Child + Send + Sync>,
+) -> Result<portable_pty::ExitStatus, Box<dyn std::error::Error>> {
+    let deadline = Instant::now() + Duration::from_secs(20);
+    loop {
+        if let Some(status) = child.try_wait()? {
+            return Ok(status);
+        }
+        if Instant::now() > deadline {
+            child.kill()?;
+            return Err("ppo-tutor did not exit".into());
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// SIGTERM and SIGHUP end the app as `q` does: the terminal leaves the alternate screen
+/// with the cursor shown, the progress is saved, and the exit status is the shell's
+/// 128 + the signal's number.
+#[cfg(unix)]
+#[test]
+fn a_signal_restores_the_terminal_and_saves_the_progress() -> TestResult {
+    for (signal, number) in [("TERM", 15), ("HUP", 1)] {
+        let dir = tempfile::tempdir()?;
+        let (mut child, screen, raw, mut writer) =
+            spawn_app(dir.path(), &[("PPO_TUTOR_LANG", "en")])?;
+        screen.wait_for("episode 1 ·", 30)?;
+        // A step forward, so that the saved progress shows it was written at the end.
+        writer.write_all(b"\x1b[C")?;
+        writer.flush()?;
+        screen.wait_for("step 2/", 10)?;
+        let before = raw.lock().map(|b| b.len()).unwrap_or(0);
+        let pid = child.process_id().ok_or("no pid")?;
+        let sent = std::process::Command::new("kill")
+            .args([format!("-{signal}"), pid.to_string()])
+            .status()?;
+        assert!(sent.success(), "kill -{signal} failed");
+        let status = exit_of(&mut child)?;
+        assert_eq!(status.exit_code(), 128 + number, "SIG{signal}: {status:?}");
+        // The reader may still be draining the last bytes.
+        std::thread::sleep(Duration::from_millis(200));
+        let after: Vec<u8> = raw.lock().map(|b| b[before..].to_vec()).unwrap_or_default();
+        let after = String::from_utf8_lossy(&after);
+        assert!(
+            after.contains("\u{1b}[?1049l"),
+            "SIG{signal}: the alternate screen was not left: {after:?}"
+        );
+        assert!(
+            after.contains("\u{1b}[?25h"),
+            "SIG{signal}: the cursor was not shown again: {after:?}"
+        );
+        let saved = std::fs::read_to_string(dir.path().join("state.json"))?;
+        assert!(saved.contains("\"step\": 1"), "SIG{signal}: {saved}");
+    }
+    Ok(())
+}
+
+/// `L` is kept: the next start (no `--lang`, no PPO_TUTOR_LANG, an English locale) opens
+/// in the language chosen last; PPO_TUTOR_LANG still decides when it is set.
+#[test]
+fn the_language_chosen_with_l_is_kept_for_the_next_start() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let (mut child, screen, _, mut writer) = spawn_app(dir.path(), &[])?;
+    screen.wait_for("episode 1 ·", 30)?;
+    writer.write_all(b"L")?;
+    writer.flush()?;
+    screen.wait_for("回合 1 ·", 10)?;
+    writer.write_all(b"q")?;
+    writer.flush()?;
+    assert!(exit_of(&mut child)?.success());
+    let (mut child, screen, _, mut writer) = spawn_app(dir.path(), &[])?;
+    screen.wait_for("回合 1 ·", 30)?;
+    writer.write_all(b"q")?;
+    writer.flush()?;
+    assert!(exit_of(&mut child)?.success());
+    let (mut child, screen, _, mut writer) = spawn_app(dir.path(), &[("PPO_TUTOR_LANG", "en")])?;
+    screen.wait_for("episode 1 ·", 30)?;
+    writer.write_all(b"q")?;
+    writer.flush()?;
+    assert!(exit_of(&mut child)?.success());
+    Ok(())
+}

@@ -50,7 +50,7 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
     let sent: Vec<Command> = app.run.outbox.drain(..).collect();
     assert!(
         sent.iter()
-            .any(|c| matches!(c, Command::Switch { config, seed: 0 }
+            .any(|c| matches!(c, Command::Switch { config, seed: 0, .. }
             if config.as_ref() == &RunConfig::Pendulum(PpoContinuousConfig::default()))),
         "{sent:?}"
     );
@@ -276,7 +276,7 @@ fn the_worker_keeps_one_session_per_environment() -> TestResult {
     let handle = worker::spawn(config.clone(), 5, cmd_rx, event_tx);
     let wait = || events.recv_timeout(Duration::from_secs(60));
     let episode = |event: WorkerEvent| match event {
-        WorkerEvent::Episode(s) => Ok(*s),
+        WorkerEvent::Episode { snapshot, .. } => Ok(*snapshot),
         other => Err(format!("expected an episode, got {other:?}")),
     };
     for _ in 0..2 {
@@ -287,6 +287,7 @@ fn the_worker_keeps_one_session_per_environment() -> TestResult {
     cmd_tx.send(Command::Switch {
         config: Box::new(pendulum),
         seed: 0,
+        run: 1,
     })?;
     assert!(matches!(wait()?, WorkerEvent::Reset { seed: 0 }));
     cmd_tx.send(Command::OneEpisode)?;
@@ -295,6 +296,7 @@ fn the_worker_keeps_one_session_per_environment() -> TestResult {
     cmd_tx.send(Command::Switch {
         config: Box::new(RunConfig::CartPole(config.clone())),
         seed: 9,
+        run: 2,
     })?;
     assert!(matches!(wait()?, WorkerEvent::Resumed { episodes: 2 }));
     cmd_tx.send(Command::OneEpisode)?;
@@ -319,7 +321,10 @@ fn the_worker_sends_its_session_snapshot_after_each_episode() -> TestResult {
     for _ in 0..2 {
         cmd_tx.send(Command::OneEpisode)?;
         let event = events.recv_timeout(Duration::from_secs(60))?;
-        assert!(matches!(event, WorkerEvent::Episode(_)), "{event:?}");
+        assert!(
+            matches!(event, WorkerEvent::Episode { run: 0, .. }),
+            "{event:?}"
+        );
         app.on_worker(event);
     }
     cmd_tx.send(Command::Quit)?;
@@ -353,7 +358,7 @@ fn a_worker_that_cannot_start_says_why() -> TestResult {
     let (event_tx, events) = mpsc::channel();
     let _handle = worker::spawn(bad, 0, cmd_rx, event_tx);
     match events.recv_timeout(Duration::from_secs(10))? {
-        WorkerEvent::Error(message) => assert!(message.contains("gamma"), "{message}"),
+        WorkerEvent::Error { message, .. } => assert!(message.contains("gamma"), "{message}"),
         other => return Err(format!("expected an error, got {other:?}").into()),
     }
     Ok(())
@@ -1074,6 +1079,34 @@ fn the_explanation_says_more_follows_and_stops_at_its_end() -> TestResult {
     Ok(())
 }
 
+/// `r` while training: an episode the old run finished before the worker read the reset
+/// (already on its way) is not shown over the fresh agent, nor is its end.
+#[test]
+fn r_while_training_drops_what_the_old_run_sent_after_it() -> TestResult {
+    let mut app = app()?;
+    let old = Session::run(PpoConfig::default(), 0, 3)?;
+    app.update(Action::TrainToggle);
+    app.update(Action::ResetAgent);
+    let fresh = app.run.snapshot.clone();
+    assert_eq!(fresh.episodes, 0, "a fresh agent shows at once");
+    app.on_worker(WorkerEvent::Episode {
+        run: 0,
+        snapshot: Box::new(old.clone()),
+    });
+    app.on_worker(WorkerEvent::Finished { run: 0 });
+    assert_eq!(app.run.snapshot, fresh, "the old run's episode is dropped");
+    assert_eq!(app.run.train, TrainState::Paused);
+    let header = screen(&app, 160, 50)?;
+    assert!(header.contains("episode 0"), "{header}");
+    // The new run's own episodes are shown.
+    app.on_worker(WorkerEvent::Episode {
+        run: app.run.id,
+        snapshot: Box::new(old.clone()),
+    });
+    assert_eq!(app.run.snapshot, old);
+    Ok(())
+}
+
 /// The worker's confirmation of a fresh agent does not overwrite what the app said when it
 /// asked for it ("a Pendulum-v1 lesson: fresh agent …").
 #[test]
@@ -1248,25 +1281,335 @@ fn cut_tensor_title_lines_show_that_they_go_on() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: a code line wider than the code pane ends in a `…` at the pane's
-/// edge, and code below the pane's last row is counted there.
+/// A code line wider than the code pane wraps (its rest after a dim `↪`), nothing is cut;
+/// code below the pane's last row is counted there, and `]` / `[` scroll the pane.
 #[test]
-fn cut_code_lines_show_that_they_go_on() -> TestResult {
+fn code_lines_wrap_and_the_code_pane_scrolls() -> TestResult {
+    let _en = Lang::En.scoped();
     let mut app = app()?;
     open(&mut app, "td-target")?;
+    let code_rows = |text: &str| -> Vec<String> {
+        let mut rows = Vec::new();
+        let mut inside = false;
+        for line in text.lines() {
+            if line.contains("┌ the code that runs") {
+                inside = true;
+            } else if inside {
+                if line.contains('└') {
+                    break;
+                }
+                if let Some((_, right)) = line.rsplit_once("││") {
+                    rows.push(right.trim_end_matches(['"', '│']).to_string());
+                }
+            }
+        }
+        rows
+    };
     let text = screen(&app, 80, 24)?;
-    let code: Vec<&str> = text.lines().skip(2).take(5).collect();
-    assert!(code.iter().any(|l| l.ends_with("…│\"")), "{text}");
+    let rows = code_rows(&text);
+    assert!(!rows.iter().any(|r| r.trim_end().ends_with('…')), "{text}");
+    let last = rows.last().ok_or("no code rows")?;
+    assert!(last.contains("more lines: ] scrolls"), "{text}");
+    let first = rows.first().cloned().unwrap_or_default();
+    let mut seen = rows.clone();
+    for _ in 0..200 {
+        app.update(Action::CodeDown);
+        seen.extend(code_rows(&screen(&app, 80, 24)?));
+    }
+    let end = code_rows(&screen(&app, 80, 24)?);
+    assert!(end[0].contains("lines above: [ scrolls"), "{end:#?}");
+    assert!(!end.iter().any(|r| r.contains("more lines")), "{end:#?}");
     assert!(
-        text.lines()
-            .skip(2)
-            .take(6)
-            .any(|l| l.contains("more lines")),
-        "{text}"
+        seen.iter().any(|r| r.contains('↪')),
+        "a wrapped line continues after ↪: {seen:#?}"
     );
-    // Wide enough for every line: no mark.
-    let wide = screen(&app, 240, 60)?;
-    assert!(!wide.contains("…│"), "{wide}");
+    // Every line of the step's code was on screen at some scroll.
+    let step = app.current_step().ok_or("no step")?;
+    let lesson = app.current_lesson().ok_or("no lesson")?;
+    let pane = ppo_tutor::tui::ui::code_pane_text(lesson, app.step, &|_| false);
+    for line in pane.lines().filter(|l| l.len() > 3 && l.len() < 30) {
+        assert!(
+            seen.iter().any(|r| r.contains(line.trim())),
+            "{line:?} never shown ({})",
+            step.title
+        );
+    }
+    for _ in 0..200 {
+        app.update(Action::CodeUp);
+    }
+    assert_eq!(code_rows(&screen(&app, 80, 24)?)[0], first);
+    // A new step starts at the top.
+    app.update(Action::CodeDown);
+    app.update(Action::Next);
+    assert!(!screen(&app, 80, 24)?.contains("lines above: ["));
+    Ok(())
+}
+
+/// While the terminal is too small, the screen says so and keys act on nothing but `q`.
+#[test]
+fn keys_wait_while_the_terminal_is_too_small() -> TestResult {
+    use crossterm::event::{Event as Input, KeyCode, KeyEvent, KeyModifiers};
+    use ppo_tutor::tui::{Event, handle};
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    let key = |c: char| {
+        Event::Input(Input::Key(KeyEvent::new(
+            KeyCode::Char(c),
+            KeyModifiers::NONE,
+        )))
+    };
+    handle(&mut app, Event::Input(Input::Resize(60, 20)));
+    assert!(app.too_small);
+    let text = screen(&app, 60, 20)?;
+    assert!(text.contains("needs at least 80×24"), "{text}");
+    let before = (app.lesson, app.step, app.overlay);
+    for c in ['n', 'l', 's', '?', 't', 'r'] {
+        handle(&mut app, key(c));
+    }
+    assert_eq!((app.lesson, app.step, app.overlay), before);
+    assert!(app.run.outbox.is_empty(), "{:?}", app.run.outbox);
+    handle(&mut app, Event::Input(Input::Resize(80, 24)));
+    handle(&mut app, key('n'));
+    assert_eq!(app.step, before.1 + 1, "keys act again once it fits");
+    handle(&mut app, Event::Input(Input::Resize(60, 20)));
+    handle(&mut app, key('q'));
+    assert!(app.quit, "q still quits");
+    Ok(())
+}
+
+/// The status line says the latest message first and whole, at 80×24 and at 160×50 (on a
+/// second row when it needs one): "all 500 episodes done: r resets the agent, s opens the
+/// sandbox" is not cut after "done".
+#[test]
+fn the_latest_message_is_read_whole_at_both_sizes() -> TestResult {
+    for lang in [Lang::En, Lang::Zh] {
+        let _lang = lang.scoped();
+        let mut app = app()?;
+        open(&mut app, "losses")?;
+        app.run.train = TrainState::Finished;
+        app.update(Action::TrainToggle);
+        let message = app.status.text().to_string();
+        assert!(!message.is_empty());
+        for (width, height) in [(80, 24), (160, 50)] {
+            let text = screen(&app, width, height)?;
+            let footer: Vec<&str> = text.lines().rev().take(3).collect();
+            let joined: String = footer
+                .iter()
+                .rev()
+                .map(|l| l.trim_matches('"').trim())
+                .collect::<Vec<_>>()
+                .join("");
+            let squeezed: String = message.split_whitespace().collect();
+            let on_screen: String = joined.split_whitespace().collect();
+            assert!(
+                on_screen.contains(&squeezed),
+                "{width}x{height}: {message:?} not whole in\n{text}"
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `d` opens a step's details blocks one at a time and only on that step: a block to read
+/// after a prediction stays folded when one was opened elsewhere.
+#[test]
+fn d_opens_one_block_of_one_step() -> TestResult {
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    open(&mut app, "cartpole")?;
+    while !app
+        .current_step()
+        .is_some_and(|s| ppo_tutor::lesson::details::has_details(&s.body))
+    {
+        app.update(Action::Next);
+    }
+    app.update(Action::Details);
+    assert!(screen(&app, 140, 45)?.contains("explicit Euler"));
+    open(&mut app, "trust-region")?;
+    while !app
+        .current_step()
+        .is_some_and(|s| s.body.contains("open after you have predicted"))
+    {
+        app.update(Action::Next);
+        assert!(app.overlay != Overlay::Quiz, "no such step");
+    }
+    assert_eq!(app.explanation.opened(&app.ctx()), 0);
+    let mut text = String::new();
+    for _ in 0..100 {
+        text.push_str(&screen(&app, 160, 50)?);
+        app.update(Action::ScrollDown);
+    }
+    assert!(
+        text.contains("▸ Details: What five seeds showed (open after you have predicted)"),
+        "the prediction's answer stays folded:\n{text}"
+    );
+    // Coming back to the first step, its block is still open.
+    open(&mut app, "cartpole")?;
+    while !app
+        .current_step()
+        .is_some_and(|s| ppo_tutor::lesson::details::has_details(&s.body))
+    {
+        app.update(Action::Next);
+    }
+    assert!(screen(&app, 140, 45)?.contains("explicit Euler"));
+    Ok(())
+}
+
+/// A question that asks for a number of the run hides the live values behind it until it
+/// is answered (lesson 7's last question asks δ_0, which row 0 of td_delta shows).
+#[test]
+fn an_open_prediction_hides_the_live_values() -> TestResult {
+    use ppo_tutor::lesson::quiz::QuestionKind;
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    open_quiz(&mut app, "td-target")?;
+    let count = app.current_lesson().map_or(0, |l| l.quiz.len());
+    let mut found = false;
+    for i in 0..count {
+        let Some(q) = app.quiz_question(i).cloned() else {
+            continue;
+        };
+        if let QuestionKind::Predict { .. } = q.kind {
+            found = true;
+            let text = screen(&app, 160, 50)?;
+            assert!(app.live_hidden(), "question {}", i + 1);
+            assert!(
+                text.contains("hidden while the quiz question is open"),
+                "{text}"
+            );
+            assert!(!text.contains("td_delta ("), "{text}");
+            for c in "0.5".chars() {
+                app.update(Action::Type(c));
+            }
+            app.update(Action::Enter);
+            assert!(!app.live_hidden(), "answered: the values come back");
+            assert!(!screen(&app, 160, 50)?.contains("hidden while the quiz"));
+        }
+        app.update(Action::Next);
+    }
+    assert!(found, "lesson 7 has a prediction");
+    Ok(())
+}
+
+/// A letter that is not one of the choices is said to be so, in the app's words (not the
+/// notebook's "put your choice in place of").
+#[test]
+fn a_letter_past_the_choices_says_which_letters_answer() -> TestResult {
+    use ppo_tutor::lesson::quiz::QuestionKind;
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    for lesson in app.course.lessons.clone() {
+        for (i, q) in lesson.quiz.iter().enumerate() {
+            let QuestionKind::Choice { choices, .. } = &q.kind else {
+                continue;
+            };
+            if choices.len() >= 4 {
+                continue;
+            }
+            open_quiz(&mut app, &lesson.id)?;
+            for _ in 0..i {
+                app.update(Action::Next);
+            }
+            app.update(Action::Type('d'));
+            let said = app.status.text().to_string();
+            assert!(
+                said.contains("not one of the choices: answer with a–c"),
+                "{said}"
+            );
+            assert!(!said.contains("in place of"), "{said}");
+            assert!(!app.quiz.answered());
+            return Ok(());
+        }
+    }
+    Err("no question with three choices".into())
+}
+
+/// After a sandbox change the header says the live agent runs the learner's settings, and
+/// the status line names what differs from the lessons'.
+#[test]
+fn the_app_says_when_the_agent_runs_other_settings() -> TestResult {
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    assert!(!screen(&app, 160, 50)?.contains("your settings"));
+    app.update(Action::Sandbox);
+    app.sandbox.selected = "eps";
+    app.update(Action::Increase);
+    app.update(Action::Enter);
+    let said = app.status.text().to_string();
+    assert!(
+        said.contains("not the lessons' settings: eps 0.25 (0.2)"),
+        "{said}"
+    );
+    assert!(screen(&app, 160, 50)?.contains("your settings"));
+    app.update(Action::Sandbox);
+    app.sandbox.selected = "eps";
+    app.update(Action::Decrease);
+    app.update(Action::Enter);
+    assert!(app.status.text().contains("with the lessons' settings"));
+    assert!(!screen(&app, 160, 50)?.contains("your settings"));
+    Ok(())
+}
+
+/// `x` on a step without an experiment names the lessons that have one, from the course.
+#[test]
+fn x_without_an_experiment_names_the_lessons_with_one() -> TestResult {
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    app.update(Action::RunLab);
+    let said = app.status.text().to_string();
+    let with: Vec<String> = app
+        .course
+        .lessons
+        .iter()
+        .filter(|l| l.steps.iter().any(|s| s.lab.is_some()))
+        .map(|l| l.order.to_string())
+        .collect();
+    assert!(with.len() >= 4, "{with:?}");
+    assert!(
+        said.contains(&format!("lessons {} have them", with.join(", "))),
+        "{said}"
+    );
+    Ok(())
+}
+
+/// PgDn/PgUp move the live tables a page, Home/End to their first and last rows.
+#[test]
+fn page_keys_and_home_end_scroll_the_live_tables() -> TestResult {
+    let _en = Lang::En.scoped();
+    let mut app = App::new(Course::embedded()?, Progress::default(), None);
+    app.show(Session::run(PpoConfig::default(), 0, 30)?);
+    open(&mut app, "training")?;
+    let rows = |app: &App| -> Result<Vec<String>, Box<dyn std::error::Error>> {
+        Ok(live_pane(&screen(app, 80, 24)?))
+    };
+    let first = rows(&app)?;
+    assert!(
+        first
+            .iter()
+            .any(|r| r.split_whitespace().next() == Some("1")),
+        "{first:#?}"
+    );
+    app.update(Action::TensorLast);
+    let last = rows(&app)?;
+    assert!(
+        last.iter()
+            .any(|r| r.split_whitespace().next() == Some("30")),
+        "{last:#?}"
+    );
+    assert!(last.iter().any(|r| r.contains("of 30")), "{last:#?}");
+    app.update(Action::TensorFirst);
+    assert_eq!(rows(&app)?, first);
+    app.update(Action::TensorPageDown);
+    let paged = rows(&app)?;
+    assert_ne!(paged, first);
+    assert!(
+        !paged
+            .iter()
+            .any(|r| r.split_whitespace().next() == Some("1")),
+        "{paged:#?}"
+    );
+    app.update(Action::TensorPageUp);
+    assert_eq!(rows(&app)?, first);
     Ok(())
 }
 
@@ -1348,5 +1691,73 @@ fn angle_brackets_scroll_the_live_columns() -> TestResult {
         app.tensor_hscroll, 0,
         "a new step starts at the first column"
     );
+    Ok(())
+}
+
+/// Every step that shows a per-epoch value (the losses, approx_kl, clip_frac, the ratios'
+/// extremes, the entropy) shows its first epoch as row 1 and, after End, its last, at
+/// 80×24 and 160×50 in both languages: lesson 12's "in the first epoch … the actor loss
+/// equals minus the mean of the advantage column" and "the ratios start at exactly 1", and
+/// lesson 13's "approx_kl is 0 in the first epoch" ask for those rows.
+#[test]
+fn every_step_showing_epochs_shows_the_first_and_the_last() -> TestResult {
+    use ppo_tutor::lesson::Index;
+    for lang in [Lang::En, Lang::Zh] {
+        let _lang = lang.scoped();
+        let corner = lang.pick("epoch", "轮");
+        let mut app = app()?;
+        let total = app.course.total_steps();
+        let mut checked = 0;
+        for i in 0..total {
+            show_pendulum_run(&mut app)?;
+            let step = app.current_step().ok_or("no step")?.clone();
+            let epochs = step
+                .show
+                .iter()
+                .filter_map(|n| app.run.snapshot.tensor(n))
+                .filter(|t| t.index == Index::Epoch)
+                .map(|t| t.values.len())
+                .max();
+            if let Some(epochs) = epochs {
+                let lesson = app.current_lesson().ok_or("no lesson")?;
+                let name = format!("{} step {}", lesson.id, app.step + 1);
+                for (width, height) in [(80, 24), (160, 50)] {
+                    let row_of = |text: &str, e: usize| {
+                        live_pane(text)
+                            .iter()
+                            .any(|r| r.split_whitespace().next() == Some(e.to_string().as_str()))
+                    };
+                    let text = screen(&app, width, height)?;
+                    let pane = live_pane(&text);
+                    assert!(
+                        pane.iter().any(|r| r.trim_start().starts_with(corner)),
+                        "{name} {width}x{height}: no epoch table\n{text}"
+                    );
+                    assert!(
+                        row_of(&text, 1),
+                        "{name} {width}x{height}: no epoch 1\n{text}"
+                    );
+                    app.update(Action::TensorLast);
+                    let text = screen(&app, width, height)?;
+                    assert!(
+                        row_of(&text, epochs),
+                        "{name} {width}x{height}: End shows no epoch {epochs}\n{text}"
+                    );
+                    app.update(Action::TensorFirst);
+                }
+                checked += 1;
+            }
+            if i + 1 < total {
+                app.update(Action::Next);
+            }
+            if app.overlay == Overlay::Quiz {
+                let questions = app.current_lesson().map_or(0, |l| l.quiz.len());
+                for _ in 0..questions {
+                    app.update(Action::Next);
+                }
+            }
+        }
+        assert!(checked >= 8, "{lang:?}: only {checked} steps show epochs");
+    }
     Ok(())
 }

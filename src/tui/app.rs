@@ -74,6 +74,13 @@ pub struct App {
     pub tensor_scroll: usize,
     /// The first column of the live tables shown (after the step column), `<`/`>`.
     pub tensor_hscroll: usize,
+    /// How the latest drawing showed the live tables' rows: a page for PgDn/PgUp, and the
+    /// last useful scroll for End.
+    pub tensor_rows: std::cell::Cell<super::widgets::tensors::Rows>,
+    /// The first line of the code pane shown (`[`/`]`).
+    pub code_scroll: usize,
+    /// The largest useful [`App::code_scroll`], as the latest drawing measured it.
+    pub code_max: std::cell::Cell<usize>,
     /// The open face.
     pub overlay: Overlay,
     /// The key map.
@@ -100,6 +107,13 @@ pub struct App {
     pub progress_path: Option<PathBuf>,
     /// Set when the app should exit.
     pub quit: bool,
+    /// The learner was told the progress cannot be saved: the next `q` quits anyway.
+    quit_unsaved: bool,
+    /// Whether the terminal is smaller than the layout needs: keys but `q` wait until it
+    /// is enlarged (the screen says so).
+    pub too_small: bool,
+    /// The signal that ended the app, if one did (SIGTERM, SIGHUP, SIGINT).
+    pub signal: Option<i32>,
     /// Whether the language key switches only this thread's language (tests, which render
     /// both languages on parallel threads) rather than the whole process's (the app).
     pub thread_language: bool,
@@ -144,6 +158,9 @@ impl App {
             explanation: Explanation::default(),
             tensor_scroll: 0,
             tensor_hscroll: 0,
+            tensor_rows: std::cell::Cell::default(),
+            code_scroll: 0,
+            code_max: std::cell::Cell::new(0),
             overlay: Overlay::None,
             help: Help::default(),
             lesson_list: LessonList::default(),
@@ -157,6 +174,9 @@ impl App {
             progress,
             progress_path,
             quit: false,
+            quit_unsaved: false,
+            too_small: false,
+            signal: None,
             thread_language: false,
             language_guard: None,
         }
@@ -203,10 +223,15 @@ impl App {
                     self.lesson_list.open(self.lesson);
                 }
                 self.quiz.clear_answer();
-                self.status.set(
-                    self.overlay.owner(),
-                    crate::tr!("language: {}", "语言：{}", next.name()),
-                );
+                // Kept for the next start (unless `--lang` or PPO_TUTOR_LANG says otherwise).
+                self.progress.set_language(next);
+                let saved = self.save_progress();
+                if saved.is_ok() {
+                    self.status.set(
+                        self.overlay.owner(),
+                        crate::tr!("language: {}", "语言：{}", next.name()),
+                    );
+                }
             }
             Err(e) => {
                 self.warn(&crate::tr!(
@@ -285,7 +310,19 @@ impl App {
                 let said = self
                     .run
                     .retrain(self.sandbox.run_config(), self.sandbox.seed);
-                self.say(said);
+                let changed = self.run.changed_settings();
+                if changed.is_empty() {
+                    self.say(crate::tr!(
+                        "{said}, with the lessons' settings",
+                        "{said}，用的是课程里的设置"
+                    ));
+                } else {
+                    self.say(crate::tr!(
+                        "{said}, not the lessons' settings: {} (the lessons' value in brackets); the lessons' figures are for theirs",
+                        "{said}，不是课程里的设置：{}（括号里是课程用的值）；课程里的数字对应课程的设置",
+                        changed.join(", ")
+                    ));
+                }
             }
             Reply::Answered(i, verdict) => self.record_answer(i, verdict.right),
             Reply::Finished => {
@@ -317,8 +354,16 @@ impl App {
             Action::Quit => self.quit(),
             Action::Next => self.next_step(),
             Action::Prev => self.prev_step(),
-            Action::TensorDown => self.tensor_scroll = self.tensor_scroll.saturating_add(5),
-            Action::TensorUp => self.tensor_scroll = self.tensor_scroll.saturating_sub(5),
+            Action::TensorDown => self.scroll_tensors(1, true),
+            Action::TensorUp => self.scroll_tensors(1, false),
+            Action::TensorPageDown => self.scroll_tensors(self.tensor_page(), true),
+            Action::TensorPageUp => self.scroll_tensors(self.tensor_page(), false),
+            Action::TensorFirst => self.tensor_scroll = 0,
+            Action::TensorLast => self.tensor_scroll = self.max_tensor_scroll(),
+            Action::CodeDown => {
+                self.code_scroll = (self.code_scroll + 1).min(self.code_max.get());
+            }
+            Action::CodeUp => self.code_scroll = self.code_scroll.saturating_sub(1),
             Action::TensorRight => {
                 let last = self.current_step().map_or(0, |s| {
                     super::widgets::tensors::max_hscroll(&self.run.snapshot, &s.show)
@@ -356,7 +401,14 @@ impl App {
             Action::Hint => self.reveal_hint(),
             Action::RunLab => {
                 let experiment = self.current_step().and_then(|s| s.lab);
-                let said = self.lab.start(experiment, self.lab_base());
+                let lessons: Vec<u32> = self
+                    .course
+                    .lessons
+                    .iter()
+                    .filter(|l| l.steps.iter().any(|s| s.lab.is_some()))
+                    .map(|l| l.order)
+                    .collect();
+                let said = self.lab.start(experiment, self.lab_base(), &lessons);
                 self.say(said);
             }
             Action::ScrollDown
@@ -374,10 +426,45 @@ impl App {
         }
     }
 
+    /// The largest useful [`App::tensor_scroll`] on the open step, as last drawn: the first
+    /// row of its longest table's last page.
+    #[must_use]
+    pub fn max_tensor_scroll(&self) -> usize {
+        self.tensor_rows.get().last_start
+    }
+
+    /// What PgDn/PgUp move: the rows a table with hidden rows showed, less one kept for
+    /// context.
+    fn tensor_page(&self) -> usize {
+        self.tensor_rows.get().shown.saturating_sub(1).max(1)
+    }
+
+    /// Moves the live tables' rows by `rows`, down or up, within the longest table.
+    fn scroll_tensors(&mut self, rows: usize, down: bool) {
+        let last = self.max_tensor_scroll();
+        let from = self.tensor_scroll.min(last);
+        self.tensor_scroll = if down {
+            from.saturating_add(rows).min(last)
+        } else {
+            from.saturating_sub(rows)
+        };
+    }
+
     /// Question `i` of the open lesson's quiz.
     #[must_use]
     pub fn quiz_question(&self, i: usize) -> Option<&crate::lesson::quiz::Question> {
         self.current_lesson()?.quiz.get(i)
+    }
+
+    /// Whether the live values are hidden behind the open quiz question: it asks for a
+    /// number of the run (a prediction, or a choice the run decides) and has no answer yet.
+    #[must_use]
+    pub fn live_hidden(&self) -> bool {
+        self.overlay == Overlay::Quiz
+            && !self.quiz.answered()
+            && self
+                .quiz_question(self.quiz.question())
+                .is_some_and(crate::lesson::quiz::Question::uses_the_run)
     }
 
     /// `(answered, right, total)` over the whole course's quizzes.
@@ -407,7 +494,7 @@ impl App {
         if self.progress.quiz_answered(&id, questions) {
             self.progress.lessons_done.insert(id);
         }
-        self.save_progress();
+        let _ = self.save_progress();
         let (answered, right_total, total) = self.quiz_score();
         self.status.set(
             Owner::Quiz,
@@ -536,7 +623,7 @@ impl App {
         let graded: Vec<Graded> = graded.into_iter().map(Into::into).collect();
         let said = self.exercise.on_graded(graded, &mut self.progress);
         self.status.set(Owner::Exercise, said);
-        self.save_progress();
+        let _ = self.save_progress();
         if std::mem::take(&mut self.exercise.regrade) {
             self.request_grade();
         }
@@ -603,7 +690,7 @@ impl App {
         if self.lesson + 1 < self.course.lessons.len() {
             self.go_to(self.lesson + 1, 0);
         } else {
-            self.save_progress();
+            let _ = self.save_progress();
             self.say(t(
                 "that was the last step: l opens the lesson list",
                 "这是最后一节了：按 l 打开课程列表",
@@ -631,6 +718,7 @@ impl App {
         self.explanation.top();
         self.tensor_scroll = 0;
         self.tensor_hscroll = 0;
+        self.code_scroll = 0;
         if let Some(l) = self.current_lesson() {
             self.progress.lesson = l.id.clone();
         }
@@ -640,7 +728,7 @@ impl App {
         if changed {
             self.status.clear_unless_warning();
         }
-        self.save_progress();
+        let _ = self.save_progress();
         if changed {
             self.follow_lesson_env();
         }
@@ -655,22 +743,58 @@ impl App {
         }
     }
 
-    /// Writes the progress file (atomically); a failure becomes a status message.
-    pub fn save_progress(&mut self) {
-        if let Some(path) = &self.progress_path
-            && let Err(e) = self.progress.save(path)
-        {
-            let e = ppo_engine::causes::message(&e);
-            self.say(crate::tr!(
-                "could not save progress to {}: {e}",
-                "无法把进度保存到 {}：{e}",
-                path.display()
-            ));
-        }
+    /// Writes the progress file (atomically); a failure becomes a warning on the status
+    /// line, and is returned as the sentence it says.
+    ///
+    /// # Errors
+    /// The sentence saying which file could not be written, and why.
+    pub fn save_progress(&mut self) -> Result<(), String> {
+        let Some(path) = &self.progress_path else {
+            return Ok(());
+        };
+        let Err(e) = self.progress.save(path) else {
+            return Ok(());
+        };
+        let e = ppo_engine::causes::message(&e);
+        let said = crate::tr!(
+            "could not save progress to {}: {e}",
+            "无法把进度保存到 {}：{e}",
+            path.display()
+        );
+        self.warn(&said);
+        Err(said)
+    }
+
+    /// `q`: saves the progress and leaves. When the progress cannot be saved, the first `q`
+    /// says so and stays (the learner may free the disk or fix the folder); a second one
+    /// leaves without it.
+    /// The terminal is now `width`×`height`.
+    pub fn resize(&mut self, width: u16, height: u16) {
+        self.too_small = width < super::ui::MIN_SIZE.0 || height < super::ui::MIN_SIZE.1;
+    }
+
+    /// The process was asked to end: save and leave, without asking again.
+    pub fn on_signal(&mut self, signal: i32) {
+        self.signal = Some(signal);
+        let _ = self.save_progress();
+        self.run.outbox.push(Command::Quit);
+        self.quit = true;
     }
 
     fn quit(&mut self) {
-        self.save_progress();
+        if let Err(said) = self.save_progress()
+            && !self.quit_unsaved
+        {
+            self.quit_unsaved = true;
+            self.warn(&format!(
+                "{said} {}",
+                t(
+                    "(q again quits without saving)",
+                    "（再按一次 q 不保存直接退出）"
+                )
+            ));
+            return;
+        }
         self.run.outbox.push(Command::Quit);
         self.quit = true;
     }

@@ -15,10 +15,22 @@ pub enum Action {
     ScrollDown,
     /// Scroll the explanation up.
     ScrollUp,
-    /// Scroll the live tensors down.
+    /// Scroll the live tensors down one row (`J`).
     TensorDown,
-    /// Scroll the live tensors up.
+    /// Scroll the live tensors up one row (`K`).
     TensorUp,
+    /// Scroll the live tensors down a page (PgDn).
+    TensorPageDown,
+    /// Scroll the live tensors up a page (PgUp).
+    TensorPageUp,
+    /// The live tables' first rows (Home).
+    TensorFirst,
+    /// The live tables' last rows (End).
+    TensorLast,
+    /// Scroll the code pane down (`]`).
+    CodeDown,
+    /// Scroll the code pane up (`[`).
+    CodeUp,
     /// Scroll the live tables right: the next column first (`>`).
     TensorRight,
     /// Scroll the live tables left: the previous column first (`<`).
@@ -85,10 +97,22 @@ pub fn help() -> Vec<(&'static str, &'static str)> {
         (
             "J / K, < / >",
             t(
-                "scroll the live values (rows, columns)",
-                "滚动实时数值（行、列）",
+                "scroll the live values (a row, a column)",
+                "滚动实时数值（一行、一列）",
             ),
         ),
+        (
+            "PgDn / PgUp",
+            t("scroll the live values a page", "实时数值翻一页"),
+        ),
+        (
+            "Home / End",
+            t(
+                "the live values' first / last rows",
+                "实时数值的开头 / 最后几行",
+            ),
+        ),
+        ("[ / ]", t("scroll the code pane", "滚动代码面板")),
         (
             "d",
             t(
@@ -225,8 +249,14 @@ pub fn map(key: KeyEvent, context: Context) -> Option<Action> {
         KeyCode::Left | KeyCode::Char('p') => Action::Prev,
         KeyCode::Down | KeyCode::Char('j') => Action::ScrollDown,
         KeyCode::Up | KeyCode::Char('k') => Action::ScrollUp,
-        KeyCode::Char('J') | KeyCode::PageDown => Action::TensorDown,
-        KeyCode::Char('K') | KeyCode::PageUp => Action::TensorUp,
+        KeyCode::Char('J') => Action::TensorDown,
+        KeyCode::Char('K') => Action::TensorUp,
+        KeyCode::PageDown => Action::TensorPageDown,
+        KeyCode::PageUp => Action::TensorPageUp,
+        KeyCode::Home => Action::TensorFirst,
+        KeyCode::End => Action::TensorLast,
+        KeyCode::Char(']') => Action::CodeDown,
+        KeyCode::Char('[') => Action::CodeUp,
         KeyCode::Char('>') => Action::TensorRight,
         KeyCode::Char('<') => Action::TensorLeft,
         KeyCode::Char('l') => Action::Lessons,

@@ -93,6 +93,9 @@ pub struct Run {
     pub seed: u64,
     /// Commands for the worker, taken and sent by the event loop.
     pub outbox: Vec<Command>,
+    /// The number of the run shown: each reset or environment switch starts a new one, and
+    /// the worker's events of an earlier one are dropped.
+    pub id: u64,
 }
 
 impl Run {
@@ -111,6 +114,7 @@ impl Run {
             env,
             seed: 0,
             outbox: Vec::new(),
+            id: 0,
         }
     }
 
@@ -131,6 +135,32 @@ impl Run {
     #[must_use]
     pub fn cartpole(&self) -> PpoConfig {
         self.configs.get::<PpoConfig>().cloned().unwrap_or_default()
+    }
+
+    /// What the current run changes of its agent's defaults (the seed's settings, or the
+    /// book's for Pendulum), each as `name value (default)`, and the seed when it is not 0:
+    /// empty when the live agent runs the lessons' settings.
+    #[must_use]
+    pub fn changed_settings(&self) -> Vec<String> {
+        use crate::ppo::knobs::KnobValue;
+        let run = self.config();
+        let defaults = RunConfig::default_for(run.env());
+        let mut changed = Vec::new();
+        if run.env_id() != defaults.env_id() {
+            changed.push(format!("env {} ({})", run.env_id(), defaults.env_id()));
+        }
+        for id in run.knob_ids() {
+            if let (Some(KnobValue::Value(now)), Some(KnobValue::Value(was))) =
+                (run.knob(id), defaults.knob(id))
+                && now != was
+            {
+                changed.push(format!("{id} {now} ({was})"));
+            }
+        }
+        if self.seed != 0 {
+            changed.push(format!("seed {} (0)", self.seed));
+        }
+        changed
     }
 
     /// `t`: trains, pauses, or says that every episode is done.
@@ -165,9 +195,11 @@ impl Run {
 
     /// A fresh agent with `config` and `seed`, training at once if `run`.
     pub fn reset(&mut self, config: RunConfig, seed: u64, run: bool) -> String {
+        self.id += 1;
         self.outbox.push(Command::Reset {
             config: Box::new(config.clone()),
             seed,
+            run: self.id,
         });
         self.show(config.first_snapshot(seed));
         self.env = config.env();
@@ -202,11 +234,16 @@ impl Run {
     /// replace a warning.
     pub fn on_worker(&mut self, event: WorkerEvent) -> Option<(String, bool)> {
         match event {
-            WorkerEvent::Episode(snapshot) => {
-                // An episode of the run just set aside, finished before the worker switched.
-                if snapshot.env != self.env {
-                    return None;
-                }
+            // What an earlier run sent before the worker read the reset or switch: the app
+            // already shows the new run.
+            WorkerEvent::Episode { run, .. }
+            | WorkerEvent::Finished { run }
+            | WorkerEvent::Error { run, .. }
+                if run != self.id =>
+            {
+                None
+            }
+            WorkerEvent::Episode { snapshot, .. } => {
                 self.show(*snapshot);
                 let r = self.snapshot.returns.last()?;
                 (self.train == TrainState::Paused).then(|| {
@@ -219,7 +256,7 @@ impl Run {
                     (said, true)
                 })
             }
-            WorkerEvent::Finished => {
+            WorkerEvent::Finished { .. } => {
                 self.train = TrainState::Finished;
                 Some((
                     tr!(
@@ -234,7 +271,7 @@ impl Run {
             // overwrite what it said since ("a Pendulum-v1 lesson: …", "training…"). A
             // resumed run was shown when it was asked for.
             WorkerEvent::Reset { .. } | WorkerEvent::Resumed { .. } => None,
-            WorkerEvent::Error(message) => {
+            WorkerEvent::Error { message, .. } => {
                 self.train = TrainState::Paused;
                 Some((
                     tr!("training stopped: {message}", "训练已停止：{message}"),
@@ -268,9 +305,11 @@ impl Run {
             return None;
         }
         let config = self.config_for(env);
+        self.id += 1;
         self.outbox.push(Command::Switch {
             config: Box::new(config.clone()),
             seed: self.seed,
+            run: self.id,
         });
         let first = config.first_snapshot(self.seed);
         let left = ParkedRun {

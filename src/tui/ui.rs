@@ -44,15 +44,17 @@ impl Widget for &View<'_> {
             Paragraph::new(text::wrap([Line::raw(msg)], area.width)).render(area, buf);
             return;
         }
+        let status = status_lines(app, usize::from(area.width));
+        let rows = u16::try_from(status.len()).unwrap_or(1);
         let [header, body, footer] = Layout::vertical([
             Constraint::Length(1),
             Constraint::Min(0),
-            Constraint::Length(2),
+            Constraint::Length(1 + rows),
         ])
         .areas(area);
         draw_header(app, theme, header, buf);
         draw_body(app, theme, body, buf);
-        draw_footer(app, theme, footer, buf);
+        draw_footer(theme, &status, footer, buf);
         let ctx = app.ctx();
         match app.overlay {
             Overlay::None => {}
@@ -91,9 +93,15 @@ fn draw_header(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
             super::run::return_text(*r)
         )
     });
+    // While the live agent does not run the lessons' settings, the header says so.
+    let own = if app.run.changed_settings().is_empty() {
+        ""
+    } else {
+        t("your settings · ", "你的设置 · ")
+    };
     let right = tr!(
-        "episode {}{last} · {train} · {pos}/{total} ",
-        "回合 {}{last} · {train} · {pos}/{total} ",
+        "{own}episode {}{last} · {train} · {pos}/{total} ",
+        "{own}回合 {}{last} · {train} · {pos}/{total} ",
         app.run.snapshot.episodes
     );
     // The counters on the right and the step number always show; a lesson title too long
@@ -128,37 +136,102 @@ fn draw_body(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let env = lesson.map_or_else(Default::default, |l| l.env);
     let order = lesson.map_or(0, |l| l.order);
     let passed = |e: &str| app.progress.exercises_done.contains(e);
-    let mut code = code_lines(
-        step,
-        (env, order),
-        &passed,
-        theme,
-        usize::from(right.width.saturating_sub(2)),
-    );
+    let columns = usize::from(right.width.saturating_sub(2));
+    let code: Vec<Line<'static>> = code_lines(step, (env, order), &passed, theme, columns)
+        .into_iter()
+        .flat_map(|l| wrap_code(l, columns, theme))
+        .collect();
     let code_height = (code.len() as u16 + 2).min(right.height / 3).max(5);
     let [code_area, live] =
         Layout::vertical([Constraint::Length(code_height), Constraint::Min(0)]).areas(right);
-    // Lines below the pane's last row: the last row says how many (issue 25, section 2).
     let rows = usize::from(code_area.height.saturating_sub(2));
-    if code.len() > rows && rows > 0 {
-        let hidden = code.len() + 1 - rows;
-        code.truncate(rows - 1);
-        code.push(Line::styled(
-            tr!("… {hidden} more lines", "… 还有 {hidden} 行"),
-            theme.dim(),
-        ));
-    }
+    let code = scroll_code(app, code, rows, theme);
     Paragraph::new(code)
         .block(panel(t("the code that runs", "实际运行的代码"), theme))
         .render(code_area, buf);
     draw_live(app, theme, step, live, buf);
 }
 
-/// The step's code for a pane `columns` wide: a line too long for it is cut with a dim
-/// `…` in its last column, so that it shows it goes on (issue 25, section 2). Code an
-/// exercise asks for is a dim note until `passed` holds for it (issue 27, section 1,
-/// [`crate::lesson::reveal`]); once shown, a line points to the learner's own file for each
-/// exercise of the step's lesson (`order`) it shows.
+/// A code line wider than `columns` as several rows: the rest continues on the next row
+/// after a dim `↪`, so nothing is cut.
+fn wrap_code(line: Line<'static>, columns: usize, theme: Theme) -> Vec<Line<'static>> {
+    if line.width() <= columns || columns < 8 {
+        return vec![line];
+    }
+    let mut rows = Vec::new();
+    let mut current: Vec<Span<'static>> = Vec::new();
+    let mut used = 0;
+    for span in line.spans {
+        let mut rest: &str = &span.content;
+        while !rest.is_empty() {
+            let room = columns - used;
+            let kept = text::truncate(rest, room);
+            if kept.is_empty() {
+                rows.push(Line::from(std::mem::take(&mut current)));
+                current.push(Span::styled("↪ ", theme.dim()));
+                used = 2;
+                continue;
+            }
+            used += text::width(&kept);
+            rest = &rest[kept.len()..];
+            current.push(Span::styled(kept, span.style));
+        }
+    }
+    if !current.is_empty() {
+        rows.push(Line::from(current));
+    }
+    rows
+}
+
+/// The code pane's `rows` rows from [`App::code_scroll`]: when lines are hidden, the first
+/// row says how many are above and the last how many below, with the keys that scroll.
+fn scroll_code(
+    app: &App,
+    code: Vec<Line<'static>>,
+    rows: usize,
+    theme: Theme,
+) -> Vec<Line<'static>> {
+    let total = code.len();
+    if total <= rows || rows < 3 {
+        app.code_max.set(0);
+        return code;
+    }
+    // With both marks shown, `rows - 2` lines of code fit.
+    let max = total - (rows - 1);
+    app.code_max.set(max);
+    let offset = app.code_scroll.min(max);
+    let above = offset > 0;
+    let room = rows - usize::from(above);
+    let below = total - offset > room;
+    let room = room - usize::from(below);
+    let mut shown = Vec::with_capacity(rows);
+    if above {
+        shown.push(Line::styled(
+            tr!(
+                "↑ {offset} lines above: [ scrolls",
+                "↑ 上面还有 {offset} 行：按 [ 滚动"
+            ),
+            theme.dim(),
+        ));
+    }
+    shown.extend(code.into_iter().skip(offset).take(room));
+    if below {
+        let more = total - offset - room;
+        shown.push(Line::styled(
+            tr!(
+                "↓ {more} more lines: ] scrolls",
+                "↓ 下面还有 {more} 行：按 ] 滚动"
+            ),
+            theme.dim(),
+        ));
+    }
+    shown
+}
+
+/// The step's code for a pane `columns` wide (the drawing wraps a line too long for it,
+/// [`wrap_code`]). Code an exercise asks for is a dim note until `passed` holds for it
+/// ([`crate::lesson::reveal`]), wrapped to `columns`; once shown, a line points to the
+/// learner's own file for each exercise of the step's lesson (`order`) it shows.
 fn code_lines(
     step: &crate::lesson::Step,
     (env, order): (crate::lesson::Environment, u32),
@@ -217,9 +290,6 @@ fn code_lines(
         ));
     }
     lines
-        .into_iter()
-        .map(|l| text::cut(l, columns, Span::styled("…", theme.dim())))
-        .collect()
 }
 
 /// The text of `lesson`'s step `step`'s code pane, as the app draws it for a learner who has
@@ -269,6 +339,21 @@ fn note_lines(
 }
 
 fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, buf: &mut Buffer) {
+    if app.live_hidden() {
+        // The open question asks for a number these values show: they wait for the answer.
+        let block = panel(t("live values", "实时数值"), theme);
+        let inner = block.inner(area);
+        block.render(area, buf);
+        let line = Line::styled(
+            t(
+                "hidden while the quiz question is open: they would give its answer away. Answer it, and they come back.",
+                "小测验题目打开时先隐藏：它们会泄露答案。作答之后就会重新显示。",
+            ),
+            theme.dim(),
+        );
+        Paragraph::new(text::wrap([line], inner.width)).render(inner, buf);
+        return;
+    }
     let views: Vec<&str> = step
         .show
         .iter()
@@ -329,9 +414,11 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
                 height: view.height.saturating_sub(notes.len()),
                 ..view
             };
+            let (table, rows) = tensors::render(&shown, view, theme);
+            app.tensor_rows.set(rows);
             let lines: Vec<Line> = notes
                 .into_iter()
-                .chain(tensors::lines(&shown, view, theme))
+                .chain(table)
                 .map(|l| text::cut(l, columns, Span::styled("…", theme.dim())))
                 .collect();
             Paragraph::new(lines).render(inner, buf);
@@ -493,7 +580,7 @@ fn draw_probe(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     Paragraph::new(lines).render(inner, buf);
 }
 
-fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
+fn draw_footer(theme: Theme, status: &[String], area: Rect, buf: &mut Buffer) {
     let keys = [
         ("←/→", t("step", "翻页")),
         ("l", t("lessons", "课程")),
@@ -522,14 +609,17 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         spans.push(Span::styled(format!(" {k}"), theme.key()));
         spans.push(Span::raw(format!(" {what} ")));
     }
-    // What stays first (the open exercise, the counts), the latest message last: a long
-    // message is cut at the right edge, the counts never are. A warning (a corrupt progress
-    // file, a grader that cannot start) goes first instead, so it is read whole.
+    let mut lines = vec![Line::from(spans)];
+    lines.extend(status.iter().map(|l| Line::styled(l.clone(), theme.dim())));
+    Paragraph::new(lines).render(area, buf);
+}
+
+/// The status rows under the key bar, `width` columns wide: the latest message first (what
+/// the learner just did, or a warning), whole, on two rows when it needs them; then the open
+/// exercise and the counts, as many as fit on the row.
+#[must_use]
+pub fn status_lines(app: &App, width: usize) -> Vec<String> {
     let mut parts = Vec::new();
-    let warning = app.status.is_warning();
-    if warning {
-        parts.push(app.status.to_string());
-    }
     let exercise = app.exercise_names();
     if !exercise.is_empty() {
         let state = if app.exercise_done() {
@@ -560,9 +650,39 @@ fn draw_footer(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         "quiz {right}/{questions} right ({answered} answered)",
         "小测验答对 {right}/{questions}（已答 {answered}）"
     ));
-    if !app.status.text().is_empty() && !warning {
-        parts.push(app.status.to_string());
+    let message = app.status.text();
+    let room = width.saturating_sub(1).max(1);
+    let mut rows: Vec<String> = if message.is_empty() {
+        vec![String::new()]
+    } else {
+        let wrapped = text::wrap(
+            [Line::raw(message.to_string())],
+            u16::try_from(room).unwrap_or(u16::MAX),
+        );
+        let mut rows: Vec<String> = wrapped
+            .iter()
+            .map(|l| l.spans.iter().map(|s| s.content.as_ref()).collect())
+            .collect();
+        if rows.len() > 2 {
+            // Two rows at most: the rest of a very long message ends in `…`.
+            rows.truncate(2);
+            let last = text::truncate(rows[1].trim_end(), room.saturating_sub(1));
+            rows[1] = format!("{last}…");
+        }
+        rows
+    };
+    let sep = " · ";
+    for part in parts {
+        let Some(last) = rows.last_mut() else { break };
+        let joined = if last.is_empty() {
+            part
+        } else {
+            format!("{}{sep}{part}", last.trim_end())
+        };
+        if text::width(&joined) > room {
+            break;
+        }
+        *last = joined;
     }
-    let status = format!(" {}", parts.join(" · "));
-    Paragraph::new(vec![Line::from(spans), Line::styled(status, theme.dim())]).render(area, buf);
+    rows.into_iter().map(|r| format!(" {r}")).collect()
 }

@@ -6,6 +6,10 @@
 //!
 //! Errors (a diverged run, invalid settings) travel as events too: a panic in a worker
 //! thread would restore the terminal under the running UI.
+//!
+//! Every event of a run carries the number of the [`Command::Reset`] or [`Command::Switch`]
+//! that started it (`run`), so that the app can drop what an earlier run sent before the
+//! worker read the command (an episode finished while `r` was pressed).
 
 use std::sync::mpsc::{Receiver, Sender, TryRecvError};
 use std::thread::JoinHandle;
@@ -27,6 +31,8 @@ pub enum Command {
         config: Box<RunConfig>,
         /// Seeds the agent's weights, its sampling and the environment's first reset.
         seed: u64,
+        /// The app's number for the run from here on: the worker's events carry it.
+        run: u64,
     },
     /// Go to `config`'s environment (paused): the current session is kept aside, and the
     /// one kept for that environment, if any, continues where it stopped; otherwise a fresh
@@ -37,6 +43,8 @@ pub enum Command {
         config: Box<RunConfig>,
         /// The seed of a fresh run there.
         seed: u64,
+        /// The app's number for the run from here on: the worker's events carry it.
+        run: u64,
     },
     /// End the thread.
     Quit,
@@ -46,9 +54,17 @@ pub enum Command {
 #[derive(Debug, Clone)]
 pub enum WorkerEvent {
     /// An episode and its update finished: what the tutor shows after it.
-    Episode(Box<Snapshot>),
+    Episode {
+        /// The run it belongs to (see the module's documentation).
+        run: u64,
+        /// The live values after it.
+        snapshot: Box<Snapshot>,
+    },
     /// The run reached its configured number of episodes.
-    Finished,
+    Finished {
+        /// The run that finished.
+        run: u64,
+    },
     /// A fresh agent is ready (after [`Command::Reset`]).
     Reset {
         /// The seed used.
@@ -61,7 +77,12 @@ pub enum WorkerEvent {
         episodes: usize,
     },
     /// Training cannot go on; the message names the episode and the fix.
-    Error(String),
+    Error {
+        /// The run that stopped.
+        run: u64,
+        /// What went wrong.
+        message: String,
+    },
 }
 
 /// Starts the worker thread with a fresh agent from `config` and `seed`.
@@ -77,7 +98,9 @@ pub fn spawn(
 }
 
 fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Sender<WorkerEvent>) {
-    let mut session = start(config, seed, events);
+    // The app's number of the run being trained (0 until its first reset or switch).
+    let mut id = 0;
+    let mut session = start(config, seed, id, events);
     // The other environment's session, kept while its lessons are not open.
     let mut parked: Option<Session> = None;
     let mut running = false;
@@ -100,17 +123,19 @@ fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Send
             Some(Command::Run) => running = true,
             Some(Command::Pause) => running = false,
             Some(Command::OneEpisode) => one_more = true,
-            Some(Command::Reset { config, seed }) => {
+            Some(Command::Reset { config, seed, run }) => {
                 running = false;
                 one_more = false;
-                session = start(*config, seed, events);
+                id = run;
+                session = start(*config, seed, id, events);
                 if session.is_some() {
                     let _ = events.send(WorkerEvent::Reset { seed });
                 }
             }
-            Some(Command::Switch { config, seed }) => {
+            Some(Command::Switch { config, seed, run }) => {
                 running = false;
                 one_more = false;
+                id = run;
                 let env = config.env();
                 let kept = parked.take();
                 let (back, other) = match kept {
@@ -123,7 +148,7 @@ fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Send
                     let _ = events.send(WorkerEvent::Resumed { episodes });
                     Some(s)
                 } else {
-                    let fresh = start(*config, seed, events);
+                    let fresh = start(*config, seed, id, events);
                     if fresh.is_some() {
                         let _ = events.send(WorkerEvent::Reset { seed });
                     }
@@ -143,30 +168,39 @@ fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Send
         };
         match s.next_episode() {
             Ok(Some(snapshot)) => {
-                let event = WorkerEvent::Episode(Box::new(snapshot.clone()));
+                let event = WorkerEvent::Episode {
+                    run: id,
+                    snapshot: Box::new(snapshot.clone()),
+                };
                 if events.send(event).is_err() {
                     return;
                 }
             }
             Ok(None) => {
                 running = false;
-                let _ = events.send(WorkerEvent::Finished);
+                let _ = events.send(WorkerEvent::Finished { run: id });
             }
             Err(e) => {
                 running = false;
                 session = None;
-                let _ = events.send(WorkerEvent::Error(e.to_string()));
+                let _ = events.send(WorkerEvent::Error {
+                    run: id,
+                    message: e.to_string(),
+                });
             }
         }
     }
 }
 
-/// A fresh session, or `None` after sending the reason it could not start.
-fn start(config: RunConfig, seed: u64, events: &Sender<WorkerEvent>) -> Option<Session> {
+/// A fresh session, or `None` after sending the reason it could not start (as run `run`).
+fn start(config: RunConfig, seed: u64, run: u64, events: &Sender<WorkerEvent>) -> Option<Session> {
     match Session::new(config, seed) {
         Ok(session) => Some(session),
         Err(e) => {
-            let _ = events.send(WorkerEvent::Error(e.to_string()));
+            let _ = events.send(WorkerEvent::Error {
+                run,
+                message: e.to_string(),
+            });
             None
         }
     }

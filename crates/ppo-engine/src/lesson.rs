@@ -29,7 +29,7 @@ pub mod quiz;
 pub mod reveal;
 
 pub use crate::run::{Environment, RunConfig};
-pub use live::{Mark, PolicyMap, Session, Snapshot, TensorView};
+pub use live::{Index, Mark, PolicyMap, Session, Snapshot, TensorView};
 pub use loader::{Course, LessonError};
 pub use progress::Progress;
 

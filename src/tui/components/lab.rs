@@ -35,14 +35,21 @@ impl Lab {
     }
 
     /// Starts `experiment` from `base` (the step's, `None` on a step without one), unless
-    /// it is running or done; says what happened.
-    pub fn start(&mut self, experiment: Option<Experiment>, base: PpoConfig) -> String {
+    /// it is running or done; says what happened. `lessons` are the numbers of the lessons
+    /// with an experiment, named when there is none here.
+    pub fn start(
+        &mut self,
+        experiment: Option<Experiment>,
+        base: PpoConfig,
+        lessons: &[u32],
+    ) -> String {
         let Some(experiment) = experiment else {
-            return t(
-                "this step has no experiment to run (lessons 13 and 15 have them)",
-                "本节没有可运行的实验（第 13 课和第 15 课里有）",
-            )
-            .into();
+            let list: Vec<String> = lessons.iter().map(ToString::to_string).collect();
+            return tr!(
+                "this step has no experiment to run (lessons {} have them)",
+                "本节没有可运行的实验（第 {} 课里有）",
+                list.join(t(", ", "、")),
+            );
         };
         if matches!(
             self.states.get(&experiment),

@@ -88,7 +88,9 @@ impl Quiz {
         self.pinned.as_deref().unwrap_or(ctx.snapshot)
     }
 
-    fn answered(&self) -> bool {
+    /// Whether the open question has been answered (its verdict is shown).
+    #[must_use]
+    pub fn answered(&self) -> bool {
         self.verdict.as_ref().is_some_and(|v| v.answered)
     }
 
@@ -108,73 +110,103 @@ impl Quiz {
         reply
     }
 
-    fn lines(&self, ctx: &Ctx<'_>, question: &Question, theme: Theme) -> Vec<Line<'static>> {
+    /// The question's lines wrapped to `columns`, each paragraph's later lines indented
+    /// under its first line's text (a choice's under its words, not under its letter).
+    fn lines(
+        &self,
+        ctx: &Ctx<'_>,
+        question: &Question,
+        theme: Theme,
+        columns: u16,
+    ) -> Vec<Line<'static>> {
         let total = ctx.lesson.map_or(0, |l| l.quiz.len());
-        let mut lines = vec![
+        let mut lines = hanging(
+            Span::raw(" "),
             Line::styled(
                 tr!(
-                    " Check your understanding: question {}/{}",
-                    " 检验一下：第 {}/{} 题",
+                    "Check your understanding: question {}/{}",
+                    "检验一下：第 {}/{} 题",
                     self.question + 1,
                     total
                 ),
                 theme.title(),
             ),
-            Line::raw(""),
-            Line::raw(format!(" {}", question.prompt_in(self.snapshot(ctx)))),
-            Line::raw(""),
-        ];
+            columns,
+        );
+        lines.push(Line::raw(""));
+        lines.extend(hanging(
+            Span::raw(" "),
+            Line::raw(question.prompt_in(self.snapshot(ctx))),
+            columns,
+        ));
+        lines.push(Line::raw(""));
         match &question.kind {
             QuestionKind::Choice { choices, .. } => {
                 for (k, choice) in choices.iter().enumerate() {
-                    lines.push(Line::from(vec![
+                    lines.extend(hanging(
                         Span::styled(format!(" {}) ", letter_of(k)), theme.key()),
-                        Span::raw(choice.clone()),
-                    ]));
+                        Line::raw(choice.clone()),
+                        columns,
+                    ));
                 }
             }
             QuestionKind::Predict { tolerance, .. } => {
-                lines.push(Line::from(vec![
-                    Span::styled(t(" your prediction: ", " 你的预测："), theme.key()),
-                    Span::raw(format!("{}▏", self.input)),
-                    Span::styled(
-                        tr!(
-                            "  (within ±{tolerance} counts)",
-                            "  （误差在 ±{tolerance} 以内算对）"
-                        ),
-                        theme.dim(),
-                    ),
-                ]));
+                let within = if *tolerance == 0.0 {
+                    t(
+                        "  (only the exact value counts)",
+                        "  （只有完全相等才算对）",
+                    )
+                    .to_string()
+                } else {
+                    tr!(
+                        "  (within ±{tolerance} counts)",
+                        "  （误差在 ±{tolerance} 以内算对）"
+                    )
+                };
+                lines.extend(text::wrap(
+                    [Line::from(vec![
+                        Span::styled(t(" your prediction: ", " 你的预测："), theme.key()),
+                        Span::raw(format!("{}▏", self.input)),
+                        Span::styled(within, theme.dim()),
+                    ])],
+                    columns,
+                ));
             }
         }
         if question.uses_the_run() && !question.ready_in(self.snapshot(ctx)) {
-            lines.push(Line::styled(
-                t(
-                    " the live value comes from the agent: train an episode first (e or t)",
-                    " 实时数值来自智能体：先训练一个回合（e 或 t）",
+            lines.extend(hanging(
+                Span::raw(" "),
+                Line::styled(
+                    t(
+                        "the live value comes from the agent: train an episode first (e or t)",
+                        "实时数值来自智能体：先训练一个回合（e 或 t）",
+                    ),
+                    theme.dim(),
                 ),
-                theme.dim(),
+                columns,
             ));
         }
         if let Some(verdict) = &self.verdict {
             lines.push(Line::raw(""));
             if let Some(first) = self.first {
-                lines.push(Line::styled(
+                lines.extend(hanging(Span::raw(" "), Line::styled(
                     if first {
                         t(
-                            " Only your first answer counts toward the score (it was right).",
-                            " 只有第一次作答计入成绩（第一次答对了）。",
+                            "Only your first answer counts toward the score (it was right).",
+                            "只有第一次作答计入成绩（第一次答对了）。",
                         )
                     } else {
                         t(
-                            " Only your first answer counts toward the score (it was not right).",
-                            " 只有第一次作答计入成绩（第一次没答对）。",
+                            "Only your first answer counts toward the score (it was not right).",
+                            "只有第一次作答计入成绩（第一次没答对）。",
                         )
                     },
                     theme.dim(),
-                ));
+                ), columns));
             }
-            lines.extend(verdict.text.lines().map(|l| Line::raw(format!(" {l}"))));
+            for l in verdict.text.lines() {
+                lines.extend(hanging(Span::raw(" "), Line::raw(l.to_string()), columns));
+            }
         }
         lines
     }
@@ -190,10 +222,17 @@ impl Component for Quiz {
         self.offer(Some(question), ctx.snapshot);
         match action {
             Action::Type(c) => match &question.kind {
-                QuestionKind::Choice { .. } => {
-                    if c.is_ascii_lowercase() {
+                QuestionKind::Choice { choices, .. } => {
+                    let last = letter_of(choices.len().saturating_sub(1));
+                    if c.is_ascii_lowercase() && c <= last {
                         let verdict = question.choose(c, self.snapshot(ctx));
                         return self.give(verdict, ctx);
+                    }
+                    if c.is_ascii_lowercase() {
+                        return Reply::Say(tr!(
+                            "{c} is not one of the choices: answer with a–{last}",
+                            "{c} 不是选项之一：请按 a–{last} 作答"
+                        ));
                     }
                 }
                 QuestionKind::Predict { .. } => {
@@ -278,7 +317,7 @@ impl Component for Quiz {
             )],
             columns,
         );
-        let body = text::wrap(self.lines(ctx, question, theme), columns);
+        let body = self.lines(ctx, question, theme, columns);
         // As tall as the wrapped text needs, at most the screen less two rows each side.
         let height = u16::try_from(body.len() + 1 + keys.len() + 2).unwrap_or(u16::MAX);
         let rect = centered(area, width, height.min(area.height.saturating_sub(4)));
@@ -295,4 +334,25 @@ impl Component for Quiz {
         self.scroll.render(body, theme, text_area, buf);
         Paragraph::new(keys).render(keys_area, buf);
     }
+}
+
+/// `line` wrapped to `columns` after `prefix`, its later lines indented by the prefix's
+/// width, so that a wrapped paragraph keeps its left edge.
+fn hanging(prefix: Span<'static>, line: Line<'static>, columns: u16) -> Vec<Line<'static>> {
+    let indent = u16::try_from(prefix.width()).unwrap_or(0);
+    let body = text::wrap([line], columns.saturating_sub(indent).max(8));
+    let pad = " ".repeat(usize::from(indent));
+    body.into_iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let lead = if i == 0 {
+                prefix.clone()
+            } else {
+                Span::raw(pad.clone())
+            };
+            let mut spans = vec![lead];
+            spans.extend(l.spans);
+            Line::from(spans).style(l.style)
+        })
+        .collect()
 }

@@ -1,17 +1,22 @@
-//! Live tensors as text: the batch's per-step columns side by side, grids (the policy maps)
-//! with both axes labelled, then scalars and series.
+//! Live tensors as text: the batch's per-step columns side by side, the latest update's
+//! per-epoch values side by side (a row per epoch), the run's per-episode curves (a row per
+//! episode), grids (the policy maps) with both axes labelled, lists of named rows (`hyper`,
+//! `weights`), then scalars.
 //!
 //! Each column is as wide as its header and its values need, so a header is never cut. When
 //! a table's columns do not all fit the pane, it shows those that fit whole from
 //! [`Viewport::hscroll`] on, keeps its row labels, and says under it how many columns
-//! precede (`←`) and follow (`→`) and that `<` and `>` scroll them.
+//! precede (`←`) and follow (`→`) and that `<` and `>` scroll them. When its rows do not
+//! all fit, it shows a window from [`Viewport::scroll`] (never past its last full page, so
+//! that `End` shows the last row) and says which rows it shows. Every value of a table can
+//! be reached: no series is cut to its latest entries.
 
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use super::text::{pad_left, width};
 use crate::lesson::live::Axes;
-use crate::lesson::{Mark, Snapshot, TensorView};
+use crate::lesson::{Index, Mark, Snapshot, TensorView};
 use crate::tr;
 use crate::tui::theme::Theme;
 
@@ -22,7 +27,7 @@ pub struct Viewport {
     pub width: usize,
     /// The pane's height, in rows.
     pub height: usize,
-    /// The first row of each table shown (`J`/`K` scroll it).
+    /// The first row of each table shown (`J`/`K`, PgDn/PgUp, Home/End scroll it).
     pub scroll: usize,
     /// The first value column of each table shown after its row labels (`<`/`>` scroll it).
     pub hscroll: usize,
@@ -60,12 +65,18 @@ fn fmt_in(t: &TensorView, v: f64) -> String {
     }
 }
 
-/// Sub-column names for 4-wide and 2-wide tensors.
+/// Sub-column names for 4-wide (CartPole's observation), 3-wide (Pendulum's) and 2-wide
+/// tensors.
 fn sub_names(t: &TensorView) -> Vec<String> {
+    let observation = matches!(t.name.as_str(), "states" | "next_states" | "obs");
     match (t.name.as_str(), t.cols()) {
         (_, 1) => vec![t.name.clone()],
         ("probs", 2) => vec!["π(left)".into(), "π(right)".into()],
         (name, 4) => ["x", "ẋ", "θ", "θ̇"]
+            .iter()
+            .map(|c| format!("{name}.{c}"))
+            .collect(),
+        (name, 3) if observation => ["cosθ", "sinθ", "θ̇"]
             .iter()
             .map(|c| format!("{name}.{c}"))
             .collect(),
@@ -92,8 +103,9 @@ impl Column {
 }
 
 /// A table: a column of row labels (it stays when the columns scroll), then value columns.
+/// A list of named rows (`hyper`) is a table without value columns (and without a header).
 struct Table {
-    /// The row labels' header (`t`, the step).
+    /// The row labels' header (`t`, the step; `epoch`; `episode`).
     corner: String,
     rows: Vec<String>,
     columns: Vec<Column>,
@@ -102,6 +114,11 @@ struct Table {
 /// Whether `t` is a batch tensor, one row per step (shown side by side in one table).
 fn is_per_step(t: &TensorView) -> bool {
     t.shape.len() == 2 && t.labels.is_empty() && t.axes.is_none()
+}
+
+/// Whether `t` is a vector with one entry per `index` (epoch or episode).
+fn counts(t: &TensorView, index: Index) -> bool {
+    index != Index::None && t.index == index && t.shape.len() == 1 && t.labels.is_empty()
 }
 
 impl Table {
@@ -126,6 +143,30 @@ impl Table {
         Some(Self {
             corner: "t".into(),
             rows: (0..n).map(|row| row.to_string()).collect(),
+            columns,
+        })
+    }
+
+    /// Vectors with one entry per `index` side by side, a row per epoch or episode,
+    /// numbered from 1; `None` when there are none.
+    fn counted(tensors: &[&TensorView], index: Index) -> Option<Self> {
+        let n = tensors.iter().map(|t| t.values.len()).max()?;
+        let columns = tensors
+            .iter()
+            .map(|t| {
+                let cells = (0..n)
+                    .map(|i| {
+                        t.values.get(i).map_or((String::new(), Mark::Plain), |&v| {
+                            (fmt_in(t, v), t.marks.get(i).copied().unwrap_or_default())
+                        })
+                    })
+                    .collect();
+                Column::new(t.name.clone(), cells)
+            })
+            .collect();
+        Some(Self {
+            corner: index.name().to_string(),
+            rows: (1..=n).map(|row| row.to_string()).collect(),
             columns,
         })
     }
@@ -160,6 +201,15 @@ impl Table {
         }
     }
 
+    /// A list of named rows (`gamma = 0.98`), indented under its title.
+    fn list(t: &TensorView) -> Self {
+        Self {
+            corner: String::new(),
+            rows: t.labels.iter().map(|l| format!("  {l}")).collect(),
+            columns: Vec::new(),
+        }
+    }
+
     fn label_width(&self) -> usize {
         self.rows
             .iter()
@@ -185,36 +235,74 @@ impl Table {
         count.max(1).min(self.columns.len().saturating_sub(first))
     }
 
-    /// The table in at most `height` lines: the header, the rows from `view.scroll` and
-    /// the columns from `view.hscroll` that fit, then where the rest is.
-    fn lines(&self, view: Viewport, height: usize, theme: Theme) -> Vec<Line<'static>> {
-        let n = self.rows.len();
+    /// The lines besides the rows: the header (none for a list) and the columns marker.
+    fn frame_lines(&self, view: Viewport) -> usize {
         let first = view.hscroll.min(self.columns.len().saturating_sub(1));
         let shown = self.fitting(first, view.width);
         let after = self.columns.len().saturating_sub(first + shown);
+        usize::from(!self.columns.is_empty()) + usize::from(more_columns(first, after).is_some())
+    }
+
+    /// The lines the whole table takes.
+    fn natural_height(&self, view: Viewport) -> usize {
+        self.frame_lines(view) + self.rows.len()
+    }
+
+    /// The fewest lines the table is given: its frame and up to `rows` of its rows (with
+    /// the rows line when they are not all).
+    fn least_height(&self, view: Viewport, rows: usize) -> usize {
+        let n = self.rows.len();
+        self.frame_lines(view) + n.min(rows) + usize::from(n > rows)
+    }
+
+    /// The table in at most `height` lines: the header, the rows from `view.scroll` (at
+    /// most up to the last full page) and the columns from `view.hscroll` that fit, then
+    /// where the rest is.
+    fn lines(&self, view: Viewport, height: usize, theme: Theme) -> (Vec<Line<'static>>, Rows) {
+        let n = self.rows.len();
+        let first = view.hscroll.min(self.columns.len().saturating_sub(1));
+        let shown = if self.columns.is_empty() {
+            0
+        } else {
+            self.fitting(first, view.width)
+        };
+        let after = self.columns.len().saturating_sub(first + shown);
         let marker = more_columns(first, after);
-        let columns = &self.columns[first..first + shown];
+        let columns = &self.columns[first.min(self.columns.len())..first + shown];
         let label_width = self.label_width();
-        let mut header = vec![Span::styled(
-            pad_left(&self.corner, label_width),
-            theme.dim(),
-        )];
-        for column in columns {
-            let text = format!(" {}", pad_left(&column.header, column.width));
-            header.push(Span::styled(text, theme.dim()));
+        let mut out = Vec::new();
+        if !self.columns.is_empty() {
+            let mut header = vec![Span::styled(
+                pad_left(&self.corner, label_width),
+                theme.dim(),
+            )];
+            for column in columns {
+                let text = format!(" {}", pad_left(&column.header, column.width));
+                header.push(Span::styled(text, theme.dim()));
+            }
+            out.push(Line::from(header));
         }
-        let mut out = vec![Line::from(header)];
-        let mut budget = height.saturating_sub(1 + usize::from(marker.is_some()));
+        let mut budget = height.saturating_sub(out.len() + usize::from(marker.is_some()));
         if n > budget {
             // The "rows a–b of n" line below takes a row too.
             budget = budget.saturating_sub(1);
         }
-        let start = view.scroll.min(n.saturating_sub(1));
-        let end = n.min(start + budget.max(1));
+        let budget = budget.max(1);
+        let start = view.scroll.min(n.saturating_sub(budget));
+        let end = n.min(start + budget);
         for row in start..end {
+            let label = if self.columns.is_empty() {
+                self.rows[row].clone()
+            } else {
+                pad_left(&self.rows[row], label_width)
+            };
             let mut spans = vec![Span::styled(
-                pad_left(&self.rows[row], label_width),
-                theme.dim(),
+                label,
+                if self.columns.is_empty() {
+                    Style::new()
+                } else {
+                    theme.dim()
+                },
             )];
             for column in columns {
                 let (text, mark) = column
@@ -228,16 +316,28 @@ impl Table {
             }
             out.push(Line::from(spans));
         }
-        if n > budget {
-            out.push(Line::styled(
+        if end - start < n {
+            let (a, b) = if self.columns.is_empty() {
+                ((start + 1).to_string(), end.to_string())
+            } else {
+                (
+                    self.rows[start].trim().to_string(),
+                    self.rows[end - 1].trim().to_string(),
+                )
+            };
+            let long = tr!(
+                "     rows {a}–{b} of {n} (J/K, PgDn/PgUp, Home/End)",
+                "     第 {a}–{b} 行，共 {n} 行（J/K、PgDn/PgUp、Home/End）"
+            );
+            let line = if width(&long) <= view.width {
+                long
+            } else {
                 tr!(
-                    "     rows {}–{} of {n} (J/K scroll)",
-                    "     第 {}–{} 行，共 {n} 行（J/K 滚动）",
-                    start,
-                    end.saturating_sub(1)
-                ),
-                theme.dim(),
-            ));
+                    "  rows {a}–{b} of {n} (J/K)",
+                    "  第 {a}–{b} 行，共 {n} 行（J/K）"
+                )
+            };
+            out.push(Line::styled(line, theme.dim()));
         }
         if let Some(marker) = marker {
             // Under the row labels' column when there is room, as the rows line.
@@ -248,8 +348,22 @@ impl Table {
             };
             out.push(Line::styled(format!("{indent}{marker}"), theme.dim()));
         }
-        out
+        let rows = Rows {
+            shown: end - start,
+            last_start: n.saturating_sub(budget),
+        };
+        (out, rows)
     }
+}
+
+/// How a drawing showed the tables' rows: what the scroll keys need to know.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Rows {
+    /// The fewest rows any table with hidden rows showed (a page, for PgDn/PgUp); 0 when
+    /// every row showed.
+    pub shown: usize,
+    /// The largest scroll that still moves a table: its first row when it shows its last.
+    pub last_start: usize,
 }
 
 /// Where a table's other columns are, and the keys that scroll to them: `before` columns
@@ -310,20 +424,60 @@ fn title(t: &TensorView, theme: Theme) -> Line<'static> {
     ])
 }
 
-/// The tables `tensors` make: the per-step tensors in one, each grid in its own, each with
-/// the title lines that go above it.
+/// The title of a table of per-epoch values: what its rows are, and its columns' dtype.
+fn epoch_title(tensors: &[&TensorView], theme: Theme) -> Line<'static> {
+    let dtype = tensors.first().map_or("", |t| t.dtype);
+    Line::from(vec![
+        Span::styled(
+            crate::i18n::t("each epoch of the latest update", "最近一次更新的每一轮"),
+            theme.title(),
+        ),
+        Span::styled(format!(" {dtype}"), theme.dim()),
+    ])
+}
+
+/// The tables `tensors` make, in the order they are drawn: the per-step tensors in one,
+/// the per-epoch ones in one, the per-episode ones in one, each grid and each list of named
+/// rows in its own, each with the title lines that go above it.
 fn tables(tensors: &[TensorView], theme: Theme) -> Vec<(Vec<Line<'static>>, Table)> {
     let per_step: Vec<&TensorView> = tensors.iter().filter(|t| is_per_step(t)).collect();
     let mut out = Vec::new();
     if let Some(table) = Table::per_step(&per_step) {
         out.push((per_step.iter().map(|t| title(t, theme)).collect(), table));
     }
+    let per_epoch: Vec<&TensorView> = tensors.iter().filter(|t| counts(t, Index::Epoch)).collect();
+    if let Some(table) = Table::counted(&per_epoch, Index::Epoch) {
+        out.push((vec![epoch_title(&per_epoch, theme)], table));
+    }
+    let per_episode: Vec<&TensorView> = tensors
+        .iter()
+        .filter(|t| counts(t, Index::Episode))
+        .collect();
+    if let Some(table) = Table::counted(&per_episode, Index::Episode) {
+        out.push((per_episode.iter().map(|t| title(t, theme)).collect(), table));
+    }
     for t in tensors {
         if let Some(axes) = &t.axes {
             out.push((vec![title(t, theme)], Table::grid(t, axes)));
         }
     }
+    for t in tensors.iter().filter(|t| !t.labels.is_empty()) {
+        let title = Line::from(vec![
+            Span::styled(t.name.clone(), theme.title()),
+            Span::styled(format!(" {}", t.shape_text()), theme.dim()),
+        ]);
+        out.push((vec![title], Table::list(t)));
+    }
     out
+}
+
+/// Whether `t` is drawn as a line of its own (a scalar, a short vector), not in a table.
+fn is_line(t: &TensorView) -> bool {
+    !is_per_step(t)
+        && t.axes.is_none()
+        && t.labels.is_empty()
+        && !counts(t, Index::Epoch)
+        && !counts(t, Index::Episode)
 }
 
 /// The largest useful [`Viewport::hscroll`] on a step showing `show` (live value names):
@@ -338,57 +492,116 @@ pub fn max_hscroll(snapshot: &Snapshot, show: &[String]) -> usize {
         .unwrap_or(0)
 }
 
+/// A scalar or short vector as one line, `name (shape) dtype [values]`, wrapped onto more
+/// lines (indented) when it is wider than the pane: nothing is cut.
+fn value_lines(t: &TensorView, columns: usize, theme: Theme) -> Vec<Line<'static>> {
+    let values: Vec<String> = t.values.iter().map(|&v| fmt_in(t, v)).collect();
+    let head = vec![
+        Span::styled(t.name.clone(), theme.title()),
+        Span::styled(format!(" {} ", t.shape_text()), theme.dim()),
+    ];
+    let one = format!("[{}]", values.join(", "));
+    let head_width: usize = head.iter().map(Span::width).sum();
+    if head_width + width(&one) <= columns || values.len() <= 1 {
+        let mut spans = head;
+        spans.push(Span::raw(one));
+        return vec![Line::from(spans)];
+    }
+    let mut out = vec![Line::from(head)];
+    let mut line = String::from("  [");
+    for (i, v) in values.iter().enumerate() {
+        let piece = if i + 1 < values.len() {
+            format!("{v}, ")
+        } else {
+            format!("{v}]")
+        };
+        if width(&line) + width(&piece) > columns && line.trim() != "[" {
+            out.push(Line::raw(line.trim_end().to_string()));
+            line = String::from("   ");
+        }
+        line.push_str(&piece);
+    }
+    out.push(Line::raw(line));
+    out
+}
+
+/// Heights for tables whose whole heights are `natural` and least heights `least`, in
+/// `room` lines: every table whole when they fit; otherwise each gets its least height, and
+/// what is left goes first to the tables marked `first` (the short lists of named rows,
+/// which a step's text names row by row), then to the others from the shortest up, so that
+/// a short table (ten epochs) shows whole beside a long one (an episode's steps), which
+/// scrolls.
+fn share(natural: &[usize], least: &[usize], first: &[bool], room: usize) -> Vec<usize> {
+    if natural.iter().sum::<usize>() <= room {
+        return natural.to_vec();
+    }
+    let mut heights: Vec<usize> = least.iter().zip(natural).map(|(&l, &n)| l.min(n)).collect();
+    let mut left = room.saturating_sub(heights.iter().sum());
+    let mut order: Vec<usize> = (0..natural.len()).collect();
+    order.sort_by_key(|&i| (!first[i], natural[i]));
+    for i in order {
+        let more = natural[i].saturating_sub(heights[i]).min(left);
+        heights[i] += more;
+        left -= more;
+    }
+    heights
+}
+
 /// Renders `tensors` into at most `view.height` lines, none wider than `view.width` but a
-/// title: each table from row `view.scroll` and column `view.hscroll`, then the scalars,
-/// series and key/value lists.
+/// title: each table from row `view.scroll` and column `view.hscroll`, then the scalars.
 #[must_use]
 pub fn lines(tensors: &[TensorView], view: Viewport, theme: Theme) -> Vec<Line<'static>> {
-    let others: Vec<&TensorView> = tensors
+    render(tensors, view, theme).0
+}
+
+/// [`lines`], and how the tables' rows were shown (for the scroll keys).
+#[must_use]
+pub fn render(tensors: &[TensorView], view: Viewport, theme: Theme) -> (Vec<Line<'static>>, Rows) {
+    let scalars: Vec<Line<'static>> = tensors
         .iter()
-        .filter(|t| !is_per_step(t) && t.axes.is_none())
+        .filter(|t| is_line(t))
+        .flat_map(|t| value_lines(t, view.width, theme))
         .collect();
-    // Rows the other values take below the tables: one each, or a title and its labels.
-    let below: usize = others
-        .iter()
-        .map(|t| {
-            if t.labels.is_empty() {
-                1
-            } else {
-                1 + t.labels.len()
-            }
-        })
-        .sum();
     let tables = tables(tensors, theme);
-    let count = tables.len();
+    let natural: Vec<usize> = tables
+        .iter()
+        .map(|(titles, table)| titles.len() + table.natural_height(view))
+        .collect();
+    // Three rows of each table at least, or one when the pane is too short for three.
+    let least_with = |rows: usize| -> Vec<usize> {
+        tables
+            .iter()
+            .map(|(titles, table)| titles.len() + table.least_height(view, rows))
+            .collect()
+    };
+    let room = view.height.saturating_sub(scalars.len());
+    let mut least = least_with(3);
+    if least.iter().sum::<usize>() > room {
+        least = least_with(1);
+    }
+    let lists: Vec<bool> = tables
+        .iter()
+        .map(|(_, table)| table.columns.is_empty())
+        .collect();
+    let heights = share(&natural, &least, &lists, room);
     let mut out = Vec::new();
-    for (i, (titles, table)) in tables.into_iter().enumerate() {
+    let mut all = Rows::default();
+    for ((titles, table), height) in tables.into_iter().zip(heights) {
+        let room = height.saturating_sub(titles.len());
         out.extend(titles);
-        // Each later table keeps room for its title, its header and a row.
-        let later = 3 * (count - i - 1);
-        let room = view.height.saturating_sub(out.len() + below.min(8) + later);
-        out.extend(table.lines(view, room, theme));
-    }
-    for t in others {
-        if !t.labels.is_empty() {
-            out.push(Line::styled(
-                format!("{} {}", t.name, t.shape_text()),
-                theme.title(),
-            ));
-            out.extend(t.labels.iter().map(|l| Line::raw(format!("  {l}"))));
-            continue;
+        let (lines, rows) = table.lines(view, room, theme);
+        out.extend(lines);
+        if rows.last_start > 0 {
+            all.shown = if all.shown == 0 {
+                rows.shown
+            } else {
+                all.shown.min(rows.shown)
+            };
         }
-        let mut spans = vec![
-            Span::styled(t.name.clone(), theme.title()),
-            Span::styled(format!(" {} ", t.shape_text()), theme.dim()),
-        ];
-        // Long series (returns) show their latest values.
-        let skip = t.values.len().saturating_sub(8);
-        let shown: Vec<String> = t.values[skip..].iter().map(|&v| fmt_in(t, v)).collect();
-        let more = if skip > 0 { "…, " } else { "" };
-        spans.push(Span::raw(format!("[{more}{}]", shown.join(", "))));
-        out.push(Line::from(spans));
+        all.last_start = all.last_start.max(rows.last_start);
     }
-    out
+    out.extend(scalars);
+    (out, all)
 }
 
 #[cfg(test)]
@@ -406,6 +619,7 @@ mod tests {
             marks: vec![Mark::Plain; values.len()],
             values,
             axes: None,
+            index: Index::None,
         }
     }
 
@@ -603,5 +817,181 @@ mod tests {
         assert!(last[1].trim_start().starts_with("θ=π"), "{last:#?}");
         assert!(last[2].trim_start().starts_with("θ̇=8 "), "{last:#?}");
         Ok(())
+    }
+
+    /// A per-epoch series of `n` values, as the live values make them.
+    fn per_epoch(name: &str, values: Vec<f64>) -> TensorView {
+        let mut t = view(name, 1, "float32", values);
+        t.shape = vec![t.values.len()];
+        t.index = Index::Epoch;
+        t
+    }
+
+    /// Lesson 13 step 1's series: every epoch is a row, numbered from 1, so the first
+    /// epoch's `approx_kl` (exactly 0) and ratios (exactly 1) can be read, at 80×24 and at
+    /// 160×50, and no line is cut on the right.
+    #[test]
+    fn every_epoch_of_a_per_epoch_series_is_a_row() -> Result<(), String> {
+        let _en = Lang::En.scoped();
+        let epochs = 10;
+        let kl: Vec<f64> = (0..epochs).map(|e| 1e-4 * e as f64).collect();
+        let tensors = [
+            per_epoch("approx_kl", kl),
+            per_epoch("clip_frac", vec![0.0; epochs]),
+            per_epoch(
+                "ratio_min",
+                (0..epochs).map(|e| 1.0 - 0.01 * e as f64).collect(),
+            ),
+            per_epoch(
+                "ratio_max",
+                (0..epochs).map(|e| 1.0 + 0.01 * e as f64).collect(),
+            ),
+            per_epoch("entropy", vec![0.69; epochs]),
+        ];
+        for pane in [
+            PANE,
+            Viewport {
+                width: 86,
+                height: 28,
+                ..PANE
+            },
+        ] {
+            let shown = text(&tensors, pane);
+            let header = shown
+                .iter()
+                .find(|l| l.trim_start().starts_with("epoch "))
+                .ok_or(format!("no epoch header: {shown:#?}"))?;
+            assert!(header.contains("approx_kl"), "{header}");
+            let first = shown
+                .iter()
+                .find(|l| l.trim_start().starts_with("1 "))
+                .ok_or(format!("no row for epoch 1: {shown:#?}"))?;
+            assert!(first.contains("0.0000"), "epoch 1's KL: {first}");
+            for line in &shown {
+                assert!(width(line) <= pane.width, "cut on the right: {line:?}");
+            }
+            // Every epoch is on screen, or reachable by scrolling the rows.
+            let mut seen = std::collections::BTreeSet::new();
+            for scroll in 0..epochs {
+                for line in text(&tensors, Viewport { scroll, ..pane }) {
+                    if let Some(Ok(e)) = line.split_whitespace().next().map(str::parse::<usize>) {
+                        seen.insert(e);
+                    }
+                }
+            }
+            assert_eq!(seen, (1..=epochs).collect(), "{shown:#?}");
+        }
+        // At 160×50 the table fits whole: no rows line.
+        let wide = text(
+            &tensors,
+            Viewport {
+                width: 86,
+                height: 28,
+                ..PANE
+            },
+        );
+        assert!(!wide.iter().any(|l| l.contains("rows ")), "{wide:#?}");
+        Ok(())
+    }
+
+    /// A long per-episode curve (500 returns) is a table too: `End` (the largest scroll)
+    /// shows its last row, and the first rows are where it starts.
+    #[test]
+    fn the_last_row_of_a_long_table_can_be_reached() -> Result<(), String> {
+        let _en = Lang::En.scoped();
+        let mut returns = view("returns", 1, "float64", (1..=500).map(f64::from).collect());
+        returns.shape = vec![500];
+        returns.index = Index::Episode;
+        let tensors = [returns];
+        let top = text(&tensors, PANE);
+        assert!(
+            top.iter().any(|l| l.trim_start().starts_with("episode ")),
+            "{top:#?}"
+        );
+        let words = |l: &String| l.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(top.iter().any(|l| words(l) == "1 1.0000"), "{top:#?}");
+        let end = text(
+            &tensors,
+            Viewport {
+                scroll: usize::MAX,
+                ..PANE
+            },
+        );
+        assert!(end.iter().any(|l| words(l) == "500 500.0000"), "{end:#?}");
+        let rows = end
+            .iter()
+            .find(|l| l.contains("of 500"))
+            .ok_or(format!("no rows line: {end:#?}"))?;
+        assert!(rows.contains("–500 of 500"), "{rows}");
+        Ok(())
+    }
+
+    /// A list of named rows (`hyper`, 10 of them) beside a batch table shows every row when
+    /// the pane has room, and otherwise scrolls to them; it is never cut after a few.
+    #[test]
+    fn a_list_of_named_rows_is_shown_whole_or_scrolls() {
+        let _en = Lang::En.scoped();
+        let mut hyper = view("hyper", 1, "", vec![f64::NAN; 10]);
+        hyper.shape = vec![10];
+        hyper.labels = (0..10).map(|i| format!("knob{i} = {i}")).collect();
+        let mut tensors = vec![hyper];
+        tensors.push(view("td_delta", 1, "float32", vec![0.5; 29]));
+        let tall = text(&tensors, Viewport { height: 40, ..PANE });
+        for i in 0..10 {
+            assert!(
+                tall.iter().any(|l| l.trim() == format!("knob{i} = {i}")),
+                "knob{i}: {tall:#?}"
+            );
+        }
+        let short = text(&tensors, PANE);
+        assert!(short.len() <= PANE.height, "{short:#?}");
+        let end = text(
+            &tensors,
+            Viewport {
+                scroll: usize::MAX,
+                ..PANE
+            },
+        );
+        assert!(end.iter().any(|l| l.trim() == "knob9 = 9"), "{end:#?}");
+    }
+
+    /// Pendulum's observation columns are named by what they are: cos θ, sin θ, θ̇.
+    #[test]
+    fn pendulum_observations_name_their_columns() {
+        let t = view("states", 3, "float32", vec![1.0, 0.0, 0.5]);
+        assert_eq!(sub_names(&t), ["states.cosθ", "states.sinθ", "states.θ̇"]);
+        let other = view("mu", 3, "float32", vec![0.0; 3]);
+        assert_eq!(sub_names(&other), ["mu[0]", "mu[1]", "mu[2]"]);
+    }
+
+    /// A scalar line wider than the pane wraps; it is not cut.
+    #[test]
+    fn a_wide_vector_wraps_instead_of_being_cut() {
+        let mut t = view(
+            "kl",
+            1,
+            "float32",
+            (0..12).map(|i| 0.1234 * f64::from(i)).collect(),
+        );
+        t.shape = vec![12];
+        let shown = text(&[t], PANE);
+        assert!(shown.len() > 1, "{shown:#?}");
+        assert!(shown.iter().all(|l| width(l) <= PANE.width), "{shown:#?}");
+        assert!(shown.iter().any(|l| l.contains("1.3574]")), "{shown:#?}");
+    }
+
+    /// The pane's lines go to the short tables whole first (a list of named rows before
+    /// anything), the longest table scrolls.
+    #[test]
+    fn short_tables_show_whole_beside_a_long_one() {
+        // An episode's 29 steps (31 lines), ten epochs (12), and a 14-row list (15).
+        let natural = [31, 12, 15];
+        let least = [6, 6, 5];
+        assert_eq!(
+            share(&natural, &least, &[false, false, true], 40),
+            [13, 12, 15]
+        );
+        assert_eq!(share(&natural, &least, &[false, false, true], 100), natural);
+        assert_eq!(share(&natural, &least, &[false, false, true], 10), least);
     }
 }

@@ -95,28 +95,65 @@ pub fn parts(body: &str) -> Result<Vec<Part<'_>>, DetailsError> {
 /// A body whose blocks cannot be read (the loader rejects those) is returned as is.
 #[must_use]
 pub fn fold(body: &str, open: bool) -> String {
+    fold_first(body, if open { usize::MAX } else { 0 })
+}
+
+/// The body for a terminal with its first `opened` details blocks open and the rest folded:
+/// the app opens a step's blocks one at a time, in order, with `d` (so that opening one
+/// block never opens another, such as one to read only after a prediction), and folds them
+/// all with `d` once every one is open. The folded block `d` opens next says so; once all
+/// are open, the first says that `d` folds them.
+#[must_use]
+pub fn fold_first(body: &str, opened: usize) -> String {
     let Ok(parts) = parts(body) else {
         return body.to_string();
     };
+    let total = parts
+        .iter()
+        .filter(|p| matches!(p, Part::Details(..)))
+        .count();
     let mut out: Vec<String> = Vec::new();
+    let mut index = 0;
     for part in parts {
         match part {
             Part::Main(lines) => out.extend(lines.iter().map(|l| (*l).to_string())),
-            Part::Details(summary, lines) if open => {
-                out.push(crate::tr!(
-                    "▾ **Details: {summary}** (d folds)",
-                    "▾ **细节：{summary}**（按 d 收起）"
-                ));
-                out.extend(lines.iter().map(|l| (*l).to_string()));
-                out.push("▴ end of details".to_string());
+            Part::Details(summary, lines) => {
+                let (open, first) = (index < opened, index == 0);
+                index += 1;
+                if open {
+                    out.push(if first && opened >= total {
+                        crate::tr!(
+                            "▾ **Details: {summary}** (d folds)",
+                            "▾ **细节：{summary}**（按 d 收起）"
+                        )
+                    } else {
+                        crate::tr!("▾ **Details: {summary}**", "▾ **细节：{summary}**")
+                    });
+                    out.extend(lines.iter().map(|l| (*l).to_string()));
+                    out.push(crate::i18n::t("▴ end of details", "▴ 细节结束").to_string());
+                } else if index - 1 == opened {
+                    out.push(crate::tr!(
+                        "▸ **Details: {summary}** (d opens)",
+                        "▸ **细节：{summary}**（按 d 展开）"
+                    ));
+                } else {
+                    out.push(crate::tr!(
+                        "▸ **Details: {summary}** (d opens it after the one above)",
+                        "▸ **细节：{summary}**（展开上面那段之后，再按 d 展开）"
+                    ));
+                }
             }
-            Part::Details(summary, _) => out.push(crate::tr!(
-                "▸ **Details: {summary}** (d opens)",
-                "▸ **细节：{summary}**（按 d 展开）"
-            )),
         }
     }
     out.join("\n").trim().to_string()
+}
+
+/// How many details blocks the body has (0 when they cannot be read).
+#[must_use]
+pub fn count(body: &str) -> usize {
+    parts(body).map_or(0, |p| {
+        p.iter().filter(|p| matches!(p, Part::Details(..))).count()
+    })
 }
 
 /// Whether the body has any details block.
@@ -168,5 +205,31 @@ mod tests {
         );
         assert!(!has_details("plain"));
         assert!(has_details(BODY));
+    }
+
+    /// Two blocks: `d` opens the first only (the second stays folded and says how it
+    /// opens), then the second; the first then says `d` folds them.
+    #[test]
+    fn blocks_open_one_at_a_time_in_order() {
+        let _en = crate::i18n::Lang::En.scoped();
+        let body = format!(
+            "{BODY}\n\n<details><summary>The answer</summary>\n\nSecret line.\n\n</details>"
+        );
+        assert_eq!(count(&body), 2);
+        let none = fold_first(&body, 0);
+        assert!(none.contains("Why float32** (d opens)"), "{none}");
+        assert!(none.contains("The answer** (d opens it after"), "{none}");
+        let one = fold_first(&body, 1);
+        assert!(
+            one.contains("Niche line.") && !one.contains("Secret line."),
+            "{one}"
+        );
+        assert!(one.contains("The answer** (d opens)"), "{one}");
+        assert!(!one.contains("(d folds)"), "{one}");
+        let both = fold_first(&body, 2);
+        assert!(both.contains("Niche line.") && both.contains("Secret line."));
+        assert!(both.contains("Why float32** (d folds)"), "{both}");
+        assert_eq!(fold(&body, true), both);
+        assert_eq!(fold(&body, false), none);
     }
 }

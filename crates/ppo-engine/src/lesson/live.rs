@@ -60,6 +60,33 @@ pub struct TensorView {
     /// What the rows and columns of a grid stand for (the policy maps' θ̇ rows and θ
     /// columns); `None` for tensors whose rows are steps of the batch.
     pub axes: Option<Axes>,
+    /// What the entries of a vector count, when they are one per epoch or per episode (a
+    /// face then labels each entry with its number, from 1).
+    pub index: Index,
+}
+
+/// What the entries of a one-dimensional live value count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Index {
+    /// Nothing in particular (a scalar, a list of named rows).
+    #[default]
+    None,
+    /// One entry per epoch of the latest update (`approx_kl`, `clip_frac`, the losses).
+    Epoch,
+    /// One entry per episode of the run (`returns`, `moving_average`).
+    Episode,
+}
+
+impl Index {
+    /// The name of what is counted, for a table's corner: `epoch`, `episode`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "",
+            Self::Epoch => crate::i18n::t("epoch", "轮"),
+            Self::Episode => crate::i18n::t("episode", "回合"),
+        }
+    }
 }
 
 /// The two axes of a grid tensor, so that a face can label its rows and columns.
@@ -91,7 +118,15 @@ impl TensorView {
             values,
             marks,
             axes: None,
+            index: Index::None,
         }
+    }
+
+    /// The same values, labelled as one entry per `index` (epoch or episode).
+    #[must_use]
+    pub fn counting(mut self, index: Index) -> Self {
+        self.index = index;
+        self
     }
 
     /// A float32 column `(N, 1)` named `name`, unmarked: how a notebook shows a vector it

@@ -13,7 +13,7 @@
 //! assert_eq!(lookup("ratio").map(|v| v.name), Some("ratio"));
 //! ```
 
-use super::{Axes, Axis, Mark, Snapshot, TensorView};
+use super::{Axes, Axis, Index, Mark, Snapshot, TensorView};
 use crate::lesson::Environment;
 use crate::ppo::{ContinuousEpochTrace, ContinuousUpdateTrace, EpochTrace, UpdateTrace};
 
@@ -241,7 +241,7 @@ pub const LIVE: &[LiveValue] = &[
                 .iter()
                 .map(|e| e.kl_mean.map_or(f64::NAN, f64::from))
                 .collect();
-            Some(TensorView::new(n, vec![values.len()], "float32", values))
+            Some(TensorView::new(n, vec![values.len()], "float32", values).counting(Index::Epoch))
         },
     },
     LiveValue {
@@ -462,7 +462,7 @@ fn continuous_series(
     f: impl Fn(&ContinuousEpochTrace) -> f32,
 ) -> TensorView {
     let values: Vec<f64> = c.epochs.iter().map(|e| f64::from(f(e))).collect();
-    TensorView::new(name, vec![values.len()], "float32", values)
+    TensorView::new(name, vec![values.len()], "float32", values).counting(Index::Epoch)
 }
 
 /// `μ` or `σ` over the policy map's grid, `(θ̇ rows, θ columns)`.
@@ -640,8 +640,10 @@ fn gradient(
 
 /// A float64 curve over episodes, `None` before the first episode.
 fn curve(name: &'static str, values: &[f64]) -> Option<TensorView> {
-    (!values.is_empty())
-        .then(|| TensorView::new(name, vec![values.len()], "float64", values.to_vec()))
+    (!values.is_empty()).then(|| {
+        TensorView::new(name, vec![values.len()], "float64", values.to_vec())
+            .counting(Index::Episode)
+    })
 }
 
 /// Marks each entry by its sign.
@@ -669,7 +671,7 @@ fn epoch_series(
     f: impl Fn(&EpochTrace) -> f32,
 ) -> Option<TensorView> {
     let values: Vec<f64> = trace(s)?.epochs.iter().map(|e| f64::from(f(e))).collect();
-    Some(TensorView::new(name, vec![values.len()], "float32", values))
+    Some(TensorView::new(name, vec![values.len()], "float32", values).counting(Index::Epoch))
 }
 
 #[cfg(test)]
