@@ -18,6 +18,10 @@ use ppo_tutor::i18n::Lang;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
+/// Prints, processes the learner starts, the untouched starter and the cache.
+#[path = "graders/runs.rs"]
+mod runs;
+
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
 
 fn opts() -> GradeOptions {
@@ -60,7 +64,8 @@ fn grade_text(
 /// The English words of `report` read in Chinese (issue 29: none on a Chinese screen
 /// outside code). Code is: the exercise's identifiers (every word of its signature, so its
 /// parameters), file paths, code spans, and what the learner's toolchain printed (the
-/// compiler's errors under a failed build, a panic's own message).
+/// compiler's errors under a failed build, a panic's own message) or their code printed
+/// (the lines under `输出：`).
 fn english_in_chinese(report: &Report, exercise: &dyn Exercise) -> Vec<String> {
     let text = {
         let _zh = Lang::Zh.scoped();
@@ -74,12 +79,18 @@ fn english_in_chinese(report: &Report, exercise: &dyn Exercise) -> Vec<String> {
         .filter(|w| !w.is_empty())
         .map(str::to_string)
         .collect();
+    let printed: std::collections::BTreeSet<&str> = report
+        .checks
+        .iter()
+        .flat_map(|c| c.printed.lines.iter().map(String::as_str))
+        .collect();
     let ours = match &report.compile_error {
         // The summary line only: below it is rustc's output.
         Some(_) => text.lines().take(2).collect::<Vec<_>>(),
         None => text
             .lines()
             .filter(|l| !l.trim_start().starts_with("panic："))
+            .filter(|l| !printed.contains(l.trim_start().trim_start_matches("输出：").trim()))
             .collect(),
     };
     ours.iter()
@@ -588,6 +599,44 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
     assert!(report.passed(), "{}", report.render());
     assert_eq!(report.checks.len(), 5, "{}", report.render());
     assert_eq!(report.checks[4].name, ppo_losses::training_check_name());
+
+    // Printing from the candle exercise (the training check asks thousands of times): it
+    // still passes, and each check shows a few of the lines.
+    let solution = std::fs::read_to_string(lesson.join("solution_candle.rs"))?;
+    let open = solution
+        .find(") -> Result<(Tensor, Tensor)> {")
+        .ok_or("no signature")?
+        + ") -> Result<(Tensor, Tensor)> {".len();
+    let printing = format!(
+        "{}\n    println!(\"batch of {{:?}}\", probs.dims());\n    dbg!(eps);{}",
+        &solution[..open],
+        &solution[open..]
+    );
+    let report = grade_candle(&printing, ten)?;
+    assert!(report.passed(), "{}", report.render());
+    for (i, check) in report.checks.iter().enumerate() {
+        assert!(
+            check
+                .printed
+                .lines
+                .first()
+                .is_some_and(|l| l.starts_with("batch of [")),
+            "{}",
+            report.render()
+        );
+        // stdout's lines come first: the training check's fill the five shown.
+        assert!(
+            i == 4
+                || check
+                    .printed
+                    .lines
+                    .iter()
+                    .any(|l| l.starts_with("[learner_candle.rs:")),
+            "{}",
+            report.render()
+        );
+    }
+    assert!(report.checks[4].printed.more > 100, "{}", report.render());
 
     let report = grade_candle(
         &std::fs::read_to_string(lesson.join("exercise_candle.rs"))?,

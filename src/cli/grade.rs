@@ -9,7 +9,7 @@ use std::time::Duration;
 use anyhow::Context as _;
 use clap::Args;
 
-use crate::grade::{self, GradeError, GradeOptions, Report};
+use crate::grade::{self, GradeError, GradeOptions, GradeProgress, Report};
 use crate::i18n::t;
 use crate::lesson::Progress;
 use crate::tr;
@@ -35,6 +35,13 @@ impl TimeLimit {
 
 /// Arguments of `ppo-tutor grade`.
 #[derive(Debug, Args)]
+#[command(
+    after_help = "The compiled programs are cached in $PPO_TUTOR_GRADE_CACHE, by default \
+    ppo-tutor-grade in the system's temporary folder (/tmp/ppo-tutor-grade on Linux): candle's \
+    build for ppo_losses (about 380 MB, compiled once, about 2 minutes on two cores) and the 4 \
+    most recently used builds of each exercise (about 0.5 MB each, 5 MB for ppo_losses). \
+    Deleting the folder is safe: it is rebuilt as needed."
+)]
 pub struct GradeArgs {
     /// The exercise (its function name, e.g. compute_advantage); all exercises when omitted.
     pub exercise: Option<String>,
@@ -95,11 +102,18 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
         }
         return grade_all(&opts);
     };
-    note_first_build(name, args.file.as_deref(), &opts);
-    let report = match grade::grade(name, args.file.as_deref(), &opts) {
+    let report = match grade_shown(name, args.file.as_deref(), &opts) {
         Err(e @ GradeError::UnknownExercise { .. }) => return Ok(usage(&e.to_string())),
-        Err(e @ GradeError::Read { .. }) => {
-            eprintln!("{}{e}", super::error_prefix());
+        Err(e @ GradeError::Read { given, .. }) => {
+            let other = if given {
+                String::new()
+            } else {
+                tr!(
+                    "\nto grade another file: ppo-tutor grade {name} --file PATH",
+                    "\n要评另一个文件：ppo-tutor grade {name} --file PATH"
+                )
+            };
+            eprintln!("{}{e}{other}", super::error_prefix());
             return Ok(ExitCode::FAILURE);
         }
         other => other?,
@@ -134,37 +148,111 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
     }
 }
 
-/// Says so before a grading whose first build is slow (minutes, with no other output):
-/// only when the file to grade (`file`, else the exercise's starter) exists, since a
-/// missing file is reported without building anything (issue 25, bug 10).
-fn note_first_build(name: &str, file: Option<&Path>, opts: &GradeOptions) {
-    let Ok(exercise) = grade::find(name) else {
-        return;
-    };
-    let starter = PathBuf::from(exercise.starter_path());
-    if !file.unwrap_or(&starter).is_file() {
-        return;
+/// Grades `name` (in `file`, else its starter) showing the grading's progress on stderr:
+/// a sentence when candle is about to be compiled (minutes, the first time only), then
+/// cargo's steps, as a line redrawn on a terminal, a line per crate otherwise.
+fn grade_shown(name: &str, file: Option<&Path>, opts: &GradeOptions) -> Result<Report, GradeError> {
+    let mut shown = Shown::new();
+    let report = grade::grade_with_progress(name, file, opts, &mut |p| shown.show(p));
+    shown.finish();
+    report
+}
+
+/// A grading's progress on stderr.
+struct Shown {
+    bar: Option<indicatif::ProgressBar>,
+    terminal: bool,
+    /// The crate last printed (on a terminal the line is redrawn instead).
+    krate: String,
+}
+
+impl Shown {
+    fn new() -> Self {
+        use std::io::IsTerminal;
+        Self {
+            bar: None,
+            terminal: std::io::stderr().is_terminal(),
+            krate: String::new(),
+        }
     }
-    if let Some(note) = exercise.first_build_note(&opts.cache_dir) {
-        eprintln!("{note}");
+
+    fn show(&mut self, progress: &GradeProgress) {
+        match progress {
+            GradeProgress::Building {
+                first_time: true, ..
+            }
+            | GradeProgress::Waiting => self.say(&progress.to_string()),
+            GradeProgress::Compiling {
+                krate, first_time, ..
+            } => {
+                if self.terminal {
+                    let bar = self.bar.get_or_insert_with(|| {
+                        let style = indicatif::ProgressStyle::with_template("{spinner} {msg}")
+                            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner());
+                        let bar = indicatif::ProgressBar::new_spinner().with_style(style);
+                        bar.enable_steady_tick(Duration::from_millis(120));
+                        bar
+                    });
+                    bar.set_message(progress.to_string());
+                } else if *first_time && *krate != self.krate {
+                    eprintln!("{progress}");
+                    self.krate.clone_from(krate);
+                }
+            }
+            // The line redrawn on a terminal moves on; elsewhere nothing is said.
+            GradeProgress::Checking => {
+                if let Some(bar) = &self.bar {
+                    bar.set_message(progress.to_string());
+                }
+            }
+            GradeProgress::Building { .. } => {}
+        }
+    }
+
+    /// A line that stays, above the redrawn one.
+    fn say(&self, line: &str) {
+        match &self.bar {
+            Some(bar) => bar.println(line),
+            None => eprintln!("{line}"),
+        }
+    }
+
+    fn finish(self) {
+        if let Some(bar) = self.bar {
+            bar.finish_and_clear();
+        }
     }
 }
 
+/// The score table: one row per exercise, its columns as wide as their widest cell in
+/// terminal columns (a Chinese character takes two).
 fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout();
+    let exercises = grade::exercises();
+    let (exercise_head, file_head) = (t("exercise", "练习"), t("file", "文件"));
+    let widest = |head: &str, cells: &mut dyn Iterator<Item = String>| {
+        cells
+            .map(|c| super::width(&c))
+            .chain([super::width(head)])
+            .max()
+            .unwrap_or(0)
+    };
+    let names = widest(
+        exercise_head,
+        &mut exercises.iter().map(|e| e.name().to_string()),
+    );
+    let files = widest(file_head, &mut exercises.iter().map(|e| e.starter_path()));
     writeln!(
         out,
-        "{} {} {}",
-        super::pad(t("exercise", "练习"), 22),
-        super::pad(t("file", "文件"), 38),
+        "{}  {}  {}",
+        super::pad(exercise_head, names),
+        super::pad(file_head, files),
         t("result", "结果")
     )?;
     let mut passed = 0;
-    let exercises = grade::exercises();
     for exercise in exercises {
         let (name, path) = (exercise.name(), exercise.starter_path());
-        note_first_build(name, None, opts);
-        let result = match grade::grade(name, None, opts) {
+        let result = match grade_shown(name, None, opts) {
             Ok(report) => {
                 if report.passed() {
                     passed += 1;
@@ -182,7 +270,12 @@ fn grade_all(opts: &GradeOptions) -> anyhow::Result<ExitCode> {
             ),
             Err(e) => return Err(e.into()),
         };
-        writeln!(out, "{name:<22} {path:<38} {result}")?;
+        writeln!(
+            out,
+            "{}  {}  {result}",
+            super::pad(name, names),
+            super::pad(&path, files)
+        )?;
     }
     let total = exercises.len();
     writeln!(
@@ -410,8 +503,7 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
                 print!("\x1b[2J\x1b[H");
             }
             keep_screen = false;
-            note_first_build(name, None, &opts);
-            let passed = match grade::grade(name, None, &opts) {
+            let passed = match grade_shown(name, None, &opts) {
                 Ok(report) => {
                     print!("{}", report.render());
                     report.passed().then_some(report)

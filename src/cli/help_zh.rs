@@ -348,6 +348,10 @@ pub const HELP_ZH: &[(&str, &str)] = &[
         "为某个练习（或全部练习）的解答评分：各项检查、第一个失败的输入、提示",
     ),
     (
+        "grade#after",
+        "编译好的程序缓存在 $PPO_TUTOR_GRADE_CACHE，默认是系统临时文件夹里的 `ppo-tutor-grade`（例如 `/tmp/ppo-tutor-grade`）：ppo_losses 所需的 candle 构建（约 380 MB，只编译一次，双核约 2 分钟），以及每个练习最近用过的 4 个构建（每个约 0.5 MB，ppo_losses 的约 5 MB）。删除这个文件夹是安全的：需要时会重新构建。",
+    ),
+    (
         "grade:exercise",
         "练习（它的函数名，如 compute_advantage）；不给则评全部练习",
     ),

@@ -597,6 +597,85 @@ fn a_missing_candle_file_builds_nothing_and_time_limit_0_is_refused() -> TestRes
     Ok(())
 }
 
+/// `grade` with no name prints a score table whose columns line up on screen in both
+/// languages (measured in display columns: a Chinese character takes two), without building
+/// anything for starters that are still `todo!()` (the candle one included); `grade NAME
+/// --file` of a file that does not exist says so and to check the path, not to reset the
+/// lesson's file; and `grade --help` says where the cache is.
+#[test]
+fn the_score_table_lines_up_and_a_missing_file_is_named() -> TestResult {
+    use unicode_width::UnicodeWidthStr;
+    let dir = tempfile::tempdir()?;
+    let ppo = |lang: &str, args: &[&str]| {
+        sandboxed(dir.path())
+            .args(["--lang", lang])
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+    };
+    assert_eq!(ppo("en", &["init"])?.status.code(), Some(0));
+    for (lang, head) in [("en", "file"), ("zh", "文件")] {
+        let out = ppo(lang, &["grade"])?;
+        let table = String::from_utf8(out.stdout)?;
+        assert_eq!(out.status.code(), Some(1), "{table}");
+        let rows: Vec<&str> = table.lines().take_while(|l| !l.contains("score")).collect();
+        let rows: Vec<&str> = rows
+            .into_iter()
+            .take_while(|l| !l.starts_with("得分"))
+            .collect();
+        // The column of the file and of the result, on screen, in the header and each row.
+        let columns = |row: &str, file: &str| -> Option<(usize, usize)> {
+            let at = row.find(file)?;
+            let after = at + row[at..].find(' ')?;
+            let result = after + row[after..].find(|c: char| c != ' ')?;
+            Some((row[..at].width(), row[..result].width()))
+        };
+        let header = columns(rows[0], head).ok_or("no header")?;
+        assert_eq!(
+            rows.len(),
+            ppo_tutor::grade::exercises().len() + 1,
+            "{table}"
+        );
+        for row in &rows[1..] {
+            assert_eq!(columns(row, "lessons/"), Some(header), "{lang}:\n{table}");
+            assert!(row.contains("todo!()"), "{lang}: {row}");
+        }
+    }
+    assert!(!dir.path().join("cache").exists(), "starters were built");
+
+    for (lang, says) in [
+        ("en", "does not exist: check the path"),
+        ("zh", "不存在：请检查路径"),
+    ] {
+        let out = ppo(lang, &["grade", "approx_kl", "--file", "/nonexistent.rs"])?;
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(
+            err.contains("/nonexistent.rs") && err.contains(says),
+            "{lang}: {err}"
+        );
+        assert!(!err.contains("reset"), "{lang}: {err}");
+    }
+    // The lesson's own file missing: reset writes it, --file grades another.
+    std::fs::remove_file(dir.path().join("lessons/13-clip-lab/exercise.rs"))?;
+    let err = String::from_utf8(ppo("en", &["grade", "approx_kl"])?.stderr)?;
+    assert!(
+        err.contains("ppo-tutor reset approx_kl") && err.contains("--file PATH"),
+        "{err}"
+    );
+    for (lang, says) in [
+        ("en", "PPO_TUTOR_GRADE_CACHE"),
+        ("zh", "缓存在 $PPO_TUTOR_GRADE_CACHE"),
+    ] {
+        let help = String::from_utf8(ppo(lang, &["grade", "--help"])?.stdout)?;
+        assert!(
+            help.contains(says) && help.contains("ppo-tutor-grade"),
+            "{lang}: {help}"
+        );
+    }
+    Ok(())
+}
+
 /// Issue 25, bug 3: `reset` of one exercise in a file that holds others restores only that
 /// function, keeps the others' work, and keeps the old file as `.bak`, saying where.
 #[test]

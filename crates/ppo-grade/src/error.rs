@@ -7,7 +7,7 @@ use std::time::Duration;
 use crate::i18n::Text;
 use crate::tr;
 
-/// Why grading could not happen at all (a learner's bad file is a [`Report`], not this).
+/// Why grading could not happen at all (a learner's bad file is a [`Report`](crate::Report), not this).
 #[derive(Debug)]
 pub enum GradeError {
     /// No exercise has this name.
@@ -23,6 +23,10 @@ pub enum GradeError {
         file: PathBuf,
         /// The exercise.
         exercise: String,
+        /// Whether the caller gave the file (else it is the exercise's starter path).
+        given: bool,
+        /// Whether the file does not exist.
+        missing: bool,
         /// The I/O error, in both languages.
         reason: Text,
     },
@@ -93,13 +97,25 @@ impl std::fmt::Display for GradeError {
             Self::Read {
                 file,
                 exercise,
+                given,
+                missing,
                 reason,
             } => {
                 let file = file.display();
-                tr!(
-                    "cannot read {file}: {reason} (run `ppo-tutor reset {exercise}` to restore the starter, or pass --file PATH)",
-                    "无法读取 {file}：{reason}（运行 `ppo-tutor reset {exercise}` 恢复初始文件，或用 --file PATH 指定文件）"
-                )
+                match (given, missing) {
+                    (true, true) => tr!(
+                        "{file} does not exist: check the path",
+                        "{file} 不存在：请检查路径"
+                    ),
+                    (true, false) => tr!(
+                        "cannot read {file}: {reason} (check the path)",
+                        "无法读取 {file}：{reason}（请检查路径）"
+                    ),
+                    (false, _) => tr!(
+                        "cannot read {file}: {reason} (run `ppo-tutor reset {exercise}` to restore the starter)",
+                        "无法读取 {file}：{reason}（运行 `ppo-tutor reset {exercise}` 恢复初始文件）"
+                    ),
+                }
             }
             Self::NoRustc { rustc, reason } => {
                 let rustc = rustc.display();

@@ -7,9 +7,9 @@
 
 use std::path::{Path, PathBuf};
 
-use super::build;
 use super::error::{GradeError, GradeOptions};
 use super::pipeline;
+use super::progress::GradeProgress;
 use super::report::Report;
 pub use super::spec::Meta;
 use super::spec::Spec;
@@ -32,6 +32,21 @@ pub trait Exercise: Sync {
         source: &str,
         display: &str,
         opts: &GradeOptions,
+    ) -> Result<Report, GradeError> {
+        self.grade_source_with_progress(source, display, opts, &mut |_| {})
+    }
+
+    /// [`Exercise::grade_source`], calling `progress` with each step as it happens (see
+    /// [`crate::progress`]).
+    ///
+    /// # Errors
+    /// As [`Exercise::grade_source`].
+    fn grade_source_with_progress(
+        &self,
+        source: &str,
+        display: &str,
+        opts: &GradeOptions,
+        progress: &mut dyn FnMut(&GradeProgress),
     ) -> Result<Report, GradeError>;
 
     /// The ids of its typical mistakes, in the order the judge tries them (each has a
@@ -83,13 +98,6 @@ pub trait Exercise: Sync {
         crate::lesson::files::embedded_file(&format!("{}/{}", m.lesson, m.solution))
     }
 
-    /// A sentence to print before a grading whose build is slow the first time (the candle
-    /// backend compiles candle once), `None` when the next build is quick.
-    fn first_build_note(&self, cache: &Path) -> Option<String> {
-        let m = self.meta();
-        build::first_build_note(m.name, m.backend, cache)
-    }
-
     /// Writes the starter back to `root/<starter path>`: only this exercise's function when
     /// other exercises share the file, with the old text kept beside it
     /// ([`super::reset::restore`]).
@@ -130,13 +138,14 @@ impl<S: Spec> Exercise for S {
         Spec::signature(self)
     }
 
-    fn grade_source(
+    fn grade_source_with_progress(
         &self,
         source: &str,
         display: &str,
         opts: &GradeOptions,
+        progress: &mut dyn FnMut(&GradeProgress),
     ) -> Result<Report, GradeError> {
-        pipeline::grade_source(self, source, display, opts)
+        pipeline::grade_source(self, source, display, opts, progress)
     }
 
     fn mistake_ids(&self) -> Vec<&'static str> {

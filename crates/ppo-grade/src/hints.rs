@@ -25,14 +25,20 @@ pub fn crashed() -> &'static str {
     )
 }
 
+/// The hint for a function that is still the starter's `todo!()`.
+#[must_use]
+pub fn not_started() -> &'static str {
+    t(
+        "The starter's todo!() is still there: replace it with your implementation.",
+        "初始代码里的 todo!() 还在：把它换成你的实现。",
+    )
+}
+
 /// The hint for a panic with `message`.
 #[must_use]
 pub fn panic(message: &str) -> String {
     let hint = if message.contains("not yet implemented") {
-        t(
-            "The starter's todo!() is still there: replace it with your implementation.",
-            "初始代码里的 todo!() 还在：把它换成你的实现。",
-        )
+        not_started()
     } else if message.contains("out of bounds") || message.contains("range end index") {
         t(
             "An index went past the end of a slice: check the loop bounds (a single step, or the \

@@ -7,7 +7,11 @@
 //! compile step is the notebook's own. Each case runs on a worker thread: a panic is caught
 //! and reported with its message, and a function that has not answered within the time
 //! limit is reported as never returning (the thread is left behind; in a notebook, restart
-//! the kernel to stop it).
+//! the kernel to stop it). What the function prints (`println!`, `dbg!`) goes where the
+//! notebook's prints go, the cell's output, once per case it runs on: the report does not
+//! repeat it (a file graded by `ppo-tutor grade` shows a few lines beside each case
+//! instead), and a cell that starts a function still `todo!()` reports it as not started
+//! from its first panic.
 //!
 //! The candle exercise is graded the same way: `grade::in_process::ppo_losses(ppo_losses)`
 //! runs the checks of `ppo-tutor grade ppo_losses` (losses and gradients, then CartPole

@@ -12,7 +12,7 @@
 use super::hints;
 use super::learner::Answer;
 use super::prose::Hints;
-use super::report::{CheckReport, CheckStatus, Failure, Problem};
+use super::report::{CheckReport, CheckStatus, Failure, Printed, Problem};
 use super::spec::{Check, Spec};
 use crate::i18n::Text;
 
@@ -125,16 +125,33 @@ impl<'a, S: Spec> Judge<'a, S> {
         }
     }
 
-    /// The report line of `check`: passed, or its first failing case.
-    pub fn report_line(&self, check: &Check<S::Kind>) -> CheckReport {
+    /// The report line of `check`: passed, or its first failing case; with what the
+    /// learner printed (`printed`, one per case) on the failing case, else on the first
+    /// case that printed.
+    pub fn report_line(&self, check: &Check<S::Kind>, printed: &[Printed]) -> CheckReport {
+        let (status, failing) = self.status(check);
+        let of = |i: usize| printed.get(i).cloned().unwrap_or_default();
+        let printed = match (&status, failing) {
+            (CheckStatus::Failed(_), Some(i)) => of(i),
+            (CheckStatus::Passed, _) => {
+                let mut printing = check.cases.iter().filter(|&&i| !of(i).is_empty());
+                printing.next().map_or_else(Printed::default, |&i| Printed {
+                    other_cases: printing.count(),
+                    ..of(i)
+                })
+            }
+            _ => Printed::default(),
+        };
         CheckReport {
             name: check.name.clone(),
             cases: check.cases.len(),
-            status: self.status(check),
+            status,
+            printed,
         }
     }
 
-    fn status(&self, check: &Check<S::Kind>) -> CheckStatus {
+    /// The status of `check`, and the case it failed on.
+    fn status(&self, check: &Check<S::Kind>) -> (CheckStatus, Option<usize>) {
         for &i in &check.cases {
             let (problem, expected, got, detail, hint) = match &self.answers[i] {
                 Answer::Value(_) => match (&self.learner[i], &self.reference[i]) {
@@ -164,10 +181,11 @@ impl<'a, S: Spec> Judge<'a, S> {
                     ),
                 },
                 Answer::NotRun => {
-                    return CheckStatus::NotRun(Text::new(
+                    let why = Text::new(
                         "an earlier case stopped the program",
                         "前面的用例让程序停止了",
-                    ));
+                    );
+                    return (CheckStatus::NotRun(why), None);
                 }
                 other => {
                     let (problem, hint) = self.problem(other);
@@ -180,16 +198,17 @@ impl<'a, S: Spec> Judge<'a, S> {
                     )
                 }
             };
-            return CheckStatus::Failed(Box::new(Failure {
+            let failure = Failure {
                 problem,
                 input: self.spec.show_input(&self.cases[i]),
                 expected,
                 got,
                 detail,
                 hint,
-            }));
+            };
+            return (CheckStatus::Failed(Box::new(failure)), Some(i));
         }
-        CheckStatus::Passed
+        (CheckStatus::Passed, None)
     }
 
     /// A failure that is not a value, and its hint.

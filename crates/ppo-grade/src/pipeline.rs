@@ -6,20 +6,24 @@
 //! function (notebook cell) ──┘   (Answer per case)   └─▶ follow-up checks (training)
 //! ```
 //!
-//! Grading options go down (time limit, cache), answers and reports come up. A learner's
-//! file is built by its backend ([`super::build`]) and asked over a pipe; a function in
+//! Grading options go down (time limit, cache), answers, progress and reports come up. A
+//! learner's file whose function is still the starter's `todo!()` is reported as not
+//! started before anything is built ([`super::not_started`]); any other is built by its
+//! backend ([`super::build`]) and asked over a pipe; a function in
 //! this process is asked on a worker thread ([`super::learner`]); both give the same
 //! [`Answer`]s to the same [`Judge`].
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::{Duration, Instant};
 
-use super::build::{self, Build, Program};
+use super::build::{self, Build};
 use super::error::{GradeError, GradeOptions};
 use super::judge::Judge;
 use super::learner::{Answer, InProcess, Learner, LearnerProcess, Quiet, panic_message};
+use super::not_started::todo_line;
+use super::progress::GradeProgress;
 use super::prose::Hints;
-use super::report::{CheckReport, CheckStatus, Report};
+use super::report::{CheckReport, CheckStatus, Printed, Report};
 use super::spec::{Cases, Spec};
 use crate::i18n::Text;
 use crate::text;
@@ -31,7 +35,24 @@ fn empty_report(name: &str, display: Text) -> Report {
         compile_error: None,
         checks: Vec::new(),
         mistake: None,
+        not_started: None,
     }
+}
+
+/// A line per check (the follow-up ones too), none of them run, for `why`.
+fn not_run<S: Spec>(spec: &S, cases: &Cases<S::Case, S::Kind>, why: &Text) -> Vec<CheckReport> {
+    let line = |name: Text, cases| CheckReport {
+        name,
+        cases,
+        status: CheckStatus::NotRun(why.clone()),
+        printed: Printed::default(),
+    };
+    cases
+        .checks
+        .iter()
+        .map(|c| line(c.name.clone(), c.cases.len()))
+        .chain(spec.follow_up_names().into_iter().map(|n| line(n, 1)))
+        .collect()
 }
 
 /// A report for a grading that could not run at all (the grader's own failure).
@@ -42,7 +63,9 @@ pub(crate) fn not_graded(name: &str, display: Text, why: Text) -> Report {
     }
 }
 
-/// Grades `source` (a learner's file, shown as `display`) as `spec`.
+/// Grades `source` (a learner's file, shown as `display`) as `spec`, telling `progress`
+/// each step. A function still the starter's `todo!()` is reported as not started
+/// without a build.
 ///
 /// # Errors
 /// The backend cannot build (no compiler, unwritable cache), or the grader's own cases
@@ -52,41 +75,60 @@ pub fn grade_source<S: Spec>(
     source: &str,
     display: &str,
     opts: &GradeOptions,
+    progress: &mut dyn FnMut(&GradeProgress),
 ) -> Result<Report, GradeError> {
     let meta = spec.meta();
     let prose = Hints::of(meta.name)?;
     let cases = spec.cases()?;
     let mut report = empty_report(meta.name, Text::same(display));
-    let program: Program = match build::build(
-        meta.name,
-        meta.backend,
-        &spec.program(),
-        &spec.signature(),
-        source,
+    if let Some(line) = todo_line(source, meta.name) {
+        report.not_started = Some(line);
+        let why = Text::new("the function is still todo!()", "函数还是 todo!()");
+        report.checks = not_run(spec, &cases, &why);
+        return Ok(report);
+    }
+    let (program, signature) = (spec.program(), spec.signature());
+    let request = build::Request {
+        name: meta.name,
+        backend: meta.backend,
+        source: &program,
+        signature: &signature,
+        learner: source,
         display,
-        &opts.cache_dir,
-    )? {
-        Build::Ready(program) => program,
-        Build::Failed { summary, compiler } => {
-            report.compile_error = Some((summary, compiler));
-            let not_run = |name: Text, cases| CheckReport {
-                name,
-                cases,
-                status: CheckStatus::NotRun(Text::new(
-                    "the file does not compile",
-                    "文件编译不通过",
-                )),
-            };
-            report.checks = cases
-                .checks
-                .iter()
-                .map(|c| not_run(c.name.clone(), c.cases.len()))
-                .chain(spec.follow_up_names().into_iter().map(|n| not_run(n, 1)))
-                .collect();
-            return Ok(report);
-        }
+        cache: &opts.cache_dir,
     };
-    let mut session = LearnerProcess::start(&program, display)?;
+    let mut session = None;
+    // A second try when another grading's pruning of the cache deleted the program
+    // between its build and its start.
+    for _ in 0..2 {
+        let program = match build::build(&request, progress)? {
+            Build::Ready(program) => program,
+            Build::Failed { summary, compiler } => {
+                report.compile_error = Some((summary, compiler));
+                let why = Text::new("the file does not compile", "文件编译不通过");
+                report.checks = not_run(spec, &cases, &why);
+                return Ok(report);
+            }
+        };
+        progress(&GradeProgress::Checking);
+        match LearnerProcess::start(&program, display) {
+            Ok(started) => {
+                session = Some(started);
+                break;
+            }
+            Err(GradeError::Run { .. }) if !program.binary.is_file() => {}
+            Err(e) => return Err(e),
+        }
+    }
+    let Some(mut session) = session else {
+        return Err(GradeError::Cache {
+            dir: opts.cache_dir.clone(),
+            reason: Text::new(
+                "the built program was deleted before it could run, twice",
+                "编译好的程序两次都在运行前被删除了",
+            ),
+        });
+    };
     let mut learner = Talk {
         spec,
         session: &mut session,
@@ -173,6 +215,7 @@ fn judged<S: Spec>(
     limit: Duration,
 ) -> Report {
     let start = Instant::now();
+    let mut printed = Vec::with_capacity(cases.all.len());
     let answers: Vec<Answer<S::Reply>> = cases
         .all
         .iter()
@@ -182,15 +225,25 @@ fn judged<S: Spec>(
             } else {
                 start + limit
             };
-            learner.ask(spec.question(case), deadline, limit)
+            let answer = learner.ask(spec.question(case), deadline, limit);
+            printed.push(learner.take_printed());
+            answer
         })
         .collect();
     let judge = Judge::new(spec, prose, &cases.all, answers);
     for check in &cases.checks {
-        report.checks.push(judge.report_line(check));
+        report.checks.push(judge.report_line(check, &printed));
     }
     report.mistake = judge.any_diagnosis().map(str::to_string);
-    let follow_up = spec.follow_up(learner, limit, judge.any_diagnosis(), prose);
+    let mut follow_up = spec.follow_up(learner, limit, judge.any_diagnosis(), prose);
+    // What was printed during the follow-up checks (a training run asks many questions)
+    // goes with the last of them.
+    let printed = learner.take_printed();
+    if let Some(last) = follow_up.last_mut()
+        && !matches!(last.status, CheckStatus::NotRun(_))
+    {
+        last.printed = printed;
+    }
     report.checks.extend(follow_up);
     report
 }
@@ -223,5 +276,9 @@ impl<S: Spec> Learner<S::Question, S::Reply> for Talk<'_, S> {
 
     fn is_stopped(&self) -> bool {
         self.session.is_stopped()
+    }
+
+    fn take_printed(&mut self) -> Printed {
+        self.session.take_printed()
     }
 }

@@ -4,8 +4,10 @@
 //! [`Plain`]: its signature, reference, typical mistakes and cases.
 //!
 //! The harness declares the learner's file as a module, reads one case per line on stdin,
-//! calls the function through a pointer of the exact signature, and prints one line per
-//! case: `ok <result>` or `panic <message>` (panics are caught per case).
+//! calls the function through a pointer of the exact signature, and answers each case with
+//! `ok <result>` or `panic <message>` (panics are caught per case) through the serving loop
+//! every learner program shares ([`crate::harness`]: the answers are marked, so the
+//! learner's own prints cannot pass for them).
 
 use std::sync::Arc;
 use std::time::Duration;
@@ -196,8 +198,8 @@ pub fn fixture(cases: impl Fn(&FixtureBatch) -> Vec<Vec<Arg>>) -> CheckCases {
 const PRELUDE: &str = r#"#![allow(warnings)]
 #[path = "learner.rs"]
 mod learner;
-
-use std::io::{BufRead, Write};
+#[path = "harness.rs"]
+mod harness;
 
 struct Fields<'a>(std::str::SplitWhitespace<'a>);
 
@@ -245,46 +247,15 @@ impl<T: Enc> Enc for Vec<T> {
 }
 
 fn main() {
-    let message = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
-    let slot = message.clone();
-    std::panic::set_hook(Box::new(move |info| {
-        let payload = info.payload();
-        let text = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "a panic without a message".to_string());
-        let place = info
-            .location()
-            .map(|l| format!(" (at {}:{}:{})", l.file(), l.line(), l.column()))
-            .unwrap_or_default();
-        if let Ok(mut m) = slot.lock() {
-            *m = format!("{text}{place}");
-        }
-    }));
-    let stdin = std::io::stdin();
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
-    for line in stdin.lock().lines() {
-        let Ok(line) = line else { break };
+    harness::serve(|line| {
         let mut fields = Fields(line.split_whitespace());
-        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| case(&mut fields)));
-        let text = match result {
-            Ok(s) => format!("ok {s}"),
-            Err(_) => {
-                let m = message.lock().map(|m| m.replace('\n', " ")).unwrap_or_default();
-                format!("panic {m}")
-            }
-        };
-        if writeln!(out, "{text}").and_then(|_| out.flush()).is_err() {
-            break;
-        }
-    }
+        format!("ok {}", case(&mut fields))
+    });
 }
 "#;
 
 impl Plain {
-    /// The harness's source: [`PRELUDE`] and a `case` function calling the learner's.
+    /// The harness's source: `PRELUDE` and a `case` function calling the learner's.
     #[must_use]
     pub fn harness(&self) -> String {
         let mut body = String::from("\nfn case(f: &mut Fields<'_>) -> String {\n");
@@ -363,7 +334,7 @@ impl Spec for Plain {
     fn program(&self) -> Source {
         Source {
             main: self.harness(),
-            files: Vec::new(),
+            files: vec![("harness.rs", crate::build::HARNESS)],
         }
     }
 

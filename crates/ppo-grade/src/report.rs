@@ -58,6 +58,80 @@ pub struct CheckReport {
     pub cases: usize,
     /// The result.
     pub status: CheckStatus,
+    /// What the learner's code printed on the case shown (the failing one, else the first
+    /// that printed); empty when it printed nothing.
+    pub printed: Printed,
+}
+
+/// How many lines of what the learner's code printed a report shows per check.
+pub const PRINTED_LINES: usize = 5;
+
+/// How many columns of each printed line a report shows.
+pub const PRINTED_WIDTH: usize = 100;
+
+/// What the learner's code printed (stdout and stderr, `println!`, `eprintln!`, `dbg!`)
+/// while answering, kept short: the first [`PRINTED_LINES`] lines, each cut to
+/// [`PRINTED_WIDTH`] columns, and how many more there were.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Printed {
+    /// The first lines, as shown (control characters replaced, long lines cut with `…`).
+    pub lines: Vec<String>,
+    /// How many lines followed them.
+    pub more: usize,
+    /// How many other cases of the check printed too (their lines are not shown).
+    pub other_cases: usize,
+}
+
+impl Printed {
+    /// Adds a printed line (kept if there is room, else counted).
+    pub fn push(&mut self, line: &str) {
+        if self.lines.len() < PRINTED_LINES {
+            self.lines.push(shown_line(line));
+        } else {
+            self.more += 1;
+        }
+    }
+
+    /// Adds everything `other` holds after what this holds.
+    pub fn append(&mut self, other: Self) {
+        for line in other.lines {
+            if self.lines.len() < PRINTED_LINES {
+                self.lines.push(line);
+            } else {
+                self.more += 1;
+            }
+        }
+        self.more += other.more;
+        self.other_cases += other.other_cases;
+    }
+
+    /// Whether nothing was printed.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.lines.is_empty() && self.more == 0
+    }
+}
+
+/// `line` as a report shows it: tabs as spaces, other control characters (a terminal's
+/// escape sequences) as `�`, and cut to [`PRINTED_WIDTH`] columns with `…`.
+fn shown_line(line: &str) -> String {
+    let mut out = String::new();
+    let mut columns = 0;
+    for c in line.chars() {
+        let c = match c {
+            '\t' => ' ',
+            c if c.is_control() => '\u{fffd}',
+            c => c,
+        };
+        let w = crate::i18n::width(c.encode_utf8(&mut [0; 4]));
+        if columns + w > PRINTED_WIDTH {
+            out.push('…');
+            return out;
+        }
+        columns += w;
+        out.push(c);
+    }
+    out
 }
 
 /// The whole grading of one exercise.
@@ -73,6 +147,9 @@ pub struct Report {
     pub checks: Vec<CheckReport>,
     /// The id of the known mistake the answer matches, if any.
     pub mistake: Option<String>,
+    /// Set when the function is still the starter's `todo!()` (nothing was built or run):
+    /// the line of that `todo!()` in the file.
+    pub not_started: Option<usize>,
 }
 
 impl Report {
@@ -108,6 +185,9 @@ impl Report {
     /// `panicked`, `3/5 checks`, ...
     #[must_use]
     pub fn summary(&self) -> String {
+        if self.not_started.is_some() {
+            return t("not started (todo!() left)", "尚未开始（还留着 todo!()）").into();
+        }
         if self.compile_error.is_some() {
             return t("does not compile", "编译不通过").into();
         }
@@ -141,6 +221,19 @@ impl Report {
     #[must_use]
     pub fn render(&self) -> String {
         let mut out = format!("{} ({})\n", self.exercise, self.file);
+        if let Some(line) = self.not_started {
+            let name = &self.exercise;
+            let _ = writeln!(
+                out,
+                "  ✗ {}",
+                tr!(
+                    "not started: the body of `{name}` is still the starter's todo!() (line {line}); \
+                     nothing was built or run",
+                    "尚未开始：`{name}` 的函数体还是初始代码里的 todo!()（第 {line} 行），所以没有编译，也没有运行"
+                )
+            );
+            let _ = writeln!(out, "      {}{}", label(HINT), crate::hints::not_started());
+        }
         if let Some((summary, compiler)) = &self.compile_error {
             let _ = writeln!(out, "  ✗ {summary}\n");
             for line in compiler.trim_end().lines() {
@@ -158,6 +251,7 @@ impl Report {
             match &check.status {
                 CheckStatus::Passed => {
                     let _ = writeln!(out, "  ✓ {name}{}", paren(&cases));
+                    render_printed(&mut out, &check.printed);
                 }
                 CheckStatus::NotRun(why) => {
                     let _ = writeln!(
@@ -169,7 +263,7 @@ impl Report {
                 }
                 CheckStatus::Failed(f) => {
                     let _ = writeln!(out, "  ✗ {name}{}", paren(&cases));
-                    render_failure(&mut out, f);
+                    render_failure(&mut out, f, &check.printed);
                 }
             }
         }
@@ -216,8 +310,11 @@ const PANICKED: (&str, &str) = ("panicked: ", "panic：   ");
 const CRASHED: (&str, &str) = ("crashed:  ", "崩溃：    ");
 const ERROR: (&str, &str) = ("error:    ", "错误：    ");
 const HINT: (&str, &str) = ("hint:     ", "提示：    ");
+const PRINTED: (&str, &str) = ("printed:  ", "输出：    ");
 #[cfg(test)]
-const LABELS: [(&str, &str); 7] = [INPUT, EXPECTED, GOT, PANICKED, CRASHED, ERROR, HINT];
+const LABELS: [(&str, &str); 8] = [
+    INPUT, EXPECTED, GOT, PANICKED, CRASHED, ERROR, PRINTED, HINT,
+];
 
 fn label((en, zh): (&'static str, &'static str)) -> &'static str {
     t(en, zh)
@@ -235,7 +332,41 @@ fn panic_line(message: &str) -> String {
     }
 }
 
-fn render_failure(out: &mut String, f: &Failure) {
+/// What the learner's code printed, under a check's line: a few lines beside the label,
+/// and how much more there was.
+fn render_printed(out: &mut String, printed: &Printed) {
+    if printed.is_empty() {
+        return;
+    }
+    let indent = " ".repeat(6 + 10);
+    for (i, line) in printed.lines.iter().enumerate() {
+        let line = if i == 0 {
+            format!("      {}{line}", label(PRINTED))
+        } else {
+            format!("{indent}{line}")
+        };
+        let _ = writeln!(out, "{}", line.trim_end());
+    }
+    let (more, others) = (printed.more, printed.other_cases);
+    let more = match (Lang::current(), more) {
+        (_, 0) => None,
+        (Lang::En, 1) => Some("1 more line".to_string()),
+        (Lang::En, n) => Some(format!("{n} more lines")),
+        (Lang::Zh, n) => Some(format!("还有 {n} 行")),
+    };
+    let others = match (Lang::current(), others) {
+        (_, 0) => None,
+        (Lang::En, 1) => Some("1 other case printed too".to_string()),
+        (Lang::En, n) => Some(format!("{n} other cases printed too")),
+        (Lang::Zh, n) => Some(format!("另有 {n} 个用例也有输出")),
+    };
+    let tail: Vec<String> = more.into_iter().chain(others).collect();
+    if !tail.is_empty() {
+        let _ = writeln!(out, "{indent}{}{}", t("… ", "……"), tail.join(t("; ", "；")));
+    }
+}
+
+fn render_failure(out: &mut String, f: &Failure, printed: &Printed) {
     let input: Vec<String> = f.input.iter().map(|(n, v)| format!("{n} = {v}")).collect();
     let _ = writeln!(out, "      {}{}", label(INPUT), input.join(", "));
     match &f.problem {
@@ -266,6 +397,7 @@ fn render_failure(out: &mut String, f: &Failure) {
     if !f.detail.is_empty() {
         let _ = writeln!(out, "      {}", paren(f.detail.get()).trim_start());
     }
+    render_printed(out, printed);
     let _ = writeln!(out, "      {}{}", label(HINT), f.hint);
 }
 
@@ -283,6 +415,7 @@ mod tests {
                     name: Text::new("a single step", "只有一步"),
                     cases: 1,
                     status: CheckStatus::Passed,
+                    printed: Printed::default(),
                 },
                 CheckReport {
                     name: Text::new("every step done", "每一步都结束"),
@@ -295,6 +428,7 @@ mod tests {
                         detail: Text::default(),
                         hint: Text::new("HINT", "提示文字"),
                     })),
+                    printed: Printed::default(),
                 },
                 CheckReport {
                     name: crate::text!("{} seeded random inputs", "{} 组由随机种子生成的输入", 8),
@@ -303,9 +437,11 @@ mod tests {
                         "an earlier case stopped the program",
                         "前面的用例让程序停止了",
                     )),
+                    printed: Printed::default(),
                 },
             ],
             mistake: None,
+            not_started: None,
         }
     }
 
@@ -364,5 +500,80 @@ mod tests {
         let report = failing();
         let _g = Lang::Zh.scoped();
         assert_eq!(report.summary(), "1/3 项检查");
+    }
+
+    #[test]
+    fn printed_lines_are_bounded_cut_and_cleaned() {
+        let mut printed = Printed::default();
+        for i in 0..8 {
+            printed.push(&format!("line {i}"));
+        }
+        assert_eq!(printed.lines.len(), PRINTED_LINES);
+        assert_eq!(printed.more, 8 - PRINTED_LINES);
+        let mut other = Printed::default();
+        other.push("\u{1b}[31mred\tline");
+        other.push(&"宽".repeat(80));
+        assert_eq!(other.lines[0], "\u{fffd}[31mred line");
+        // Two columns a character: 50 of them fill the width.
+        assert_eq!(
+            other.lines[1],
+            format!("{}…", "宽".repeat(PRINTED_WIDTH / 2))
+        );
+        let mut first = Printed::default();
+        first.push("a");
+        first.append(other);
+        assert_eq!(first.lines.len(), 3);
+        printed.append(first);
+        assert_eq!((printed.lines.len(), printed.more), (PRINTED_LINES, 3 + 3));
+    }
+
+    #[test]
+    fn printed_lines_sit_under_their_check_in_both_languages() {
+        let mut report = failing();
+        let mut printed = Printed::default();
+        for line in ["x = 1", "", "x = 2"] {
+            printed.push(line);
+        }
+        printed.other_cases = 2;
+        report.checks[0].printed = printed.clone();
+        printed.other_cases = 0;
+        printed.more = 1;
+        report.checks[1].printed = printed;
+        let en = {
+            let _g = Lang::En.scoped();
+            report.render()
+        };
+        assert!(
+            en.contains(
+                "  ✓ a single step (1 case)\n      printed:  x = 1\n\n                x = 2\n                … 2 other cases printed too\n"
+            ),
+            "{en}"
+        );
+        assert!(
+            en.contains("      printed:  x = 1\n\n                x = 2\n                … 1 more line\n      hint:     HINT"),
+            "{en}"
+        );
+        let zh = {
+            let _g = Lang::Zh.scoped();
+            report.render()
+        };
+        assert!(zh.contains("      输出：    x = 1\n"), "{zh}");
+        assert!(zh.contains("……另有 2 个用例也有输出"), "{zh}");
+        assert!(zh.contains("……还有 1 行\n      提示："), "{zh}");
+        assert_eq!(en.lines().count(), zh.lines().count());
+    }
+
+    #[test]
+    fn a_report_not_started_says_where_the_todo_is() {
+        let mut report = failing();
+        report.not_started = Some(37);
+        let _g = Lang::En.scoped();
+        assert_eq!(report.summary(), "not started (todo!() left)");
+        let text = report.render();
+        assert!(
+            text.contains("still the starter's todo!() (line 37)"),
+            "{text}"
+        );
+        assert!(text.contains("todo!() is still there"), "{text}");
     }
 }

@@ -173,7 +173,7 @@ fn is_fn_named(source: &str, at: usize, name: &str) -> bool {
 }
 
 /// The length of the block comment at the start of `rest` (nested, as Rust's are).
-fn skip_block_comment(rest: &str) -> usize {
+pub(crate) fn skip_block_comment(rest: &str) -> usize {
     let mut depth = 0usize;
     let mut i = 0;
     while i < rest.len() {
@@ -195,7 +195,7 @@ fn skip_block_comment(rest: &str) -> usize {
 
 /// The length of the string literal at the start of `rest` (`"…"`, `b"…"`, `r#"…"#`), if
 /// one starts there.
-fn string_literal_len(rest: &str) -> Option<usize> {
+pub(crate) fn string_literal_len(rest: &str) -> Option<usize> {
     let body = rest.strip_prefix('b').unwrap_or(rest);
     let prefix = rest.len() - body.len();
     if let Some(raw) = body.strip_prefix('r') {
@@ -229,7 +229,7 @@ fn string_literal_len(rest: &str) -> Option<usize> {
 
 /// The length of the character literal at the start of `rest` (`'{'`, `'\''`, `'\u{7d}'`);
 /// `None` for a lifetime or label (`'a`).
-fn char_literal_len(rest: &str) -> Option<usize> {
+pub(crate) fn char_literal_len(rest: &str) -> Option<usize> {
     let body = &rest[1..];
     let mut chars = body.char_indices();
     let (_, first) = chars.next()?;

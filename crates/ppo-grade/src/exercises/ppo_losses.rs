@@ -90,6 +90,8 @@ const MAIN: &str = r#"#![allow(warnings)]
 mod learner;
 #[path = "protocol.rs"]
 mod protocol;
+#[path = "harness.rs"]
+mod harness;
 
 fn main() {
     let losses: protocol::LossesFn = learner::ppo_losses;
@@ -375,7 +377,10 @@ impl Spec for PpoLosses {
     fn program(&self) -> Source {
         Source {
             main: MAIN.to_string(),
-            files: vec![("protocol.rs", PROTOCOL)],
+            files: vec![
+                ("protocol.rs", PROTOCOL),
+                ("harness.rs", crate::build::HARNESS),
+            ],
         }
     }
 
@@ -591,6 +596,7 @@ impl Spec for PpoLosses {
             name: training_check_name(),
             cases: 1,
             status: training(learner, limit, diagnosis, prose),
+            printed: crate::report::Printed::default(),
         }]
     }
 }

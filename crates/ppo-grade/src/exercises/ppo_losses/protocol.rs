@@ -4,9 +4,11 @@
 //! This file is compiled twice: into ppo-tutor, where it evaluates the reference and the
 //! known mistakes, and, copied as text next to the learner's file, into the program that
 //! runs the learner's `ppo_losses` (a crate depending on candle alone). It therefore uses
-//! nothing but `std` and `candle_core`, and reads the same in editions 2021 and 2024.
+//! nothing but `std`, `candle_core` and the shared serving loop (`crate::harness`, copied
+//! beside it), and reads the same in editions 2021 and 2024.
 //!
-//! One request per line: `n eps`, then `probs` (2n numbers, row-major), `actions`,
+//! One request per line (the serving loop marks the replies apart from the learner's
+//! prints: see `crate::harness`): `n eps`, then `probs` (2n numbers, row-major), `actions`,
 //! `old_log_probs`, `advantage`, `values` and `td_target` (n each). One reply per line:
 //!
 //! - `ok a c`, then `∂a/∂probs` (2n), `∂c/∂values` (n) and `∂c/∂td_target` (n), where `a`
@@ -14,8 +16,6 @@
 //!   sends into the networks (the grader carries them on to the weights);
 //! - `error <message>`: the function returned an error, or a loss that is not a scalar;
 //! - `panic <message>`: the function panicked (message and place).
-
-use std::io::{BufRead, Write};
 
 use candle_core::backprop::GradStore;
 use candle_core::{DType, Device, Tensor, Var};
@@ -234,51 +234,15 @@ pub fn evaluate(losses: LossesFn, inputs: &Inputs) -> Result<Reply, String> {
     })
 }
 
-/// A panic's message (`panic!("...")` with or without arguments), or a placeholder.
-pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| (*s).to_string())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "a panic without a message".to_string())
-}
-
-/// The learner's program: answers requests from stdin until it closes, catching panics
-/// per request.
+/// The learner's program: answers requests from stdin until it closes, through the
+/// serving loop every learner program shares (`crate::harness`, copied beside this file),
+/// which catches panics per request and marks its answers apart from the learner's prints.
 pub fn serve(losses: LossesFn) {
-    let last_panic = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
-    let slot = std::sync::Arc::clone(&last_panic);
-    std::panic::set_hook(Box::new(move |info| {
-        let text = panic_message(info.payload());
-        let place = info
-            .location()
-            .map(|l| format!(" (at {}:{}:{})", l.file(), l.line(), l.column()))
-            .unwrap_or_default();
-        if let Ok(mut m) = slot.lock() {
-            *m = format!("{text}{place}").replace('\n', " ");
-        }
-    }));
-    let stdin = std::io::stdin();
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
-    for line in stdin.lock().lines() {
-        let Ok(line) = line else { break };
-        let reply = match Inputs::decode(&line) {
-            None => "error malformed request".to_string(),
-            Some(inputs) => {
-                let run = std::panic::AssertUnwindSafe(|| evaluate(losses, &inputs));
-                match std::panic::catch_unwind(run) {
-                    Ok(Ok(reply)) => reply.encode(),
-                    Ok(Err(e)) => format!("error {}", e.replace('\n', " ")),
-                    Err(_) => {
-                        let m = last_panic.lock().map(|m| m.clone()).unwrap_or_default();
-                        format!("panic {m}")
-                    }
-                }
-            }
-        };
-        if writeln!(out, "{reply}").and_then(|()| out.flush()).is_err() {
-            break;
-        }
-    }
+    crate::harness::serve(|line| match Inputs::decode(line) {
+        None => "error malformed request".to_string(),
+        Some(inputs) => match evaluate(losses, &inputs) {
+            Ok(reply) => reply.encode(),
+            Err(e) => format!("error {e}"),
+        },
+    });
 }
