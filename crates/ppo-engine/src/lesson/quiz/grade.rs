@@ -157,9 +157,17 @@ impl Question {
             t("✗ Not quite", "✗ 不太对")
         };
         let explain = super::template::fill(explain, snapshot);
+        let counts = if *tolerance == 0.0 {
+            t("only the exact value counts", "只有完全等于这个数才算对").to_string()
+        } else {
+            tr!(
+                "within ±{tolerance} counts",
+                "相差不超过 ±{tolerance} 即算对"
+            )
+        };
         let text = tr!(
-            "{mark}: you said {value}, the live value is {} ({}; within ±{tolerance} counts).\n\n{explain}",
-            "{mark}：你的预测是 {value}，实时数值是 {}（{}；相差不超过 ±{tolerance} 即算对）。\n\n{explain}",
+            "{mark}: you said {value}, the live value is {} ({}; {counts}).\n\n{explain}",
+            "{mark}：你的预测是 {value}，实时数值是 {}（{}；{counts}）。\n\n{explain}",
             show(live),
             measure.describe()
         );
@@ -339,6 +347,48 @@ mod tests {
         let close = qs[1].predict(12.4, &snap);
         assert!(close.right && close.live == Some(12.0), "{close}");
         assert!(!qs[1].predict(13.0, &snap).right);
+        Ok(())
+    }
+
+    #[test]
+    fn a_prediction_with_no_tolerance_says_it_needs_the_exact_value() -> Result<(), QuizError> {
+        use crate::i18n::Lang;
+        let exact = TWO.replace("tolerance = 0.5", "tolerance = 0");
+        let snap = Snapshot {
+            trace: Some(crate::ppo::UpdateTrace {
+                rewards: vec![1.0; 12],
+                ..crate::ppo::UpdateTrace::default()
+            }),
+            ..Snapshot::default()
+        };
+        for (lang, exactly, within) in [
+            (
+                Lang::En,
+                "; only the exact value counts).",
+                "; within ±0.5 counts).",
+            ),
+            (
+                Lang::Zh,
+                "；只有完全等于这个数才算对）。",
+                "；相差不超过 ±0.5 即算对）。",
+            ),
+        ] {
+            let _lang = lang.scoped();
+            let q = &parse("99-x", &exact)?[1];
+            let (right, off) = (q.predict(12.0, &snap), q.predict(12.4, &snap));
+            assert!(right.right && !off.right, "{right}\n{off}");
+            for v in [&right, &off] {
+                assert!(
+                    v.text.contains(exactly) && !v.text.contains("±0"),
+                    "{lang:?}: {v}"
+                );
+            }
+            let loose = parse("99-x", TWO)?[1].predict(12.4, &snap);
+            assert!(
+                loose.right && loose.text.contains(within),
+                "{lang:?}: {loose}"
+            );
+        }
         Ok(())
     }
 
