@@ -317,7 +317,14 @@ fn compare_candle(file: &Path, f: LossesFn, mistake: Option<&str>) -> TestResult
         in_place.render()
     );
     assert_eq!(in_place.mistake, from_file.mistake, "{name}");
-    assert_eq!(body(&in_place), body(&from_file), "{name}");
+    if from_file.not_started.is_some() {
+        // A file still `todo!()` is reported before it is built; in place the function
+        // runs and panics with todo!()'s message: both say "not started".
+        assert_eq!(in_place.summary(), from_file.summary(), "{name}");
+        assert_eq!(in_place.summary(), "not started (todo!() left)", "{name}");
+    } else {
+        assert_eq!(body(&in_place), body(&from_file), "{name}");
+    }
     Ok(())
 }
 
