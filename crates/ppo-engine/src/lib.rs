@@ -24,6 +24,7 @@
 
 pub mod causes;
 pub mod env;
+pub mod files;
 pub mod i18n;
 pub mod lesson;
 pub mod notebook;

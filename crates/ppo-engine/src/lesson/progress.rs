@@ -2,7 +2,10 @@
 //!
 //! The state file is small JSON (`.ppo-tutor-state.json` in the working directory, or
 //! the path in `PPO_TUTOR_STATE`). It is written to a temporary file and renamed, so a
-//! crash never leaves half a file; a corrupt file yields a warning and a fresh start.
+//! crash never leaves half a file ([`crate::files::write_atomically`]: the temporary file
+//! goes on every failure); a file that cannot be understood (not JSON, not UTF-8 text) is
+//! kept as `<path>.bak` and yields a warning and a fresh start. A save that fails says the
+//! file, the cause and the fix ([`SaveError`]).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -10,6 +13,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::Course;
+use crate::i18n::Lang;
 
 /// The default state file name (in the working directory).
 pub const STATE_FILE: &str = ".ppo-tutor-state.json";
@@ -89,6 +93,12 @@ pub struct Progress {
     /// before it existed.
     #[serde(default)]
     pub quiz_numbering: u32,
+    /// The interface language chosen last in the app, as its code (`en`, `zh`); `None` in a
+    /// file written before the choice was kept, or when none was made. Read it with
+    /// [`Self::language`] (an unknown code is no choice), set it with
+    /// [`Self::set_language`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lang: Option<String>,
 }
 
 impl Default for Progress {
@@ -100,6 +110,7 @@ impl Default for Progress {
             exercises_done: BTreeSet::new(),
             quiz: BTreeMap::new(),
             quiz_numbering: QUIZ_NUMBERING,
+            lang: None,
         }
     }
 }
@@ -147,6 +158,18 @@ impl Progress {
         self.quiz_numbering = QUIZ_NUMBERING;
     }
 
+    /// The interface language saved with the progress, if one was chosen (and is one this
+    /// build knows).
+    #[must_use]
+    pub fn language(&self) -> Option<Lang> {
+        self.lang.as_deref().and_then(Lang::from_code)
+    }
+
+    /// Keeps `lang` as the interface language, written with the next [`Self::save`].
+    pub fn set_language(&mut self, lang: Lang) {
+        self.lang = Some(lang.code().to_string());
+    }
+
     /// `(answered, right)` over every question recorded.
     #[must_use]
     pub fn quiz_score(&self) -> (usize, usize) {
@@ -171,47 +194,55 @@ impl Progress {
     }
 
     /// Loads progress from `path`. A missing file is a fresh start; an unreadable or
-    /// corrupt one is a fresh start plus a one-line warning naming the file, and a corrupt
-    /// one is first copied to `<path>.bak` (the next save would overwrite it). Answers saved
-    /// under an older numbering of the questions move to the current one
-    /// ([`Self::renumber_quiz`]).
+    /// corrupt one is a fresh start plus a one-line warning naming the file, and a file that
+    /// was read but cannot be understood (not UTF-8 text, not JSON, not progress) is first
+    /// copied to `<path>.bak` (the next save would overwrite it). Answers saved under an
+    /// older numbering of the questions move to the current one ([`Self::renumber_quiz`]).
     #[must_use]
     pub fn load(path: &Path) -> (Self, Option<String>) {
         let file = path.display();
-        match std::fs::read_to_string(path) {
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => (Self::default(), None),
-            Err(e) => (
-                Self::default(),
-                Some(crate::tr!(
+        let bytes = match std::fs::read(path) {
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return (Self::default(), None),
+            Err(e) => {
+                let warning = crate::tr!(
                     "could not read {file} ({}); starting fresh",
                     "无法读取 {file}（{}）；从头开始",
                     crate::causes::message(&e)
-                )),
-            ),
-            Ok(text) => match serde_json::from_str::<Self>(&text) {
-                Ok(mut p) => {
-                    p.renumber_quiz();
-                    (p, None)
-                }
-                Err(e) => {
-                    let backup = backup_path(path);
-                    let kept = std::fs::write(&backup, &text).is_ok();
-                    let backup = backup.display();
+                );
+                return (Self::default(), Some(warning));
+            }
+            Ok(bytes) => bytes,
+        };
+        let parsed = std::str::from_utf8(&bytes)
+            .map_err(|_| crate::i18n::t("not UTF-8 text", "不是 UTF-8 文本").to_string())
+            .and_then(|text| {
+                serde_json::from_str::<Self>(text).map_err(|e| {
                     let (line, column) = (e.line(), e.column());
-                    let warning = if kept {
-                        crate::tr!(
-                            "{file} is not valid progress (line {line}, column {column}); kept as {backup}, starting fresh",
-                            "{file} 不是有效的进度文件（第 {line} 行第 {column} 列）；已另存为 {backup}，从头开始"
-                        )
-                    } else {
-                        crate::tr!(
-                            "{file} is not valid progress (line {line}, column {column}) and could not be kept; starting fresh",
-                            "{file} 不是有效的进度文件（第 {line} 行第 {column} 列），也无法另存；从头开始"
-                        )
-                    };
-                    (Self::default(), Some(warning))
-                }
-            },
+                    crate::tr!("line {line}, column {column}", "第 {line} 行第 {column} 列")
+                })
+            });
+        match parsed {
+            Ok(mut p) => {
+                p.renumber_quiz();
+                (p, None)
+            }
+            Err(why) => {
+                let backup = backup_path(path);
+                let kept = crate::files::write_atomically(&backup, &bytes).is_ok();
+                let backup = backup.display();
+                let warning = if kept {
+                    crate::tr!(
+                        "{file} is not valid progress ({why}); kept as {backup}, starting fresh",
+                        "{file} 不是有效的进度文件（{why}）；已另存为 {backup}，从头开始"
+                    )
+                } else {
+                    crate::tr!(
+                        "{file} is not valid progress ({why}) and could not be kept; starting fresh",
+                        "{file} 不是有效的进度文件（{why}），也无法另存；从头开始"
+                    )
+                };
+                (Self::default(), Some(warning))
+            }
         }
     }
 
@@ -254,19 +285,110 @@ impl Progress {
         (1..=questions).all(|n| self.quiz.contains_key(&Self::quiz_key(id, n)))
     }
 
-    /// Saves to `path` atomically (write a sibling temporary file, then rename).
+    /// Saves to `path` atomically (write a sibling temporary file, then rename it; the
+    /// temporary file is removed on any failure).
     ///
     /// # Errors
-    /// The directory is not writable.
-    pub fn save(&self, path: &Path) -> std::io::Result<()> {
-        let json = serde_json::to_string_pretty(self).map_err(std::io::Error::other)?;
-        let mut tmp = path.as_os_str().to_owned();
-        tmp.push(".tmp");
-        let tmp = PathBuf::from(tmp);
-        std::fs::write(&tmp, json)?;
-        std::fs::rename(&tmp, path)
+    /// [`SaveError`]: the folder is missing or not writable, or `path` is a folder; its
+    /// message names the file, the cause and the fix.
+    pub fn save(&self, path: &Path) -> Result<(), SaveError> {
+        let json = serde_json::to_string_pretty(self).map_err(std::io::Error::other);
+        json.and_then(|json| crate::files::write_atomically(path, json.as_bytes()))
+            .map_err(|source| SaveError::new(path, source))
     }
 }
+
+/// The progress file could not be saved: which file, why (the file system's error) and
+/// what to do, in the current language when shown.
+#[derive(Debug)]
+pub struct SaveError {
+    /// The progress file.
+    pub path: PathBuf,
+    /// What the file system said.
+    pub source: std::io::Error,
+    /// What stood in the way, for the fix.
+    obstacle: Obstacle,
+}
+
+/// What kept a progress file from being saved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Obstacle {
+    /// The path is a folder.
+    Folder,
+    /// The folder does not exist.
+    NoFolder,
+    /// The folder (or the file) may not be written.
+    ReadOnly,
+    /// Anything else (a full disk, say).
+    Other,
+}
+
+impl SaveError {
+    fn new(path: &Path, source: std::io::Error) -> Self {
+        use std::io::ErrorKind;
+        let obstacle = if path.is_dir() {
+            Obstacle::Folder
+        } else {
+            match source.kind() {
+                ErrorKind::NotFound => Obstacle::NoFolder,
+                ErrorKind::PermissionDenied | ErrorKind::ReadOnlyFilesystem => Obstacle::ReadOnly,
+                _ => Obstacle::Other,
+            }
+        };
+        Self {
+            path: path.to_path_buf(),
+            source,
+            obstacle,
+        }
+    }
+
+    /// The folder the file is in (`.` for a bare name).
+    fn folder(&self) -> PathBuf {
+        match self.path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        }
+    }
+}
+
+impl std::fmt::Display for SaveError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let file = self.path.display();
+        let cause = crate::causes::message(&self.source);
+        let folder = self.folder();
+        let folder = folder.display();
+        let fix = match self.obstacle {
+            Obstacle::Folder => crate::tr!(
+                "{file} is a folder: move it away, or set PPO_TUTOR_STATE to a file path",
+                "{file} 是一个文件夹：请把它移走，或把 PPO_TUTOR_STATE 设为一个文件路径"
+            ),
+            Obstacle::NoFolder => crate::tr!(
+                "create the folder {folder}, or set PPO_TUTOR_STATE to a file in a folder that exists",
+                "请创建文件夹 {folder}，或把 PPO_TUTOR_STATE 设为某个已有文件夹中的文件"
+            ),
+            Obstacle::ReadOnly => crate::tr!(
+                "make {folder} writable, or set PPO_TUTOR_STATE to a file in a folder you can write",
+                "请让 {folder} 可写，或把 PPO_TUTOR_STATE 设为某个可写文件夹中的文件"
+            ),
+            Obstacle::Other => crate::tr!(
+                "free some space, or set PPO_TUTOR_STATE to a file in another folder",
+                "请腾出磁盘空间，或把 PPO_TUTOR_STATE 设为其他文件夹中的文件"
+            ),
+        };
+        write!(
+            f,
+            "{}",
+            crate::tr!(
+                "could not save progress to {file} ({cause}); {fix}",
+                "无法把进度保存到 {file}（{cause}）；{fix}"
+            )
+        )
+    }
+}
+
+/// The message says the cause (the file system's error) itself, so it has no `source`: a
+/// chain printed below it would say it twice.
+impl std::error::Error for SaveError {}
 
 #[cfg(test)]
 mod tests {
@@ -305,6 +427,113 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&backup)?, "{not json");
         assert!(warning.contains("state.json.bak"), "{warning}");
         assert!(!warning.contains('\n'));
+        Ok(())
+    }
+
+    /// A file that is not UTF-8 text is kept as `.bak` too (it used to be read as a text
+    /// file that could not be read, and overwritten by the next save).
+    #[test]
+    fn binary_garbage_is_kept_before_a_fresh_start() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("state.json");
+        let garbage = [0xff_u8, 0xfe, 0x00, 0x9c, b'{', 0xc3];
+        std::fs::write(&path, garbage)?;
+        for lang in Lang::ALL {
+            let _lang = lang.scoped();
+            let (after, warning) = Progress::load(&path);
+            assert_eq!(after, Progress::default());
+            let warning = warning.ok_or("no warning")?;
+            let backup = dir.path().join("state.json.bak");
+            assert_eq!(std::fs::read(&backup)?, garbage);
+            assert!(warning.contains("state.json.bak"), "{warning}");
+            let why = lang.pick("not UTF-8 text", "不是 UTF-8 文本");
+            assert!(warning.contains(why), "{warning}");
+        }
+        Ok(())
+    }
+
+    /// A progress path that cannot be replaced (a folder) fails with the file, the cause
+    /// and the fix, in both languages, and leaves no temporary file behind.
+    #[test]
+    fn a_failed_save_says_why_and_leaves_nothing() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("state.json");
+        std::fs::create_dir(&path)?;
+        let err = Progress::default().save(&path).err().ok_or("saved")?;
+        assert_eq!(err.path, path);
+        for (lang, says) in [
+            (
+                Lang::En,
+                [
+                    "could not save progress to",
+                    "is a folder",
+                    "PPO_TUTOR_STATE",
+                ],
+            ),
+            (
+                Lang::Zh,
+                ["无法把进度保存到", "是一个文件夹", "PPO_TUTOR_STATE"],
+            ),
+        ] {
+            let _lang = lang.scoped();
+            let text = err.to_string();
+            assert!(text.contains(&path.display().to_string()), "{text}");
+            for word in says {
+                assert!(text.contains(word), "{lang:?}: {text}");
+            }
+        }
+        let left: Vec<_> = std::fs::read_dir(dir.path())?.collect::<Result<_, _>>()?;
+        assert_eq!(left.len(), 1, "{left:?}");
+        // A missing folder: the fix says to create it.
+        let missing = dir.path().join("no/such/state.json");
+        let err = Progress::default().save(&missing).err().ok_or("saved")?;
+        let _en = Lang::En.scoped();
+        assert!(err.to_string().contains("create the folder"), "{err}");
+        Ok(())
+    }
+
+    /// A read-only folder: the save fails, says to make it writable, and leaves nothing.
+    /// (Root writes anywhere: there the save succeeds and there is nothing to check.)
+    #[cfg(unix)]
+    #[test]
+    fn a_read_only_folder_is_named_in_the_fix() -> Result<(), Box<dyn std::error::Error>> {
+        use std::os::unix::fs::PermissionsExt as _;
+        let dir = tempfile::tempdir()?;
+        let folder = dir.path().join("ro");
+        std::fs::create_dir(&folder)?;
+        std::fs::set_permissions(&folder, std::fs::Permissions::from_mode(0o555))?;
+        let path = folder.join("state.json");
+        let saved = Progress::default().save(&path);
+        let left = std::fs::read_dir(&folder)?.count();
+        std::fs::set_permissions(&folder, std::fs::Permissions::from_mode(0o755))?;
+        if let Err(err) = saved {
+            let _en = Lang::En.scoped();
+            assert!(err.to_string().contains("writable"), "{err}");
+            assert_eq!(left, 0);
+        }
+        Ok(())
+    }
+
+    /// The language chosen in the app is kept; a file written before it was (no `lang`)
+    /// reads as no choice, and so does an unknown code.
+    #[test]
+    fn the_language_is_kept_and_old_files_read() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("state.json");
+        std::fs::write(&path, r#"{"lesson":"gae","step":1,"quiz_numbering":3}"#)?;
+        let (mut p, warning) = Progress::load(&path);
+        assert!(warning.is_none(), "{warning:?}");
+        assert_eq!((p.lesson.as_str(), p.language()), ("gae", None));
+        p.save(&path)?;
+        assert!(!std::fs::read_to_string(&path)?.contains("lang"));
+        p.set_language(Lang::Zh);
+        p.save(&path)?;
+        assert!(std::fs::read_to_string(&path)?.contains(r#""lang": "zh""#));
+        assert_eq!(Progress::load(&path).0.language(), Some(Lang::Zh));
+        std::fs::write(&path, r#"{"lang":"fr","lesson":"gae"}"#)?;
+        let (p, warning) = Progress::load(&path);
+        assert!(warning.is_none(), "{warning:?}");
+        assert_eq!((p.lesson.as_str(), p.language()), ("gae", None));
         Ok(())
     }
 

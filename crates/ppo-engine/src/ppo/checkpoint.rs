@@ -121,10 +121,12 @@ impl CheckpointKind {
     }
 }
 
-/// Writes `weights` to a safetensors file (f32, PyTorch names) with `kind`'s metadata.
+/// Writes `weights` to a safetensors file (f32, PyTorch names) with `kind`'s metadata,
+/// atomically and with the permissions of any new file ([`crate::files::write_atomically`]:
+/// not the `0o600` of safetensors' own temporary file).
 ///
 /// # Errors
-/// [`PpoError::File`] when the file cannot be written.
+/// [`PpoError::File`] naming `path` when the file cannot be written.
 pub fn write_checkpoint(
     path: &Path,
     weights: NamedWeights,
@@ -134,19 +136,17 @@ pub fn write_checkpoint(
     for (name, w) in weights {
         tensors.push((name, Tensor::from_vec(w.data, w.shape, &Device::Cpu)?));
     }
-    safetensors::serialize_to_file(tensors, Some(kind.metadata()), path).map_err(|e| {
-        PpoError::File {
-            file: path.display().to_string(),
-            reason: {
-                // (in English the error's own text: the same as before)
-                let said = crate::causes::message(&e);
-                crate::tr!(
-                    "cannot write the checkpoint: {said}",
-                    "无法写入检查点：{said}"
-                )
-            },
-        }
-    })
+    let cannot_write = |said: String| PpoError::File {
+        file: path.display().to_string(),
+        reason: crate::tr!(
+            "cannot write the checkpoint: {said}",
+            "无法写入检查点：{said}"
+        ),
+    };
+    let bytes = safetensors::serialize(tensors, Some(kind.metadata()))
+        .map_err(|e| cannot_write(crate::causes::message(&e)))?;
+    crate::files::write_atomically(path, &bytes)
+        .map_err(|e| cannot_write(crate::causes::message(&e)))
 }
 
 /// Reads a checkpoint's tensors as f32, refusing one that holds another kind of agent than
@@ -317,4 +317,46 @@ pub fn read_sized(
         }
     };
     Ok((weights, hidden_dim, file))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ppo::{Agent, PpoConfig};
+
+    /// A checkpoint is a new file like any other: the mode `File::create` gives here (0o644
+    /// under the umask 022; safetensors' own writer left 0o600), and no temporary file is
+    /// left beside it, written or not.
+    #[test]
+    fn a_checkpoint_has_the_usual_mode_and_leaves_nothing_else()
+    -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("agent.safetensors");
+        let weights = Agent::new(&PpoConfig::default(), 0)?.weights()?;
+        write_checkpoint(&path, weights.clone(), CheckpointKind::CartPolePpo)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt as _;
+            let reference = dir.path().join("reference");
+            std::fs::File::create(&reference)?;
+            let mode = |p: &Path| std::fs::metadata(p).map(|m| m.permissions().mode() & 0o777);
+            assert_eq!(mode(&path)?, mode(&reference)?);
+            std::fs::remove_file(&reference)?;
+        }
+        let folder = dir.path().join("a-folder");
+        std::fs::create_dir(&folder)?;
+        let err = write_checkpoint(&folder, weights, CheckpointKind::CartPolePpo)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            err.contains("a-folder: cannot write the checkpoint"),
+            "{err}"
+        );
+        let names: Vec<String> = std::fs::read_dir(dir.path())?
+            .map(|e| e.map(|e| e.file_name().to_string_lossy().into_owned()))
+            .collect::<Result<_, _>>()?;
+        assert_eq!(names.len(), 2, "{names:?}");
+        Ok(())
+    }
 }
