@@ -17,6 +17,7 @@ pub mod dev;
 pub mod errors;
 pub mod grade;
 pub mod help_zh;
+pub mod interrupt;
 pub mod lab;
 pub mod lessons;
 pub mod pendulum;
@@ -415,8 +416,11 @@ fn rerun(mut command: std::process::Command, exe: &std::path::Path) -> anyhow::R
 }
 
 /// Runs `command`, this program again with one candle thread, and exits with its code.
+/// Ctrl-C reaches both processes: this one ignores it, so that the child's answer
+/// ([`interrupt`]) and exit code are what the user sees.
 #[cfg(not(unix))]
 fn rerun(mut command: std::process::Command, exe: &std::path::Path) -> anyhow::Result<ExitCode> {
+    interrupt::ignore_in_parent();
     match command.status() {
         Ok(status) => Ok(status
             .code()

@@ -63,7 +63,16 @@ fn the_labels_are_translated_and_the_font_stays_small() {
     for (e, z) in en.iter().zip(&zh) {
         // Formulas and numbers are the same in both languages; words are not.
         let names = [
-            "CLIP", "surr", "min", "old", "PPO", "CartPole", "Pendulum", "target", "kl",
+            "CLIP",
+            "surr",
+            "min",
+            "old",
+            "PPO",
+            "CartPole",
+            "Pendulum",
+            "target",
+            "kl",
+            "REINFORCE",
         ];
         let has_words = e
             .split(|c: char| !c.is_ascii_alphabetic())
@@ -75,11 +84,24 @@ fn the_labels_are_translated_and_the_font_stays_small() {
             assert_eq!(e, z, "a formula changed between languages");
         }
     }
-    assert_eq!(
-        zh.iter().position(|l| l.contains("移动平均（9 回合）")),
-        Some(7),
-        "{zh:#?}"
-    );
+    // The moving average's window, the titles of every algorithm.
+    for label in [
+        "移动平均（41 回合）",
+        "* 为 9 回合移动平均",
+        "CartPole-v1 上的 REINFORCE",
+        "CartPole-v1 上的 PPO-惩罚",
+        "CartPole-v1 上的 KL 线搜索",
+        "CartPole-v1 上的 不截断的 PPO",
+    ] {
+        assert!(zh.iter().any(|l| l.contains(label)), "{label}: {zh:#?}");
+    }
+    for label in [
+        "moving average (41 episodes)",
+        "REINFORCE on CartPole-v1",
+        "PPO-Penalty on CartPole-v1",
+    ] {
+        assert!(en.iter().any(|l| l.contains(label)), "{label}: {en:#?}");
+    }
     // A subset of some 300 characters, not the 16 MB collection it comes from.
     assert!(
         (20_000..100_000).contains(&FONT_ZH.len()),
@@ -146,12 +168,12 @@ fn a_chinese_png_draws_its_labels() -> TestResult {
     let draw = |lang: Lang, name: &str, title: &str| -> Result<Grey, Box<dyn std::error::Error>> {
         let _lang = lang.scoped();
         let path = dir.path().join(name);
-        save_return_plot(&path, title, &returns, &smoothed)?;
+        save_return_plot(&path, title, &returns, (&smoothed, 9))?;
         Grey::read(&path)
     };
     let title = {
         let _zh = Lang::Zh.scoped();
-        labels::return_title("CartPole-v1")
+        labels::return_title("PPO", "CartPole-v1")
     };
     let zh = draw(Lang::Zh, "zh.png", &title)?;
     let untitled = draw(Lang::Zh, "untitled.png", "")?;
@@ -206,7 +228,8 @@ fn band_and_lab_figures_write_in_both_languages() -> TestResult {
         let arm_refs = [(arms[0].as_str(), &band), (arms[2].as_str(), &band)];
         for ext in ["png", "svg"] {
             let band_path = dir.path().join(format!("band-{lang}.{ext}"));
-            save_band_plot(&band_path, &labels::band_title("CartPole-v1", 2), &band, 2)?;
+            let title = labels::band_title("PPO", "CartPole-v1", 2);
+            save_band_plot(&band_path, &title, &band, 2)?;
             let lab_path = dir.path().join(format!("lab-{lang}.{ext}"));
             save_lab_plot(&lab_path, &labels::lab_title("eps", 2), &arm_refs, 2)?;
             assert!(std::fs::metadata(&band_path)?.len() > 1000);
@@ -227,13 +250,22 @@ fn english_figures_keep_their_words_and_font() -> TestResult {
         let _en = Lang::En.scoped();
         return_plot_svg("PPO on CartPole-v1", &returns, &returns)?
     };
-    for word in ["Episodes", "Returns", "moving average (9)", "returns"] {
+    for word in [
+        "Episodes",
+        "Returns",
+        "moving average (9 episodes)",
+        "returns",
+    ] {
         assert!(en.contains(word), "{word} is missing");
     }
     assert!(en.contains("font-family=\"sans-serif\"") && !en.contains("Noto"));
     let zh = {
         let _zh = Lang::Zh.scoped();
-        return_plot_svg(&labels::return_title("CartPole-v1"), &returns, &returns)?
+        return_plot_svg(
+            &labels::return_title("PPO", "CartPole-v1"),
+            &returns,
+            &returns,
+        )?
     };
     for word in ["回合", "回报", "移动平均（9 回合）", "CartPole-v1 上的 PPO"] {
         assert!(zh.contains(word), "{word} is missing");
@@ -283,12 +315,12 @@ fn chinese_character_plots_stay_aligned_at_80_and_160_columns() {
     for terminal in [80, 160] {
         let plot_width = terminal.min(120) - 8;
         assert_aligned(
-            &ascii_return_plot(&returns, &smoothed, plot_width, 14),
+            &ascii_return_plot(&returns, (&smoothed, 9), plot_width, 14),
             plot_width,
             terminal,
         );
         assert_aligned(
-            &ascii_band_plot(&band, 5, plot_width, 14),
+            &ascii_band_plot((&band, 9), 5, plot_width, 14),
             plot_width,
             terminal,
         );
@@ -299,10 +331,10 @@ fn chinese_character_plots_stay_aligned_at_80_and_160_columns() {
             terminal,
         );
     }
-    let lines = ascii_return_plot(&returns, &smoothed, 72, 14);
+    let lines = ascii_return_plot(&returns, (&smoothed, 9), 72, 14);
     assert_eq!(
         lines[0].trim_start(),
-        "回报（. 为每回合的值，* 为移动平均）"
+        "回报（. 为每回合的值，* 为 9 回合移动平均）"
     );
     assert!(
         lines.last().is_some_and(|l| l.ends_with("499")),
@@ -314,15 +346,18 @@ fn chinese_character_plots_stay_aligned_at_80_and_160_columns() {
 fn english_character_plots_are_unchanged() {
     let _en = Lang::En.scoped();
     let returns: Vec<f64> = (0..500).map(f64::from).collect();
-    let lines = ascii_return_plot(&returns, &returns, 60, 12);
-    assert_eq!(lines[0], "     Returns  (. per episode, * moving average)");
+    let lines = ascii_return_plot(&returns, (&returns, 9), 60, 12);
+    assert_eq!(
+        lines[0],
+        "     Returns  (. per episode, * moving average of 9)"
+    );
     let ticks = lines.last().map_or("", String::as_str);
     assert_eq!(
         ticks,
         format!("     0{}Episodes{}499", " ".repeat(24), " ".repeat(24))
     );
     let band = Band::of(&[vec![0.0, 100.0], vec![100.0, 300.0]]);
-    assert!(ascii_band_plot(&band, 2, 21, 11)[0].ends_with(
-        "Moving average of the returns over 2 seeds  (* mean, : lowest to highest seed)"
+    assert!(ascii_band_plot((&band, 9), 2, 21, 11)[0].ends_with(
+        "Moving average (9 episodes) of the returns over 2 seeds  (* mean, : lowest to highest seed)"
     ));
 }

@@ -32,10 +32,25 @@ pub fn parse_count(s: &str) -> Result<usize, String> {
     }
 }
 
-/// Checks an output path given as `flag` before any work is done (issue 25: bad paths were
-/// found only after training): its folder must exist, the path must not be a folder, a
-/// device or anything else that is not a regular file (`--save /dev/full` once replaced
-/// the device node), and with `extensions` its extension must be one of them.
+/// Parses a whole number, 0 or more (`-1` is refused by name, not taken for a flag); the
+/// command checks its range.
+///
+/// # Errors
+/// A message naming what was expected and what was given.
+pub fn parse_whole(s: &str) -> Result<usize, String> {
+    s.trim().parse::<usize>().map_err(|_| {
+        tr!(
+            "expected a whole number, 0 or more, got '{s}'",
+            "应为不小于 0 的整数，实际是 '{s}'"
+        )
+    })
+}
+
+/// Checks an output path given as `flag` before any work is done (a bad path was once
+/// found only after training): its folder must exist and take a new file (`/proc` does
+/// not), the path must not be a folder, a device or anything else that is not a regular
+/// file (`--save /dev/full` once replaced the device node), and with `extensions` its
+/// extension must be one of them.
 ///
 /// # Errors
 /// One sentence naming the flag, the path and the fix.
@@ -53,17 +68,6 @@ pub fn check_output(
             "{flag} {shown}：不是普通文件；请给出要写入的文件路径"
         ));
     }
-    let folder = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => std::path::Path::new("."),
-    };
-    if !folder.is_dir() {
-        let folder = folder.display();
-        return Err(tr!(
-            "{flag} {shown}: the folder {folder} does not exist; create it first",
-            "{flag} {shown}：文件夹 {folder} 不存在；请先创建它"
-        ));
-    }
     if let Some(exts) = extensions {
         let ext = path
             .extension()
@@ -78,7 +82,36 @@ pub fn check_output(
             ));
         }
     }
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if !folder.is_dir() {
+        let folder = folder.display();
+        return Err(tr!(
+            "{flag} {shown}: the folder {folder} does not exist; create it first",
+            "{flag} {shown}：文件夹 {folder} 不存在；请先创建它"
+        ));
+    }
+    if let Err(e) = try_a_file_in(folder) {
+        let (folder, cause) = (folder.display(), ppo_engine::causes::message(&e));
+        return Err(tr!(
+            "{flag} {shown}: cannot write a file in {folder} ({cause}); choose a folder you can write",
+            "{flag} {shown}：无法在 {folder} 中写入文件（{cause}）；请换一个可写的文件夹"
+        ));
+    }
     Ok(())
+}
+
+/// Creates and removes an empty hidden file in `folder`: whether a new file can be written
+/// there (what a written output needs: it is renamed into place).
+fn try_a_file_in(folder: &std::path::Path) -> std::io::Result<()> {
+    let probe = ppo_engine::files::temporary_sibling(&folder.join("probe"));
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)?;
+    std::fs::remove_file(&probe)
 }
 
 /// The most seeds one `--seeds` list may hold.
@@ -207,7 +240,27 @@ mod tests {
             let e = check_output("--save", std::path::Path::new("/dev/null"), None);
             assert!(e.err().unwrap_or_default().contains("not a regular file"));
         }
+        // The probe leaves nothing behind.
+        assert_eq!(std::fs::read_dir(dir.path())?.count(), 0);
         Ok(())
+    }
+
+    /// A folder that takes no new file (`/proc`, which even root cannot write a file in) is
+    /// refused by name before any work.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_folder_that_takes_no_file_is_refused() {
+        let e = check_output(
+            "--save",
+            std::path::Path::new("/proc/x.safetensors"),
+            Some(&["safetensors"]),
+        )
+        .err()
+        .unwrap_or_default();
+        assert!(
+            e.starts_with("--save /proc/x.safetensors: cannot write a file in /proc"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -218,6 +271,19 @@ mod tests {
             let e = parse_count(bad).err().unwrap_or_default();
             assert!(
                 e.contains("at least 1") && e.contains(&format!("'{bad}'")),
+                "{bad}: {e}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_whole_number_is_0_or_more() {
+        assert_eq!(parse_whole("0"), Ok(0));
+        assert_eq!(parse_whole(" 12 "), Ok(12));
+        for bad in ["-1", "1.5", "", "x"] {
+            let e = parse_whole(bad).err().unwrap_or_default();
+            assert!(
+                e.contains("0 or more") && e.contains(&format!("'{bad}'")),
                 "{bad}: {e}"
             );
         }

@@ -41,7 +41,7 @@ pub struct CartpoleArgs {
     #[arg(long)]
     pub sutton_barto_reward: bool,
     /// Also record the states of N further unseeded resets (as `next_resets`).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = super::args::parse_whole, allow_hyphen_values = true)]
     pub resets: usize,
     /// Print one JSON object in the schema of Gymnasium's fixture traces.
     #[arg(long, conflicts_with = "render")]

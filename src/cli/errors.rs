@@ -1,7 +1,7 @@
 //! An error as the command line prints it, in the current language.
 //!
 //! `main` prints an [`anyhow::Error`]: the context the commands add (`reading FILE`,
-//! `loading the agent from FILE`), then each cause below it. The contexts and the engine's
+//! `loading the agent`), then each cause below it. The contexts and the engine's
 //! errors are already pairs; the causes from lower layers (the file system, JSON, TOML,
 //! number parsing, safetensors, candle) speak English. In Chinese, [`render`] gives each of
 //! those its Chinese sentence ([`ppo_engine::causes`]) and joins the chain with `：`; an

@@ -325,7 +325,7 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     ),
     (
         "play:delay_ms",
-        "每帧的毫秒数 [默认：车杆 20（Gymnasium 的 50 fps），Pendulum-v1 为 33（30 fps）]",
+        "每帧的毫秒数，不小于 0 [默认：车杆 20（Gymnasium 的 50 fps），Pendulum-v1 为 33（30 fps）]",
     ),
     ("play:no_render", "只打印每个回合的回报，不显示动画"),
     // replay

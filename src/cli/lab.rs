@@ -84,6 +84,24 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
         }
         return Ok(ExitCode::SUCCESS);
     };
+    // Every output path is checked before the runs, not found bad after them.
+    let outputs = [
+        ("--json", args.json.as_deref(), None),
+        ("--plot", args.plot.as_deref(), Some(&["png", "svg"][..])),
+    ];
+    for (flag, path, exts) in outputs {
+        if let Some(path) = path
+            && let Err(err) = super::args::check_output(flag, path, exts)
+        {
+            eprintln!("{}{err}", super::error_prefix());
+            return Ok(ExitCode::from(super::EXIT_USAGE));
+        }
+    }
+    let not_written: Vec<String> = outputs
+        .iter()
+        .filter_map(|(flag, path, _)| path.map(|p| format!("{flag} {}", p.display())))
+        .collect();
+    let interrupt = super::interrupt::Interrupt::install();
     let base = PpoConfig {
         num_episodes: args.episodes,
         ..PpoConfig::default()
@@ -95,7 +113,19 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
         .min(runs);
     let bar = super::episodes_bar(args.quiet, runs * args.episodes, t("lab", "实验"));
     let started = Instant::now();
+    let total = runs * args.episodes;
+    let stopping = std::sync::atomic::AtomicBool::new(false);
     let result = lab::run(experiment, &base, seeds, threads, |done, _| {
+        // The runs train on worker threads: at Ctrl-C, say how far they got and end the
+        // process (nothing is written before the end).
+        if interrupt.pressed() && !stopping.swap(true, std::sync::atomic::Ordering::Relaxed) {
+            if let Some(bar) = &bar {
+                bar.abandon();
+            }
+            let line = super::interrupt::stopped_line(done, total, &[], &not_written);
+            eprintln!("{line}");
+            std::process::exit(i32::from(super::interrupt::EXIT_INTERRUPTED));
+        }
         if let Some(bar) = &bar {
             bar.set_position(done as u64);
         }
@@ -143,7 +173,7 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
     }
     if let Some(path) = &args.json {
         let text = serde_json::to_string(&result).context(t("encoding the results", "编码结果"))?;
-        std::fs::write(path, format!("{text}\n")).with_context(|| super::train::writing(path))?;
+        super::train::write_output(path, format!("{text}\n").as_bytes())?;
     }
     if let Some(path) = &args.plot {
         let arms: Vec<(&str, &crate::ppo::seeds::Band)> = result

@@ -18,7 +18,7 @@ pub struct ShowArgs {
     /// The lesson id, as `ppo-tutor lessons` lists it (e.g. td-target).
     pub id: String,
     /// The step to show, from 1; all steps when omitted.
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::parse_count, allow_hyphen_values = true)]
     pub step: Option<usize>,
     /// Episodes to train before showing live values (the latest episode's update is shown).
     #[arg(long, value_parser = super::args::parse_count, allow_hyphen_values = true, default_value_t = 1)]

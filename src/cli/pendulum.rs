@@ -27,7 +27,7 @@ pub struct PendulumArgs {
     #[arg(long, value_name = "TORQUES", value_parser = parse_torques, allow_hyphen_values = true)]
     pub actions: Option<TorqueList>,
     /// Also record the states of N further unseeded resets (as `next_resets`).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = super::args::parse_whole, allow_hyphen_values = true)]
     pub resets: usize,
     /// Print one JSON object in the schema of Gymnasium's fixture traces.
     #[arg(long)]

@@ -46,9 +46,9 @@ pub struct PlayArgs {
     /// agent always plays its mean torque μ).
     #[arg(long)]
     pub greedy: bool,
-    /// Milliseconds per frame [default: 20 for CartPole (Gymnasium's 50 fps), 33 for
-    /// Pendulum-v1 (30 fps)].
-    #[arg(long)]
+    /// Milliseconds per frame, 0 or more [default: 20 for CartPole (Gymnasium's 50 fps), 33
+    /// for Pendulum-v1 (30 fps)].
+    #[arg(long, value_parser = parse_delay, allow_hyphen_values = true)]
     pub delay_ms: Option<u64>,
     /// Print only each episode's return, without animation.
     #[arg(long)]
@@ -102,8 +102,7 @@ fn play_cartpole(args: &PlayArgs, env_id: EnvId) -> anyhow::Result<ExitCode> {
         env_id,
         ..PpoConfig::default()
     };
-    let mut agent =
-        Agent::load(&args.load, &config, args.seed).with_context(|| loading(&args.load))?;
+    let mut agent = Agent::load(&args.load, &config, args.seed).context(loading())?;
     let render = !args.no_render && std::io::stdout().is_terminal();
     let delay = Duration::from_millis(args.delay_ms.unwrap_or(20));
     let mut env = CartPole::new(env_id);
@@ -182,7 +181,7 @@ fn draw_cartpole(
 /// Plays a Pendulum-v1 agent's mean torque μ(s), as the book watches a trained policy.
 fn play_pendulum(args: &PlayArgs) -> anyhow::Result<ExitCode> {
     let agent = PpoContinuous::load(&args.load, &PpoContinuousConfig::default(), args.seed)
-        .with_context(|| loading(&args.load))?;
+        .context(loading())?;
     let render = !args.no_render && std::io::stdout().is_terminal();
     let delay = Duration::from_millis(args.delay_ms.unwrap_or(33));
     let mut env = Pendulum::new();
@@ -274,10 +273,21 @@ fn draw_pendulum(
     Ok(lines.len() + 1)
 }
 
-/// `loading the agent from FILE`, the context of a checkpoint that cannot be loaded.
-fn loading(file: &std::path::Path) -> String {
-    let shown = file.display();
-    tr!("loading the agent from {shown}", "从 {shown} 加载智能体")
+/// `loading the agent`, the context of a checkpoint that cannot be loaded (the loader's
+/// error names the file: `loading the agent: FILE: not a readable ...`).
+fn loading() -> &'static str {
+    t("loading the agent", "加载智能体")
+}
+
+/// Parses `--delay-ms`: a whole number of milliseconds, 0 or more (`-5` is refused by
+/// name, not taken for a flag).
+fn parse_delay(s: &str) -> Result<u64, String> {
+    s.trim().parse::<u64>().map_err(|_| {
+        tr!(
+            "expected a whole number of milliseconds, 0 or more, got '{s}'",
+            "应为毫秒数，即不小于 0 的整数，实际是 '{s}'"
+        )
+    })
 }
 
 /// The pendulum drawn by [`PendulumView`] as lines of text.
@@ -314,5 +324,18 @@ mod tests {
                 .all(|l| l.chars().count() == usize::from(PENDULUM_CELLS.0))
         );
         assert!(lines[0].contains("torque"));
+    }
+
+    #[test]
+    fn a_delay_is_a_whole_number_of_milliseconds() {
+        assert_eq!(parse_delay("0"), Ok(0));
+        assert_eq!(parse_delay(" 40 "), Ok(40));
+        for bad in ["-5", "1.5", "abc", ""] {
+            let e = parse_delay(bad).err().unwrap_or_default();
+            assert!(
+                e.contains("milliseconds, 0 or more") && e.contains(&format!("'{bad}'")),
+                "{bad}: {e}"
+            );
+        }
     }
 }

@@ -13,10 +13,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 
 use super::args::{SeedList, parse_seed, parse_seeds};
+use super::interrupt::Interrupt;
 use crate::env::EnvId;
 use crate::i18n::t;
 use crate::lesson::RunConfig;
-use crate::plot::{ascii_return_plot, save_return_plot, smoothed_returns};
+use crate::plot::{ascii_return_plot, labels, save_return_plot};
 use crate::ppo::train::mean_last;
 use crate::ppo::{
     AgentConfig, Algorithm, EpisodeReport, Objective, OnPolicyAgent, PpoConfig, PpoError,
@@ -81,14 +82,14 @@ pub struct TrainArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub eps: Option<f64>,
     /// Epochs per update [default: 10].
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::parse_whole, allow_hyphen_values = true)]
     pub epochs: Option<usize>,
     /// The critic's steps per update, when they should differ from the actor's --epochs
     /// (the clip lab's epochs experiment) [default: as many as the actor's; CartPole only].
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::parse_whole, allow_hyphen_values = true)]
     pub critic_epochs: Option<usize>,
     /// Hidden width of both networks [default: 128].
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::parse_whole, allow_hyphen_values = true)]
     pub hidden_dim: Option<usize>,
     /// Bootstrap from V(s') when the time limit cuts an episode (not in the seed; CartPole
     /// only).
@@ -136,7 +137,7 @@ pub struct TrainArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub ls_max_step: Option<f64>,
     /// The line search's most halvings of α before the actor keeps θ_old [default: 10].
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::parse_whole, allow_hyphen_values = true)]
     pub ls_backtracks: Option<usize>,
 }
 
@@ -225,21 +226,15 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         }
     };
     // Every output path is checked before training, not found bad after it.
-    let outputs = [
-        ("--save", args.save.as_deref(), None),
-        ("--json", args.json.as_deref(), None),
-        ("--plot", args.plot.as_deref(), Some(&["png", "svg"][..])),
-    ];
-    for (flag, path, exts) in outputs {
-        if let Some(path) = path
-            && let Err(err) = super::args::check_output(flag, path, exts)
-        {
+    for (flag, path) in outputs(args) {
+        if let Err(err) = super::args::check_output(flag, path, extensions(flag)) {
             eprintln!("{}{err}", super::error_prefix());
             return Ok(ExitCode::from(super::EXIT_USAGE));
         }
     }
+    let interrupt = Interrupt::install();
     if let Some(seeds) = &args.seeds {
-        return several::run(args, &setup, &seeds.0);
+        return several::run(args, &setup, &seeds.0, &interrupt);
     }
     let mut bars = Bars::new(!args.quiet && std::io::stderr().is_terminal(), !args.quiet);
     let mut paths = Paths::default();
@@ -248,19 +243,39 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
             seed: args.seed,
             bars: &mut bars,
             paths: &mut paths,
+            interrupt: &interrupt,
         })
         .context(t("training stopped", "训练中止"))?;
     bars.finish();
-
-    let smoothed = smoothed_returns(&summary.returns);
-    print_summary(&summary, &setup, args.seed, &smoothed, &paths, !args.quiet)?;
-    if let Some(path) = &args.json {
-        let value = run_json(&summary, &setup, args.seed, &smoothed);
-        std::fs::write(path, format!("{value}\n")).with_context(|| writing(path))?;
+    let mut written = Written::new(args, setup.num_episodes(), &interrupt);
+    if summary.returns.len() < setup.num_episodes() {
+        return Ok(written.stopped(summary.returns.len()));
     }
+
+    let (window, smoothed) = crate::plot::window::smoothed(&summary.returns);
+    print_summary(
+        &summary,
+        &setup,
+        args.seed,
+        (&smoothed, window),
+        &paths,
+        !args.quiet,
+    )?;
     let mut out = std::io::stdout();
+    if let Some(path) = &args.json {
+        if let Some(code) = written.interrupted() {
+            return Ok(code);
+        }
+        let value = run_json(&summary, &setup, args.seed, (&smoothed, window));
+        write_output(path, format!("{value}\n").as_bytes())?;
+        written.done("--json", path);
+    }
     if let Some(path) = &args.save {
+        if let Some(code) = written.interrupted() {
+            return Ok(code);
+        }
         agent(path).context(t("saving the agent", "保存智能体"))?;
+        written.done("--save", path);
         let shown = path.display();
         writeln!(
             out,
@@ -269,8 +284,12 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
         )?;
     }
     if let Some(path) = &args.plot {
-        let title = crate::plot::labels::return_title(setup.env_id());
-        save_return_plot(path, &title, &summary.returns, &smoothed)?;
+        if let Some(code) = written.interrupted() {
+            return Ok(code);
+        }
+        let title = labels::return_title(labels::algorithm(&setup), setup.env_id());
+        save_return_plot(path, &title, &summary.returns, (&smoothed, window))?;
+        written.done("--plot", path);
         let shown = path.display();
         writeln!(
             out,
@@ -284,37 +303,120 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The output paths given, by flag, in the order they are written.
+fn outputs(args: &TrainArgs) -> Vec<(&'static str, &Path)> {
+    [
+        ("--json", args.json.as_deref()),
+        ("--save", args.save.as_deref()),
+        ("--plot", args.plot.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(flag, path)| path.map(|p| (flag, p)))
+    .collect()
+}
+
+/// The extensions an output flag's file may have (`None`: any).
+fn extensions(flag: &str) -> Option<&'static [&'static str]> {
+    match flag {
+        "--plot" => Some(&["png", "svg"]),
+        "--save" => Some(&["safetensors"]),
+        _ => None,
+    }
+}
+
+/// Writes an output file whole or not at all ([`ppo_engine::files::write_atomically`]); the
+/// error names the user's path.
+pub(super) fn write_output(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    ppo_engine::files::write_atomically(path, bytes).with_context(|| writing(path))
+}
+
+/// Which outputs have been written, to say so when Ctrl-C stops the command.
+pub(super) struct Written<'a> {
+    interrupt: &'a Interrupt,
+    episodes: usize,
+    written: Vec<String>,
+    pending: Vec<String>,
+}
+
+impl<'a> Written<'a> {
+    /// None written yet of those `args` asks for, after a run of `episodes`.
+    pub(super) fn new(args: &TrainArgs, episodes: usize, interrupt: &'a Interrupt) -> Self {
+        let pending = outputs(args)
+            .into_iter()
+            .map(|(flag, path)| format!("{flag} {}", path.display()))
+            .collect();
+        Self {
+            interrupt,
+            episodes,
+            written: Vec::new(),
+            pending,
+        }
+    }
+
+    /// Notes that `flag`'s `path` was written.
+    pub(super) fn done(&mut self, flag: &str, path: &Path) {
+        let entry = format!("{flag} {}", path.display());
+        self.pending.retain(|p| *p != entry);
+        self.written.push(entry);
+    }
+
+    /// Says where Ctrl-C stopped training (after `done` episodes) and what was written;
+    /// the exit code to return.
+    pub(super) fn stopped(&self, done: usize) -> ExitCode {
+        eprintln!(
+            "{}",
+            super::interrupt::stopped_line(done, self.episodes, &self.written, &self.pending)
+        );
+        ExitCode::from(super::interrupt::EXIT_INTERRUPTED)
+    }
+
+    /// After training: when Ctrl-C was pressed since, says so and what was written, and
+    /// gives the exit code to return.
+    pub(super) fn interrupted(&self) -> Option<ExitCode> {
+        self.interrupt
+            .pressed()
+            .then(|| self.stopped(self.episodes))
+    }
+}
+
 /// Saves the trained agent to a file.
 type SaveAgent = Box<dyn FnOnce(&Path) -> Result<(), PpoError>>;
 
-/// Trains one seed of any agent, drawing the progress bars.
+/// Trains one seed of any agent, drawing the progress bars, until the last episode or
+/// Ctrl-C.
 struct TrainOne<'a> {
     seed: u64,
     bars: &'a mut Bars,
     paths: &'a mut Paths,
+    interrupt: &'a Interrupt,
 }
 
 impl RunVisitor for TrainOne<'_> {
     type Output = Result<(TrainSummary, SaveAgent), PpoError>;
 
     fn visit<C: AgentConfig>(self, config: &C) -> Self::Output {
-        let (bars, paths) = (self.bars, self.paths);
+        let (bars, paths, interrupt) = (self.bars, self.paths, self.interrupt);
         let (summary, agent) = train(config.clone(), self.seed, |report| {
             bars.update(&Progress::from(report));
             paths.add(C::Agent::path_of(&report.trace));
-            ControlFlow::Continue(())
+            if interrupt.pressed() {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
         })?;
         Ok((summary, Box::new(move |path| agent.save_to(path))))
     }
 }
 
-/// The `--json` document: what `seed_ppo.py --json` writes, plus the configuration (and,
-/// on Pendulum-v1, `book_ppo_continuous.py`'s `mean_last_100`).
+/// The `--json` document: what `seed_ppo.py --json` writes, plus the configuration, the
+/// moving average's window (and, on Pendulum-v1, `book_ppo_continuous.py`'s
+/// `mean_last_100`).
 pub(super) fn run_json(
     summary: &TrainSummary,
     setup: &RunConfig,
     seed: u64,
-    smoothed: &[f64],
+    (smoothed, window): (&[f64], usize),
 ) -> serde_json::Value {
     let mut value = json!({
         "episodes": summary.returns.len(),
@@ -327,6 +429,7 @@ pub(super) fn run_json(
         "peak_rss_mb": peak_rss_mb(),
         "returns": summary.returns,
         "moving_average": smoothed,
+        "moving_average_window": window,
         "config": setup,
     });
     // book_ppo_continuous.py's figure, beside the seed's.
@@ -350,7 +453,7 @@ fn print_summary(
     summary: &TrainSummary,
     setup: &RunConfig,
     seed: u64,
-    smoothed: &[f64],
+    smoothed: (&[f64], usize),
     paths: &Paths,
     plot: bool,
 ) -> anyhow::Result<()> {
@@ -362,14 +465,15 @@ fn print_summary(
         .fold(f64::NEG_INFINITY, f64::max);
     // CartPole's returns are whole numbers; Pendulum's are not.
     let best = setup.env().format_return(best);
-    let (env, episodes, steps) = (setup.env_id(), summary.returns.len(), summary.env_steps);
+    let title = labels::return_title(labels::algorithm(setup), setup.env_id());
+    let (episodes, steps) = (summary.returns.len(), summary.env_steps);
     let (wall, rate) = (summary.wall_s, summary.steps_per_s());
     writeln!(
         out,
         "{}",
         tr!(
-            "PPO on {env}, seed {seed}: {episodes} episodes, {steps} env steps in {wall:.2} s ({rate:.0} steps/s)",
-            "{env} 上的 PPO，随机种子 {seed}：{episodes} 个回合，环境共 {steps} 步，用时 {wall:.2} 秒（每秒 {rate:.0} 步）"
+            "{title}, seed {seed}: {episodes} episodes, {steps} env steps in {wall:.2} s ({rate:.0} steps/s)",
+            "{title}，随机种子 {seed}：{episodes} 个回合，环境共 {steps} 步，用时 {wall:.2} 秒（每秒 {rate:.0} 步）"
         )
     )?;
     let last = setup.env().spec().summary_window;

@@ -470,13 +470,34 @@ fn a_missing_argument_is_named_and_a_negative_count_refused() -> TestResult {
             "{cmd}: the missing argument is not named: {err}"
         );
     }
-    let out = run(&["train", "--episodes", "-5"])?;
-    let err = String::from_utf8(out.stderr)?;
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("'-5'") && err.contains("at least 1"),
-        "the count is not refused by name: {err}"
-    );
+    // Every whole-number flag refuses a negative value by name (not as an unknown `-5`).
+    for (args, says) in [
+        (&["train", "--episodes", "-5"][..], "at least 1"),
+        (&["train", "--epochs", "-5"], "0 or more"),
+        (&["train", "--critic-epochs", "-5"], "0 or more"),
+        (&["train", "--hidden-dim", "-5"], "0 or more"),
+        (
+            &[
+                "train",
+                "--objective",
+                "line-search",
+                "--ls-backtracks",
+                "-5",
+            ],
+            "0 or more",
+        ),
+        (&["cartpole", "--resets", "-5"], "0 or more"),
+        (&["pendulum", "--resets", "-5"], "0 or more"),
+        (&["show", "td-target", "--step", "-5"], "at least 1"),
+    ] {
+        let out = run(args)?;
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("'-5'") && err.contains(says) && !err.contains("unexpected argument"),
+            "{args:?}: the value is not refused by name: {err}"
+        );
+    }
     Ok(())
 }
 
@@ -521,15 +542,16 @@ fn sigterm_leaves_no_process_behind() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, bugs 4 and 5: output paths are checked before training starts (a 100000-episode
-/// run would take minutes), and a path that is not a regular file is never replaced.
+/// Output paths are checked before training starts (a 100000-episode run would take
+/// minutes), a path that is not a regular file is never replaced, and the error names the
+/// path given, never a temporary file's.
 #[test]
 fn bad_output_paths_are_refused_before_training() -> TestResult {
     let dir = tempfile::tempdir()?;
     let d = dir.path();
     let folder = d.join("a-folder");
     std::fs::create_dir(&folder)?;
-    let cases: [(&str, std::path::PathBuf, &str); 5] = [
+    let mut cases: Vec<(&str, std::path::PathBuf, &str)> = vec![
         ("--plot", d.join("out.xyz"), "FILE.png / FILE.svg"),
         ("--plot", d.join("out"), "FILE.png / FILE.svg"),
         ("--plot", d.join("no/such/dir/out.png"), "does not exist"),
@@ -539,23 +561,281 @@ fn bad_output_paths_are_refused_before_training() -> TestResult {
             "does not exist",
         ),
         ("--save", folder.clone(), "not a regular file"),
+        ("--save", d.join("agent.bin"), "use FILE.safetensors"),
+        ("--json", d.join("no/such/run.json"), "does not exist"),
     ];
+    // A folder that takes no new file, even for root.
+    #[cfg(target_os = "linux")]
+    for (flag, file) in [
+        ("--save", "/proc/x.safetensors"),
+        ("--json", "/proc/x.json"),
+        ("--plot", "/proc/x.svg"),
+    ] {
+        cases.push((flag, file.into(), "cannot write a file in /proc"));
+    }
     for (flag, path, want) in cases {
         let path = path.to_str().ok_or("path")?;
-        let out = run(&["train", "--episodes", "100000", "--quiet", flag, path])?;
-        let err = String::from_utf8(out.stderr)?;
-        assert_eq!(out.status.code(), Some(2), "{flag} {path}: {err}");
-        assert!(
-            err.contains(want) && err.contains(path),
-            "{flag} {path}: {err}"
-        );
-        assert!(
-            out.stdout.is_empty(),
-            "{flag} {path}: refused only after training: {}",
-            String::from_utf8_lossy(&out.stdout)
-        );
+        for command in [
+            &["train", "--episodes", "100000"][..],
+            &["lab", "eps", "--episodes", "100000"],
+        ] {
+            if command[0] == "lab" && flag == "--save" {
+                continue;
+            }
+            let mut args = command.to_vec();
+            args.extend(["--quiet", flag, path]);
+            let out = run(&args)?;
+            let err = String::from_utf8(out.stderr)?;
+            assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+            assert!(
+                err.contains(want)
+                    && err.contains(path)
+                    && !err.replace(&d.display().to_string(), "").contains(".tmp"),
+                "{args:?}: {err}"
+            );
+            assert!(
+                out.stdout.is_empty(),
+                "{args:?}: refused only after training: {}",
+                String::from_utf8_lossy(&out.stdout)
+            );
+        }
     }
     assert!(folder.is_dir(), "the folder given to --save was replaced");
+    Ok(())
+}
+
+/// What `train` writes (the checkpoint, the JSON, the figure) gets the permissions of any
+/// new file (0o644 under the usual umask 022; checkpoints were 0o600), and nothing else is
+/// left in the folder.
+#[cfg(unix)]
+#[test]
+fn outputs_have_the_usual_permissions() -> TestResult {
+    use std::os::unix::fs::PermissionsExt as _;
+    let dir = tempfile::tempdir()?;
+    let d = dir.path();
+    let reference = d.join("reference");
+    std::fs::File::create(&reference)?;
+    let mode = |p: &std::path::Path| std::fs::metadata(p).map(|m| m.permissions().mode() & 0o777);
+    let want = mode(&reference)?;
+    std::fs::remove_file(&reference)?;
+    let files = [
+        "agent.safetensors",
+        "run.json",
+        "returns.png",
+        "returns.svg",
+    ];
+    for plot in ["returns.png", "returns.svg"] {
+        let p = |name: &str| d.join(name).display().to_string();
+        let out = run(&[
+            "train",
+            "--episodes",
+            "3",
+            "-q",
+            "--save",
+            &p("agent.safetensors"),
+            "--json",
+            &p("run.json"),
+            "--plot",
+            &p(plot),
+        ])?;
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    for name in files {
+        assert_eq!(
+            mode(&d.join(name))?,
+            want,
+            "{name}: mode {:o}",
+            mode(&d.join(name))?
+        );
+    }
+    assert_eq!(std::fs::read_dir(d)?.count(), files.len());
+    Ok(())
+}
+
+/// An error that names a file names it once (`loading the agent: FILE: ...`, not
+/// `loading the agent from FILE: FILE: ...`), and `--delay-ms -5` says what a delay is.
+#[test]
+fn errors_name_a_file_once_and_a_negative_delay_is_explained() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let missing = dir.path().join("nope.safetensors");
+    let missing = missing.to_str().ok_or("path")?;
+    for args in [
+        &["play", "--load", missing][..],
+        &["play", "--load", missing, "--env", "Pendulum-v1"],
+        &["replay", missing],
+    ] {
+        let out = run(args)?;
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert_eq!(err.matches(missing).count(), 1, "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    }
+    for delay in ["-5", "1.5"] {
+        let out = run(&["play", "--load", missing, "--delay-ms", delay])?;
+        let err = String::from_utf8(out.stderr)?;
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("'--delay-ms <DELAY_MS>'")
+                && err.contains(&format!(
+                    "expected a whole number of milliseconds, 0 or more, got '{delay}'"
+                )),
+            "{err}"
+        );
+    }
+    Ok(())
+}
+
+/// Runs `ppo-tutor ARGS` in a terminal with `env` (and no `RAYON_NUM_THREADS`: it re-runs
+/// itself as a user's would), presses Ctrl-C once `ready` is on the screen, and returns the
+/// exit code and the screen.
+#[cfg(unix)]
+fn ctrl_c_in_a_terminal(
+    args: &[&std::ffi::OsStr],
+    env: &[(&str, &str)],
+    ready: &str,
+) -> Result<(u32, String), Box<dyn std::error::Error>> {
+    use portable_pty::{CommandBuilder, PtySize, native_pty_system};
+    use std::io::{Read as _, Write as _};
+    let (rows, cols) = (30, 220);
+    let pty = native_pty_system().openpty(PtySize {
+        rows,
+        cols,
+        pixel_width: 0,
+        pixel_height: 0,
+    })?;
+    let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_ppo-tutor"));
+    cmd.args(args);
+    cmd.env("TERM", "xterm-256color");
+    for key in [
+        "PPO_TUTOR_LANG",
+        "LC_ALL",
+        "LC_MESSAGES",
+        "RAYON_NUM_THREADS",
+    ] {
+        cmd.env_remove(key);
+    }
+    cmd.env("LANG", "C.UTF-8");
+    for (key, value) in env {
+        cmd.env(key, value);
+    }
+    let mut child = pty.slave.spawn_command(cmd)?;
+    drop(pty.slave);
+    let mut reader = pty.master.try_clone_reader()?;
+    let (seen, shown) = std::sync::mpsc::channel::<()>();
+    let ready = ready.to_string();
+    let reading = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        let mut buf = [0_u8; 8192];
+        let mut told = false;
+        while let Ok(n) = reader.read(&mut buf) {
+            if n == 0 {
+                break;
+            }
+            bytes.extend_from_slice(&buf[..n]);
+            if !told && String::from_utf8_lossy(&bytes).contains(&ready) {
+                told = seen.send(()).is_ok();
+            }
+        }
+        bytes
+    });
+    // Training has begun (its bar is drawn): press Ctrl-C.
+    let began = shown
+        .recv_timeout(std::time::Duration::from_secs(120))
+        .is_ok();
+    let mut writer = pty.master.take_writer()?;
+    writer.write_all(b"\x03")?;
+    writer.flush()?;
+    let status = child.wait()?;
+    drop(writer);
+    drop(pty.master);
+    let bytes = reading.join().map_err(|_| "the reader panicked")?;
+    let mut screen = vt100::Parser::new(rows, cols, 0);
+    screen.process(&bytes);
+    let text = screen.screen().contents();
+    if !began {
+        return Err(format!("no bar on the screen: {text}").into());
+    }
+    Ok((status.exit_code(), text))
+}
+
+/// Ctrl-C in a terminal while `train` draws its bars: the run stops at the end of the
+/// episode under way, says after how many episodes and that nothing was saved, names the
+/// outputs it did not write, and exits with 130; the files are not there.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_says_where_training_stopped_and_that_nothing_was_saved() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let agent = dir.path().join("agent.safetensors");
+    let json = dir.path().join("run.json");
+    // Pendulum-v1's episodes all take 200 steps: 5000 of them run for seconds after the
+    // first bar appears.
+    let args: Vec<&std::ffi::OsStr> = ["train", "--env", "Pendulum-v1", "--episodes", "5000"]
+        .iter()
+        .map(std::ffi::OsStr::new)
+        .chain([
+            "--save".as_ref(),
+            agent.as_os_str(),
+            "--json".as_ref(),
+            json.as_os_str(),
+        ])
+        .collect();
+    let (code, text) = ctrl_c_in_a_terminal(&args, &[("PPO_TUTOR_LANG", "en")], "Iteration 0")?;
+    assert_eq!(code, 130, "{text}");
+    // (The terminal may echo ^C before it.)
+    let line = text
+        .lines()
+        .find_map(|l| l.find("stopped by Ctrl-C after ").map(|at| &l[at..]))
+        .ok_or_else(|| format!("no message: {text}"))?;
+    let done: usize = line
+        .trim_start_matches("stopped by Ctrl-C after ")
+        .split(' ')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .ok_or_else(|| format!("no episode count: {line}"))?;
+    assert!((1..5000).contains(&done), "{line}");
+    let (agent, json) = (agent.display(), json.display());
+    assert!(
+        line.contains(&format!(
+            "of 5000 episodes; nothing was saved (--json {json}, --save {agent} not written)"
+        )),
+        "{line}"
+    );
+    assert_eq!(
+        std::fs::read_dir(dir.path())?.count(),
+        0,
+        "a file was written"
+    );
+    Ok(())
+}
+
+/// Ctrl-C during `train --seeds`, whose seeds run on worker threads: the same message, in
+/// the language asked for, and exit 130.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_several_seeds_in_the_language_asked_for() -> TestResult {
+    let args: Vec<&std::ffi::OsStr> = [
+        "train",
+        "--env",
+        "Pendulum-v1",
+        "--episodes",
+        "5000",
+        "--seeds",
+        "0-1",
+    ]
+    .iter()
+    .map(std::ffi::OsStr::new)
+    .collect();
+    let (code, text) = ctrl_c_in_a_terminal(&args, &[("PPO_TUTOR_LANG", "zh")], "所有随机种子")?;
+    assert_eq!(code, 130, "{text}");
+    assert!(
+        text.contains("已按 Ctrl-C 中止：训练了 ")
+            && text.contains("（共 10000 个）后停止；没有保存任何内容"),
+        "{text}"
+    );
     Ok(())
 }
 

@@ -129,7 +129,12 @@ fn train_writes_json_checkpoint_and_figure() -> TestResult {
     let total: f64 = returns.iter().filter_map(Value::as_f64).sum();
     assert_eq!(run["env_steps"].as_f64(), Some(total), "reward 1 per step");
     assert!(run["wall_s"].as_f64().is_some_and(|s| s > 0.0));
-    assert!(std::fs::read_to_string(&plot)?.contains("PPO on CartPole-v1"));
+    // The seed's moving average over 9 episodes, said in the legend and the JSON.
+    assert_eq!(run["moving_average_window"].as_u64(), Some(9));
+    let svg = std::fs::read_to_string(&plot)?;
+    assert!(svg.contains("PPO on CartPole-v1"));
+    assert!(svg.contains("moving average (9 episodes)"));
+    assert!(stdout.contains("* moving average of 9)"), "{stdout}");
 
     let out = ppo_tutor(&[
         "play",
@@ -581,6 +586,35 @@ fn train_switches_to_reinforce_or_drops_the_clip() -> TestResult {
         let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
         assert_eq!(run["config"][key], value, "{run}");
     }
+    // The summary and the figure are titled by what trained, one seed or several.
+    for (flag, title) in [
+        (
+            &["--algorithm", "reinforce"][..],
+            "REINFORCE on CartPole-v1",
+        ),
+        (&["--no-clip"][..], "PPO without the clip on CartPole-v1"),
+        (
+            &["--objective", "penalty"][..],
+            "PPO-Penalty on CartPole-v1",
+        ),
+        (
+            &["--objective", "line-search"][..],
+            "KL line search on CartPole-v1",
+        ),
+    ] {
+        for seeds in [&[][..], &["--seeds", "0-1"]] {
+            let plot = dir.path().join("titled.svg");
+            let mut args = vec!["train", "--episodes", "2", "-q", "--plot", path(&plot)?];
+            args.extend_from_slice(flag);
+            args.extend_from_slice(seeds);
+            let out = ppo_tutor(&args)?;
+            assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+            let stdout = String::from_utf8(out.stdout)?;
+            assert!(stdout.starts_with(title), "{args:?}: {stdout}");
+            let svg = std::fs::read_to_string(&plot)?;
+            assert!(svg.contains(title) && !svg.contains(">PPO on"), "{args:?}");
+        }
+    }
     let out = ppo_tutor(&["train", "--algorithm", "a2c"])?;
     assert_eq!(out.status.code(), Some(2));
     Ok(())
@@ -663,5 +697,45 @@ fn train_refuses(args: &[&str], expected: &str) -> TestResult {
     assert_eq!(out.status.code(), Some(2), "{args:?}");
     let err = stderr(&out);
     assert!(err.contains(expected), "{args:?}: {err}");
+    Ok(())
+}
+
+/// A run longer than the seed's smooths over more episodes (one per fifty, odd: 11 for
+/// 550), and every output says so; the seed's 500 episodes keep its 9 (checked above with
+/// 12 episodes, and by the parity tests).
+#[test]
+fn a_longer_run_smooths_over_more_episodes() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let json = dir.path().join("long.json");
+    let plot = dir.path().join("long.svg");
+    let out = ppo_tutor(&[
+        "train",
+        "--episodes",
+        "550",
+        "--json",
+        path(&json)?,
+        "--plot",
+        path(&plot)?,
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8(out.stdout)?;
+    assert!(stdout.contains("* moving average of 11)"), "{stdout}");
+    assert!(std::fs::read_to_string(&plot)?.contains("moving average (11 episodes)"));
+    let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+    assert_eq!(run["moving_average_window"].as_u64(), Some(11));
+    // The curve is the seed's rl_utils.moving_average over 11.
+    let returns: Vec<f64> = run["returns"]
+        .as_array()
+        .ok_or("no returns")?
+        .iter()
+        .filter_map(Value::as_f64)
+        .collect();
+    let average: Vec<f64> = run["moving_average"]
+        .as_array()
+        .ok_or("no average")?
+        .iter()
+        .filter_map(Value::as_f64)
+        .collect();
+    assert_eq!(average, ppo_tutor::ppo::moving_average(&returns, 11)?);
     Ok(())
 }

@@ -415,6 +415,7 @@ fn table(dir: &Path) -> Result<Vec<Case>, Box<dyn std::error::Error>> {
         Case::new("cartpole", &["--actions", "0,2"], 2),
         Case::new("cartpole", &["--seed", "abc", "--actions", "0"], 2),
         Case::new("cartpole", &["--seed", "-3", "--actions", "0"], 2),
+        Case::new("cartpole", &["--resets", "-1", "--actions", "0"], 2),
         Case::new("cartpole", &["--seed", "1"], 2),
         Case::new("cartpole", &["--policy", "lea"], 2),
         Case::new("cartpole", &["--json", "--json"], 2),
@@ -439,6 +440,7 @@ fn table(dir: &Path) -> Result<Vec<Case>, Box<dyn std::error::Error>> {
         Case::new("show", &["no-such-lesson"], 2),
         Case::new("show", &["td-target", "--step", "99"], 2),
         Case::new("show", &["td-target", "--step", "x"], 2),
+        Case::new("show", &["td-target", "--step", "-1"], 2),
         Case::new("show", &["td-target", "--episodes", "0"], 2),
         Case::new("show", &[], 2),
         // train
@@ -495,6 +497,13 @@ fn table(dir: &Path) -> Result<Vec<Case>, Box<dyn std::error::Error>> {
             &["-q", "--episodes", "2", "--objective", "line-search"],
             0,
         ),
+        // Titled by what trained, with the moving average's window in the plot's legend.
+        Case::new("train", &["--episodes", "3", "--algorithm", "reinforce"], 0),
+        Case::new(
+            "train",
+            &["-q", "--episodes", "2", "--no-clip", "--seeds", "0-1"],
+            0,
+        ),
         Case::new("train", &["--seeds", "4-1"], 2),
         Case::new("train", &["--seeds", "0-2", "--seed", "3"], 2),
         Case::new("train", &["--seeds", "0,1", "--save", "a.safetensors"], 2),
@@ -502,6 +511,7 @@ fn table(dir: &Path) -> Result<Vec<Case>, Box<dyn std::error::Error>> {
         Case::new("train", &["--foo"], 2),
         Case::new("train", &["--env", "Acrobot-v1"], 2),
         Case::new("train", &["--episodes", "-5"], 2),
+        Case::new("train", &["--epochs", "-1"], 2),
         Case::new("train", &["--eps", "abc"], 2),
     ];
     for (flag, value) in [
@@ -541,18 +551,34 @@ fn table(dir: &Path) -> Result<Vec<Case>, Box<dyn std::error::Error>> {
         args.extend_from_slice(refused);
         cases.push(Case::new("train", &args, 2));
     }
-    for (flag, path) in [
+    let mut bad_outputs = vec![
         ("--plot", p("out.xyz")),
         ("--plot", p("out")),
         ("--plot", p("no/such/dir/out.png")),
         ("--save", p("no/such/agent.safetensors")),
         ("--save", p("a-folder")),
-    ] {
+        ("--save", p("agent.bin")),
+        ("--json", p("no/such/run.json")),
+    ];
+    // A folder that takes no new file, even for root.
+    #[cfg(target_os = "linux")]
+    bad_outputs.extend([
+        ("--save", "/proc/x.safetensors".to_string()),
+        ("--plot", "/proc/x.svg".to_string()),
+    ]);
+    for (flag, path) in &bad_outputs {
         cases.push(Case::new(
             "train",
-            &["--episodes", "1", "-q", flag, &path],
+            &["--episodes", "1", "-q", flag, path],
             2,
         ));
+        if *flag != "--save" {
+            cases.push(Case::new(
+                "lab",
+                &["eps", "--episodes", "1", "-q", flag, path],
+                2,
+            ));
+        }
     }
     cases.extend([
         // lab
@@ -640,6 +666,7 @@ fn table(dir: &Path) -> Result<Vec<Case>, Box<dyn std::error::Error>> {
             1,
         ),
         Case::new("play", &[], 2),
+        Case::new("play", &["--load", &cp, "--delay-ms", "-5"], 2),
         // replay
         Case::new(
             "replay",

@@ -10,11 +10,14 @@
 //!   CJK SC (`assets/fonts/`).
 //!
 //! Both take the returns and the smoothed curve from
-//! [`moving_average`](crate::ppo::moving_average()) (window [`SMOOTHING_WINDOW`], the seed's 9).
+//! [`moving_average`](crate::ppo::moving_average()): over the seed's 9 episodes
+//! ([`SMOOTHING_WINDOW`]) for the seed's run, over about a fiftieth of a longer one
+//! ([`window`](mod@window)), the window said in the legend.
 
 pub mod file;
 pub mod labels;
 pub mod terminal;
+pub mod window;
 
 pub use crate::ppo::moving_average::{SMOOTHING_WINDOW, smoothed_returns};
 pub use file::{

@@ -4,26 +4,35 @@
 
 use std::io::Write;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 
 use anyhow::Context;
 use serde_json::json;
 
-use super::{TrainArgs, peak_rss_mb};
+use super::{TrainArgs, Written, peak_rss_mb, write_output};
+use crate::cli::interrupt::Interrupt;
 use crate::i18n::t;
 use crate::lesson::RunConfig;
-use crate::plot::{ascii_band_plot, labels, save_band_plot, smoothed_returns};
+use crate::plot::{ascii_band_plot, labels, save_band_plot};
 use crate::ppo::AgentConfig;
 use crate::ppo::seeds::ReportOf;
 use crate::ppo::seeds::{Band, SeedError, SeedRun, mean_std, train_seeds};
 use crate::run::RunVisitor;
 use crate::tr;
 
-/// Trains `setup` once per seed and reports as the module says.
+/// Trains `setup` once per seed and reports as the module says. Ctrl-C ends the process
+/// at the end of the episode under way, saying how far the seeds got and that nothing was
+/// written ([`Interrupt`]).
 ///
 /// # Errors
 /// A run that diverged, or an output file that could not be written.
-pub(super) fn run(args: &TrainArgs, setup: &RunConfig, seeds: &[u64]) -> anyhow::Result<ExitCode> {
+pub(super) fn run(
+    args: &TrainArgs,
+    setup: &RunConfig,
+    seeds: &[u64],
+    interrupt: &Interrupt,
+) -> anyhow::Result<ExitCode> {
     let threads = std::thread::available_parallelism()
         .map_or(1, usize::from)
         .min(seeds.len());
@@ -34,7 +43,19 @@ pub(super) fn run(args: &TrainArgs, setup: &RunConfig, seeds: &[u64]) -> anyhow:
         t("all seeds", "所有随机种子"),
     );
     let started = Instant::now();
+    let trained = AtomicUsize::new(0);
+    let stopping = AtomicBool::new(false);
     let on_episode = |seed: u64, episode: usize| {
+        let done = trained.fetch_add(1, Ordering::Relaxed) + 1;
+        // The seeds train on worker threads that cannot be stopped from here: the first to
+        // see Ctrl-C says so and ends the process (nothing is written before the end).
+        if interrupt.pressed() && !stopping.swap(true, Ordering::Relaxed) {
+            if let Some(bar) = &bar {
+                bar.abandon();
+            }
+            Written::new(args, seeds.len() * episodes, interrupt).stopped(done);
+            std::process::exit(i32::from(crate::cli::interrupt::EXIT_INTERRUPTED));
+        }
         if let Some(bar) = &bar {
             bar.inc(1);
         } else if !args.quiet && episode + 1 == episodes {
@@ -58,9 +79,10 @@ pub(super) fn run(args: &TrainArgs, setup: &RunConfig, seeds: &[u64]) -> anyhow:
         bar.finish_and_clear();
     }
     let wall_s = started.elapsed().as_secs_f64();
+    let window = crate::plot::window::window(episodes);
     let smoothed: Vec<Vec<f64>> = runs
         .iter()
-        .map(|r| smoothed_returns(&r.summary.returns))
+        .map(|r| crate::plot::window::smoothed(&r.summary.returns).1)
         .collect();
     let band = Band::of(&smoothed);
     let last = setup.env().spec().summary_window;
@@ -68,13 +90,14 @@ pub(super) fn run(args: &TrainArgs, setup: &RunConfig, seeds: &[u64]) -> anyhow:
 
     let mut out = std::io::stdout().lock();
     let steps: u64 = runs.iter().map(|r| r.summary.env_steps).sum();
-    let (env, n_runs) = (setup.env_id(), runs.len());
+    let n_runs = runs.len();
+    let title = labels::band_title(labels::algorithm(setup), setup.env_id(), n_runs);
     writeln!(
         out,
         "{}",
         tr!(
-            "PPO on {env}, {n_runs} seeds, {episodes} episodes each, {threads} at a time: {steps} env steps in {wall_s:.2} s",
-            "{env} 上的 PPO，{n_runs} 个随机种子，每个 {episodes} 个回合，同时跑 {threads} 个：环境共 {steps} 步，用时 {wall_s:.2} 秒"
+            "{title}, {episodes} episodes each, {threads} at a time: {steps} env steps in {wall_s:.2} s",
+            "{title}，每个 {episodes} 个回合，同时跑 {threads} 个：环境共 {steps} 步，用时 {wall_s:.2} 秒"
         )
     )?;
     for run in &runs {
@@ -104,16 +127,30 @@ pub(super) fn run(args: &TrainArgs, setup: &RunConfig, seeds: &[u64]) -> anyhow:
     if !args.quiet {
         let width = crossterm::terminal::size().map_or(80, |(w, _)| usize::from(w));
         writeln!(out)?;
-        for line in ascii_band_plot(&band, runs.len(), width.clamp(30, 120) - 8, 14) {
+        for line in ascii_band_plot((&band, window), runs.len(), width.clamp(30, 120) - 8, 14) {
             writeln!(out, "{line}")?;
         }
     }
+    let mut written = Written::new(args, seeds.len() * episodes, interrupt);
     if let Some(path) = &args.json {
-        let value = seeds_json(setup, &runs, &smoothed, &band, (mean, std), wall_s);
-        std::fs::write(path, format!("{value}\n")).with_context(|| super::writing(path))?;
+        if let Some(code) = written.interrupted() {
+            return Ok(code);
+        }
+        let value = seeds_json(
+            setup,
+            &runs,
+            (&smoothed, window),
+            &band,
+            (mean, std),
+            wall_s,
+        );
+        write_output(path, format!("{value}\n").as_bytes())?;
+        written.done("--json", path);
     }
     if let Some(path) = &args.plot {
-        let title = labels::band_title(setup.env_id(), runs.len());
+        if let Some(code) = written.interrupted() {
+            return Ok(code);
+        }
         save_band_plot(path, &title, &band, runs.len())?;
         let shown = path.display();
         writeln!(
@@ -134,7 +171,7 @@ pub(super) fn run(args: &TrainArgs, setup: &RunConfig, seeds: &[u64]) -> anyhow:
 fn seeds_json(
     setup: &RunConfig,
     runs: &[SeedRun],
-    smoothed: &[Vec<f64>],
+    (smoothed, window): (&[Vec<f64>], usize),
     band: &Band,
     (mean, std): (f64, f64),
     wall_s: f64,
@@ -167,6 +204,7 @@ fn seeds_json(
             run[&key] = json!(r.summary.mean_last(setup.env().spec().summary_window));
             run
         }).collect::<Vec<_>>(),
+        "moving_average_window": window,
         "band": { "of": "moving_average", "mean": band.mean, "low": band.low, "high": band.high },
         "config": setup,
     });

@@ -60,7 +60,8 @@ fn family() -> &'static str {
     Lang::current().pick("sans-serif", FAMILY_ZH)
 }
 
-/// Writes the return curve and its moving average to `path` (`.png`, 1000x600, or `.svg`).
+/// Writes the return curve and its moving average over `window` episodes (the legend says
+/// how many: [`super::window`]) to `path` (`.png`, 1000x600, or `.svg`).
 ///
 /// # Errors
 /// [`PlotError::UnknownFormat`] for another extension; [`PlotError::Draw`] when writing fails.
@@ -68,9 +69,17 @@ pub fn save_return_plot(
     path: &Path,
     title: &str,
     returns: &[f64],
-    smoothed: &[f64],
+    (smoothed, window): (&[f64], usize),
 ) -> Result<(), PlotError> {
-    save(path, title, Figure::Curve { returns, smoothed })
+    save(
+        path,
+        title,
+        Figure::Curve {
+            returns,
+            smoothed,
+            window,
+        },
+    )
 }
 
 /// Writes several seeds' curves to `path` (`.png` or `.svg`, as [`save_return_plot`]):
@@ -118,10 +127,11 @@ pub fn lab_plot_svg(
 /// What a return figure shows.
 #[derive(Clone, Copy)]
 enum Figure<'a> {
-    /// One run: the returns and their moving average.
+    /// One run: the returns and their moving average over `window` episodes.
     Curve {
         returns: &'a [f64],
         smoothed: &'a [f64],
+        window: usize,
     },
     /// Several seeds: the mean of their curves over the min–max band.
     Band { band: &'a Band, seeds: usize },
@@ -132,6 +142,8 @@ enum Figure<'a> {
     },
 }
 
+/// Draws `figure` into a temporary file beside `path` and renames it over `path` once it
+/// is whole; on any failure the temporary file goes and `path` is left as it was.
 fn save(path: &Path, title: &str, figure: Figure<'_>) -> Result<(), PlotError> {
     register_font();
     let shown = path.display().to_string();
@@ -143,23 +155,35 @@ fn save(path: &Path, title: &str, figure: Figure<'_>) -> Result<(), PlotError> {
         path: shown.clone(),
         reason: e.to_string(),
     };
-    match ext.as_deref() {
+    // The temporary file ends like `path`: the PNG encoder picks its format by the name.
+    let tmp = crate::files::temporary_sibling(path);
+    let drawn = match ext.as_deref() {
         Some("svg") => {
-            let root = SVGBackend::new(path, (1000, 600)).into_drawing_area();
-            draw(&root, title, figure).map_err(|e| draw_err(&e))?;
-            root.present().map_err(|e| draw_err(&e))
+            let root = SVGBackend::new(&tmp, (1000, 600)).into_drawing_area();
+            draw(&root, title, figure)
+                .map_err(|e| draw_err(&e))
+                .and_then(|()| root.present().map_err(|e| draw_err(&e)))
         }
         Some("png") => {
-            let root = BitMapBackend::new(path, (1000, 600)).into_drawing_area();
-            draw(&root, title, figure).map_err(|e| draw_err(&e))?;
-            root.present().map_err(|e| draw_err(&e))
+            let root = BitMapBackend::new(&tmp, (1000, 600)).into_drawing_area();
+            draw(&root, title, figure)
+                .map_err(|e| draw_err(&e))
+                .and_then(|()| root.present().map_err(|e| draw_err(&e)))
         }
-        _ => Err(PlotError::UnknownFormat { path: shown }),
+        _ => return Err(PlotError::UnknownFormat { path: shown }),
+    };
+    let saved = drawn.and_then(|()| std::fs::rename(&tmp, path).map_err(|e| draw_err(&e)));
+    if saved.is_err() {
+        let _ = std::fs::remove_file(&tmp);
     }
+    saved
 }
 
 /// The same figure as [`save_return_plot`], as an SVG document in memory (800x480), for
-/// notebooks and web pages.
+/// notebooks and web pages: `smoothed` is the seed's moving average over
+/// [`SMOOTHING_WINDOW`](super::SMOOTHING_WINDOW) episodes, a [`Snapshot`]'s.
+///
+/// [`Snapshot`]: crate::lesson::Snapshot
 ///
 /// # Errors
 /// [`PlotError::Draw`] if plotters fails.
@@ -168,8 +192,17 @@ pub fn return_plot_svg(
     returns: &[f64],
     smoothed: &[f64],
 ) -> Result<String, PlotError> {
+    let window = super::SMOOTHING_WINDOW;
     svg_string((800, 480), |root| {
-        draw(root, title, Figure::Curve { returns, smoothed })
+        draw(
+            root,
+            title,
+            Figure::Curve {
+                returns,
+                smoothed,
+                window,
+            },
+        )
     })
 }
 
@@ -265,7 +298,9 @@ fn draw<DB: DrawingBackend>(
     root.fill(&WHITE)?;
     let font = family();
     let (len, values): (usize, Vec<f64>) = match figure {
-        Figure::Curve { returns, smoothed } => (
+        Figure::Curve {
+            returns, smoothed, ..
+        } => (
             returns.len(),
             returns.iter().chain(smoothed).copied().collect(),
         ),
@@ -311,15 +346,24 @@ fn draw<DB: DrawingBackend>(
             .collect::<Vec<_>>()
     };
     match figure {
-        Figure::Curve { returns, smoothed } => {
+        Figure::Curve {
+            returns,
+            smoothed,
+            window,
+        } => {
+            // The average is the curve to read: three times the raw returns' width, over
+            // them, which are lighter.
+            let raw = blue.mix(0.6);
             chart
-                .draw_series(LineSeries::new(points(returns), blue.stroke_width(1)))?
+                .draw_series(LineSeries::new(points(returns), raw.stroke_width(1)))?
                 .label(labels::returns())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], blue));
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], raw));
             chart
-                .draw_series(LineSeries::new(points(smoothed), orange.stroke_width(2)))?
-                .label(labels::moving_average())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], orange));
+                .draw_series(LineSeries::new(points(smoothed), orange.stroke_width(3)))?
+                .label(labels::moving_average(window))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], orange.stroke_width(3))
+                });
         }
         Figure::Band { band, seeds } => {
             // The band as one polygon: along the highest curve, back along the lowest.
@@ -377,7 +421,7 @@ mod tests {
         let returns: Vec<f64> = (0..50).map(|i| f64::from(i * 10)).collect();
         for name in ["curve.png", "curve.svg"] {
             let path = dir.path().join(name);
-            save_return_plot(&path, "PPO on CartPole-v1", &returns, &returns)?;
+            save_return_plot(&path, "PPO on CartPole-v1", &returns, (&returns, 9))?;
             assert!(
                 std::fs::metadata(&path)?.len() > 1000,
                 "{name} is too small"
@@ -389,8 +433,42 @@ mod tests {
                 && svg.contains("Returns")
                 && svg.contains("PPO on CartPole-v1")
         );
-        let err = save_return_plot(&dir.path().join("curve.jpg"), "t", &returns, &returns);
+        let err = save_return_plot(&dir.path().join("curve.jpg"), "t", &returns, (&returns, 9));
         assert!(matches!(err, Err(PlotError::UnknownFormat { .. })));
+        Ok(())
+    }
+
+    /// A long run's figure: the legend says the window the rule gives, the average is drawn
+    /// three times as wide as the returns, and a figure that cannot be written leaves no
+    /// temporary file.
+    #[test]
+    fn the_legend_says_the_window_and_the_average_is_thicker()
+    -> Result<(), Box<dyn std::error::Error>> {
+        let _en = Lang::En.scoped();
+        let dir = tempfile::tempdir()?;
+        let returns: Vec<f64> = (0..2000).map(|i| -f64::from(i % 97) * 10.0).collect();
+        let (window, smoothed) = super::super::window::smoothed(&returns);
+        let path = dir.path().join("long.svg");
+        save_return_plot(&path, "PPO on Pendulum-v1", &returns, (&smoothed, window))?;
+        let svg = std::fs::read_to_string(&path)?;
+        assert!(svg.contains("moving average (39 episodes)"), "the legend");
+        let width_of = |colour: &str| {
+            svg.lines()
+                .find(|l| l.contains("<polyline") && l.contains(colour))
+                .and_then(|l| l.split("stroke-width=\"").nth(1))
+                .and_then(|w| w.split('"').next())
+                .and_then(|w| w.parse::<u32>().ok())
+        };
+        // matplotlib's orange (the average) and blue (the returns).
+        assert_eq!(
+            (width_of("#FF7F0E"), width_of("#1F77B4")),
+            (Some(3), Some(1))
+        );
+        let folder = dir.path().join("a-folder.svg");
+        std::fs::create_dir(&folder)?;
+        assert!(save_return_plot(&folder, "t", &returns, (&smoothed, window)).is_err());
+        let names: Vec<_> = std::fs::read_dir(dir.path())?.collect::<Result<_, _>>()?;
+        assert_eq!(names.len(), 2, "{names:?}");
         Ok(())
     }
 

@@ -11,11 +11,12 @@
 //!
 //! let _zh = Lang::Zh.scoped();
 //! assert_eq!(labels::episodes(), "回合");
-//! assert_eq!(labels::moving_average(), "移动平均（9 回合）");
+//! assert_eq!(labels::moving_average(9), "移动平均（9 回合）");
 //! ```
 
-use super::SMOOTHING_WINDOW;
 use crate::i18n::{Lang, t};
+use crate::ppo::{Algorithm, Objective, PpoConfig};
+use crate::run::RunConfig;
 use crate::tr;
 
 /// The x axis: `Episodes`, `回合`.
@@ -36,13 +37,13 @@ pub fn returns() -> &'static str {
     t("returns", "回报")
 }
 
-/// The legend of the smoothed curve: `moving average (9)`, `移动平均（9 回合）`.
+/// The legend of the smoothed curve over `window` episodes ([`super::window`]):
+/// `moving average (9 episodes)`, `移动平均（9 回合）`.
 #[must_use]
-pub fn moving_average() -> String {
+pub fn moving_average(window: usize) -> String {
     tr!(
-        "moving average ({w})",
-        "移动平均（{w} 回合）",
-        w = SMOOTHING_WINDOW
+        "moving average ({window} episodes)",
+        "移动平均（{window} 回合）"
     )
 }
 
@@ -96,18 +97,36 @@ pub fn clip_axis() -> &'static str {
     "min(surr1, surr2) / |A|"
 }
 
-/// The title of one run's figure (`ppo-tutor train --plot`): `PPO on CartPole-v1`.
+/// What trained a run, as titles name it: `PPO` (the seed's PPO-Clip, and the book's
+/// `PPOContinuous`, PPO-Clip too), `PPO without the clip` (`--no-clip`), `PPO-Penalty`,
+/// `KL line search`, `REINFORCE`.
 #[must_use]
-pub fn return_title(env: &str) -> String {
-    tr!("PPO on {env}", "{env} 上的 PPO")
+pub fn algorithm(run: &RunConfig) -> &'static str {
+    let Some(c) = run.get::<PpoConfig>() else {
+        return "PPO";
+    };
+    match (c.algorithm, c.objective) {
+        (Algorithm::Reinforce, _) => "REINFORCE",
+        (Algorithm::Ppo, Objective::Penalty) => t("PPO-Penalty", "PPO-惩罚"),
+        (Algorithm::Ppo, Objective::LineSearch) => t("KL line search", "KL 线搜索"),
+        (Algorithm::Ppo, Objective::Clip) if c.no_clip => t("PPO without the clip", "不截断的 PPO"),
+        (Algorithm::Ppo, Objective::Clip) => "PPO",
+    }
+}
+
+/// The title of one run's figure (`ppo-tutor train --plot`) and of its summary:
+/// `PPO on CartPole-v1`, `REINFORCE on CartPole-v1`.
+#[must_use]
+pub fn return_title(algorithm: &str, env: &str) -> String {
+    tr!("{algorithm} on {env}", "{env} 上的 {algorithm}")
 }
 
 /// The title of several seeds' figure (`ppo-tutor train --seeds … --plot`).
 #[must_use]
-pub fn band_title(env: &str, seeds: usize) -> String {
+pub fn band_title(algorithm: &str, env: &str, seeds: usize) -> String {
     tr!(
-        "PPO on {env}, {seeds} seeds",
-        "{env} 上的 PPO，{seeds} 个随机种子"
+        "{algorithm} on {env}, {seeds} seeds",
+        "{env} 上的 {algorithm}，{seeds} 个随机种子"
     )
 }
 
@@ -120,21 +139,21 @@ pub fn lab_title(experiment: &str, seeds: usize) -> String {
     )
 }
 
-/// The character plot's legend of one run.
+/// The character plot's legend of one run, whose moving average is over `window` episodes.
 #[must_use]
-pub fn ascii_returns() -> &'static str {
-    t(
-        "Returns  (. per episode, * moving average)",
-        "回报（. 为每回合的值，* 为移动平均）",
+pub fn ascii_returns(window: usize) -> String {
+    tr!(
+        "Returns  (. per episode, * moving average of {window})",
+        "回报（. 为每回合的值，* 为 {window} 回合移动平均）"
     )
 }
 
-/// The character plot's legend of several seeds.
+/// The character plot's legend of several seeds' moving averages over `window` episodes.
 #[must_use]
-pub fn ascii_band(seeds: usize) -> String {
+pub fn ascii_band(seeds: usize, window: usize) -> String {
     tr!(
-        "Moving average of the returns over {seeds} seeds  (* mean, : lowest to highest seed)",
-        "{seeds} 个随机种子的回报移动平均（* 为均值，: 为最低到最高）"
+        "Moving average ({window} episodes) of the returns over {seeds} seeds  (* mean, : lowest to highest seed)",
+        "{seeds} 个随机种子的回报移动平均（{window} 回合；* 为均值，: 为最低到最高）"
     )
 }
 
@@ -159,21 +178,45 @@ pub fn all(lang: Lang) -> Vec<String> {
         mean_over_seeds(),
         ratio_axis(),
         clip_axis(),
-        ascii_returns(),
     ]
     .into_iter()
     .map(String::from)
     .collect();
+    // Every algorithm's title (the flags that change what trains).
+    let cartpole = PpoConfig::default();
+    let runs = [
+        RunConfig::CartPole(cartpole.clone()),
+        RunConfig::CartPole(PpoConfig {
+            algorithm: Algorithm::Reinforce,
+            ..cartpole.clone()
+        }),
+        RunConfig::CartPole(PpoConfig {
+            objective: Objective::Penalty,
+            ..cartpole.clone()
+        }),
+        RunConfig::CartPole(PpoConfig {
+            objective: Objective::LineSearch,
+            ..cartpole.clone()
+        }),
+        RunConfig::CartPole(PpoConfig {
+            no_clip: true,
+            ..cartpole
+        }),
+    ];
+    for run in &runs {
+        labels.push(return_title(algorithm(run), "CartPole-v1"));
+    }
     labels.extend([
-        moving_average(),
+        moving_average(41),
+        ascii_returns(9),
         band(5),
         arm("ε = 0.2", 5),
         clip_caption(f64::from(0.2_f32), 64),
         clip_caption(-0.05, 1234),
-        return_title("CartPole-v1"),
-        band_title("Pendulum-v1", 10),
+        return_title("PPO", "Pendulum-v1"),
+        band_title("REINFORCE", "CartPole-v1", 10),
         lab_title("target-kl", 3),
-        ascii_band(5),
+        ascii_band(5, 39),
         ascii_versus("ε = 0.05", "ε = 0.2", 5),
         "A > 0".into(),
         "A < 0".into(),

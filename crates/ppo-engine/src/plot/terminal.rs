@@ -1,12 +1,14 @@
-//! The return curve drawn with characters: `.` per-episode returns, `*` their moving average;
-//! or, for several seeds, their mean curve over the band they span.
+//! The return curve drawn with characters: `.` per-episode returns, `*` their moving average
+//! (a connected line over the dots, so it reads as the curve); or, for several seeds, their
+//! mean curve over the band they span.
 //!
 //! ```
 //! use ppo_engine::plot::ascii_return_plot;
 //!
 //! let returns = [10.0, 20.0, 40.0, 80.0, 160.0];
-//! let lines = ascii_return_plot(&returns, &returns, 30, 6);
+//! let lines = ascii_return_plot(&returns, (&returns, 5), 30, 6);
 //! assert!(lines.iter().any(|l| l.contains('*')));
+//! assert!(lines[0].contains("moving average of 5"));
 //! ```
 
 use unicode_width::UnicodeWidthStr;
@@ -14,14 +16,16 @@ use unicode_width::UnicodeWidthStr;
 use super::labels;
 use crate::ppo::seeds::Band;
 
-/// Draws `returns` (`.`) and `smoothed` (`*`, drawn over) in a `width` x `height` grid of
-/// cells, with a y axis from 0 to a round maximum (from a round minimum to 0 for negative
-/// returns, as Pendulum's) and an x axis of episode numbers.
+/// Draws `returns` (`.`) and `smoothed`, their moving average over `window` episodes (`*`,
+/// drawn over them as a connected line: each column from the previous episode's row to
+/// this one's), in a `width` x `height` grid of cells, with a y axis from 0 to a round
+/// maximum (from a round minimum to 0 for negative returns, as Pendulum's) and an x axis
+/// of episode numbers; the legend says the window.
 /// Returns the lines to print, without trailing newlines.
 #[must_use]
 pub fn ascii_return_plot(
     returns: &[f64],
-    smoothed: &[f64],
+    (smoothed, window): (&[f64], usize),
     width: usize,
     height: usize,
 ) -> Vec<String> {
@@ -31,18 +35,30 @@ pub fn ascii_return_plot(
         width,
         height,
     );
-    for (series, mark) in [(returns, '.'), (smoothed, '*')] {
-        for (i, &v) in series.iter().enumerate() {
-            grid.put(i, v, mark);
-        }
+    for (i, &v) in returns.iter().enumerate() {
+        grid.put(i, v, '.');
     }
-    grid.lines(labels::ascii_returns())
+    let mut previous = None;
+    for (i, &v) in smoothed.iter().enumerate() {
+        match previous {
+            Some(p) if v.is_finite() => grid.fill(i, f64::min(p, v), f64::max(p, v), '*'),
+            _ => grid.put(i, v, '*'),
+        }
+        previous = v.is_finite().then_some(v);
+    }
+    grid.lines(&labels::ascii_returns(window))
 }
 
-/// Draws several seeds' curves as a band (`:` from the lowest to the highest seed at each
-/// episode) with their mean (`*`) over it, on the same axes as [`ascii_return_plot`].
+/// Draws several seeds' moving averages over `window` episodes as a band (`:` from the
+/// lowest to the highest seed at each episode) with their mean (`*`) over it, on the same
+/// axes as [`ascii_return_plot`]; the legend says the window.
 #[must_use]
-pub fn ascii_band_plot(band: &Band, seeds: usize, width: usize, height: usize) -> Vec<String> {
+pub fn ascii_band_plot(
+    (band, window): (&Band, usize),
+    seeds: usize,
+    width: usize,
+    height: usize,
+) -> Vec<String> {
     let mut grid = Grid::new(
         band.high.iter().chain(&band.mean).copied(),
         band.mean.len(),
@@ -55,7 +71,7 @@ pub fn ascii_band_plot(band: &Band, seeds: usize, width: usize, height: usize) -
     for (i, &v) in band.mean.iter().enumerate() {
         grid.put(i, v, '*');
     }
-    grid.lines(&labels::ascii_band(seeds))
+    grid.lines(&labels::ascii_band(seeds, window))
 }
 
 /// Draws one arm of an experiment against the base arm on the same axes: the arm's band
@@ -222,8 +238,9 @@ mod tests {
     #[test]
     fn the_band_spans_the_seeds_and_the_mean_is_drawn_over_it() {
         let band = Band::of(&[vec![0.0, 100.0, 200.0], vec![100.0, 300.0, 500.0]]);
-        let lines = ascii_band_plot(&band, 2, 21, 11);
+        let lines = ascii_band_plot((&band, 9), 2, 21, 11);
         assert!(lines[0].contains("over 2 seeds"), "{}", lines[0]);
+        assert!(lines[0].contains("(9 episodes)"), "{}", lines[0]);
         let column = |c: usize| -> String {
             lines[1..12]
                 .iter()
@@ -233,6 +250,33 @@ mod tests {
         // The last episode: lowest 200, highest 500 (the top), mean 350, on a 0..500 axis.
         assert_eq!(column(20).trim_end(), ":::*:::", "{lines:#?}");
         assert_eq!(column(0).trim(), ":*:", "{lines:#?}");
+    }
+
+    /// The average is a connected line: between two episodes' rows every row of the column
+    /// is marked, where the dots of the returns are scattered.
+    #[test]
+    fn the_average_is_drawn_as_a_connected_line() {
+        // A jump from 0 to 100 between episodes 1 and 2, on a 0..100 axis of 11 rows and 10
+        // columns (episode i in column 3i).
+        let returns = [0.0, 0.0, 100.0, 100.0];
+        let lines = ascii_return_plot(&returns, (&returns, 9), 10, 11);
+        assert!(lines[0].contains("moving average of 9"), "{}", lines[0]);
+        let column = |c: usize| -> String {
+            lines[1..12]
+                .iter()
+                .map(|l| l.chars().nth(5 + c).unwrap_or(' '))
+                .collect()
+        };
+        // Episode 2's column runs from episode 1's row (the bottom) to its own (the top).
+        assert_eq!(column(6), "*".repeat(11), "{lines:#?}");
+        assert_eq!(column(3).trim(), "*", "{lines:#?}");
+        // The returns alone are one dot there.
+        let dots = ascii_return_plot(&returns, (&[], 9), 10, 11);
+        let dots: String = dots[1..12]
+            .iter()
+            .map(|l| l.chars().nth(5 + 6).unwrap_or(' '))
+            .collect();
+        assert_eq!(dots.trim(), ".", "{dots:?}");
     }
 
     #[test]
@@ -246,7 +290,7 @@ mod tests {
     #[test]
     fn a_full_curve_fits_its_box() {
         let returns: Vec<f64> = (0..500).map(f64::from).collect();
-        let lines = ascii_return_plot(&returns, &returns, 60, 12);
+        let lines = ascii_return_plot(&returns, (&returns, 9), 60, 12);
         assert_eq!(lines.len(), 12 + 3);
         assert!(
             lines.iter().all(|l| l.chars().count() <= 60 + 6),
@@ -260,7 +304,7 @@ mod tests {
     #[test]
     fn negative_returns_hang_below_zero() {
         let returns = [-1200.0, -800.0, -250.0];
-        let lines = ascii_return_plot(&returns, &returns, 21, 11);
+        let lines = ascii_return_plot(&returns, (&returns, 9), 21, 11);
         assert!(lines[1].starts_with("    0 +"), "{lines:#?}");
         assert!(lines[6].starts_with("-1000 +"), "{lines:#?}");
         assert!(lines[11].starts_with("-2000 +"), "{lines:#?}");
@@ -271,7 +315,7 @@ mod tests {
 
     #[test]
     fn empty_and_single_episode_runs_draw() {
-        assert_eq!(ascii_return_plot(&[], &[], 20, 5).len(), 8);
-        assert_eq!(ascii_return_plot(&[9.0], &[9.0], 20, 5).len(), 8);
+        assert_eq!(ascii_return_plot(&[], (&[], 1), 20, 5).len(), 8);
+        assert_eq!(ascii_return_plot(&[9.0], (&[9.0], 1), 20, 5).len(), 8);
     }
 }
