@@ -124,6 +124,16 @@ pub(super) fn draw_chart(
     chart.legend_position(None).render(chart_area, buf);
 }
 
+/// The moving average's marker: heavier than the returns' dots, so that the curve to read
+/// stands out of them (half blocks over Braille dots; full blocks over the `•` of
+/// `PPO_TUTOR_ASCII`).
+fn average_marker() -> Marker {
+    match super::marker() {
+        Marker::Braille => Marker::HalfBlock,
+        _ => Marker::Block,
+    }
+}
+
 /// `(episode, value)` pairs for a chart.
 pub(super) fn points(values: &[f64]) -> Vec<(f64, f64)> {
     values
@@ -171,7 +181,7 @@ impl Widget for ReturnPlot<'_> {
             ));
             datasets.push(
                 Dataset::default()
-                    .marker(super::marker())
+                    .marker(average_marker())
                     .graph_type(GraphType::Line)
                     .style(self.theme.average())
                     .data(&avg),
@@ -221,7 +231,7 @@ mod tests {
     use ratatui::widgets::{Block, Widget};
 
     fn is_data(c: char) -> bool {
-        ('\u{2800}'..='\u{28FF}').contains(&c) || c == '•'
+        ('\u{2800}'..='\u{28FF}').contains(&c) || ['•', '▀', '▄', '█'].contains(&c)
     }
 
     /// Issue 25, section 2: a trained curve runs along the top right, where ratatui drew its
@@ -278,5 +288,39 @@ mod tests {
             // The axis title shares the legend's row where there is room.
             assert_eq!(screen.contains("Returns"), width > 60, "{screen}");
         }
+    }
+
+    /// The moving average is drawn in half blocks, heavier than the returns' Braille dots.
+    #[test]
+    fn the_average_is_heavier_than_the_returns() {
+        let returns: Vec<f64> = (0..100_u32).map(|i| f64::from(i % 7) * 60.0).collect();
+        let average = vec![200.0; returns.len()];
+        let (width, height) = (60, 16);
+        let area = Rect::new(0, 0, width, height);
+        let mut buf = Buffer::empty(area);
+        ReturnPlot {
+            returns: &returns,
+            average: &average,
+            previous: None,
+            max_return: 500.0,
+            min_return: 0.0,
+            block: Block::bordered(),
+            theme: Theme { color: false },
+        }
+        .render(area, &mut buf);
+        let rows: Vec<String> = (0..height)
+            .map(|y| (0..width).map(|x| buf[(x, y)].symbol()).collect())
+            .collect();
+        let screen = rows.join("\n");
+        // The flat average at 200 is one row of half blocks across the graph.
+        let blocks = |r: &String| r.chars().filter(|c| ['▀', '▄', '█'].contains(c)).count();
+        let row = rows.iter().max_by_key(|r| blocks(r)).map_or(0, blocks);
+        assert!(row > usize::from(width) / 2, "{screen}");
+        assert!(
+            screen
+                .chars()
+                .any(|c| ('\u{2801}'..='\u{28FF}').contains(&c)),
+            "{screen}"
+        );
     }
 }
