@@ -1,7 +1,7 @@
 //! Steps per second of the native CartPole: one environment, and the vector env.
 //!
 //! Compare with `shared/peer/gym_speed.py` (Gymnasium's `gym.make`, the bare env and
-//! the numpy `CartPoleVectorEnv(256)`) in the same sitting; README has the table.
+//! the numpy `CartPoleVectorEnv(256)`) in the same sitting; docs/measurements.md has the table.
 //! Run: `cargo bench --bench cartpole`.
 
 use std::hint::black_box;

@@ -791,7 +791,7 @@ fn first_500(arm: &ArmResult) -> Vec<usize> {
         .collect()
 }
 
-/// Lessons 4 and 13 and the README: what every experiment of the clip lab shows.
+/// Lessons 4 and 13 and docs/measurements.md: what every experiment of the clip lab shows.
 #[test]
 #[cfg_attr(
     not(feature = "full-tests"),
@@ -811,7 +811,7 @@ fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
     let lab_text = include_str!("../lessons/13-clip-lab/lesson.md");
     let pg_file = "lessons/04-policy-gradient/lesson.md";
     let pg_text = include_str!("../lessons/04-policy-gradient/lesson.md");
-    let readme = include_str!("../README.md");
+    let measurements = include_str!("../docs/measurements.md");
     for l in [eps, epochs, lr, kl] {
         for arm in &l.arms {
             says(lab_text, lab_file, &arm.summary());
@@ -820,7 +820,7 @@ fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
     for arm in &reinforce.arms {
         says(pg_text, pg_file, &arm.summary());
     }
-    // The README's table: every changed setting, and the base once.
+    // The table of docs/measurements.md: every changed setting, and the base once.
     for arm in labs.iter().flat_map(|l| l.arms.iter()) {
         let (m, s) = arm.final_mean_std();
         let reach = arm
@@ -829,8 +829,8 @@ fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
                 format!("reaches 400 at episode {e}")
             });
         says(
-            readme,
-            "README.md",
+            measurements,
+            "docs/measurements.md",
             &format!(
                 "{m:.1} ± {s:.1}, worst seed {:.1}; {reach}",
                 arm.worst_final()

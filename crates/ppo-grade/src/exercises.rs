@@ -2,7 +2,7 @@
 //! (signature, reference, cases, typical mistakes; its prose is in its lesson's
 //! `exercise.toml`).
 //!
-//! To add an exercise, add its module here and to the list below (see the README's
+//! To add an exercise, add its module here and to the list below (see CONTRIBUTING.md,
 //! "Adding an exercise"). The list makes [`ALL`], which every face iterates, and the
 //! in-place graders a notebook cell calls (`grade::in_process::<name>(<name>)`).
 
