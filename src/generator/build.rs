@@ -459,6 +459,13 @@ pub fn quiz_cells(lesson: &Lesson) -> Vec<Cell> {
                     }
                 }
             }
+            QuestionKind::Predict { tolerance, .. } if *tolerance == 0.0 => {
+                text.push_str(t(
+                    "\n\n(Only the exact live value counts.)",
+                    "\n\n（只有与实时数值完全相等才算答对。）",
+                ));
+                format!("quiz::predict(\"{}\", {n}, \"?\", &snap)", lesson.id)
+            }
             QuestionKind::Predict { tolerance, .. } => {
                 text.push_str(&tr!(
                     "\n\n(An answer within ±{tolerance} of the live value counts.)",

@@ -63,7 +63,7 @@ pub enum Action {
     Grade,
     /// Reveal the exercise's next hint (h).
     Hint,
-    /// Open or fold the steps' details blocks (d).
+    /// Open the step's next details block, or fold them all once all are open (d).
     Details,
     /// Run the step's clip-lab experiment (x).
     RunLab,
@@ -116,8 +116,8 @@ pub fn help() -> Vec<(&'static str, &'static str)> {
         (
             "d",
             t(
-                "open / fold the details (▸) in the explanation",
-                "展开 / 收起讲解中的细节（▸）",
+                "open this step's next details block (▸); fold them once all are open",
+                "展开本节的下一段细节（▸）；全部展开后再按则收起",
             ),
         ),
         (
