@@ -46,6 +46,8 @@ pub enum Event {
     Worker(WorkerEvent),
     /// A grading started with `g` finished.
     Graded(Vec<app::Graded>),
+    /// A grading under way did something new (built, compiled a crate, checked).
+    GradeProgress(crate::grade::GradeProgress),
     /// A clip-lab experiment started with `x` progressed or ended.
     Lab(Experiment, LabState),
     /// The open lesson's exercise file was saved.
@@ -191,6 +193,7 @@ pub fn handle(app: &mut App, event: Event) {
         Event::Tick => app.tick(),
         Event::Worker(w) => app.on_worker(w),
         Event::Graded(graded) => app.on_graded(graded),
+        Event::GradeProgress(progress) => app.on_grade_progress(progress),
         Event::Lab(experiment, state) => app.on_lab(experiment, state),
         Event::Saved => app.on_saved(),
         Event::Probe(episodes, result) => app.on_probe(episodes, result),
@@ -291,14 +294,20 @@ fn spawn_lab(experiment: Experiment, base: crate::ppo::PpoConfig, tx: Sender<Eve
     });
 }
 
-/// Grades `names` on a background thread (compiling can take seconds) and sends the result.
+/// Grades `names` on a background thread (compiling can take seconds, and the candle
+/// exercise's first build minutes), sending what the grading does as it goes (the panel
+/// shows cargo's progress) and then the result.
 fn spawn_grader(names: Vec<String>, tx: Sender<Event>) {
     std::thread::spawn(move || {
         let options = crate::grade::GradeOptions::default();
         let graded = names
             .into_iter()
             .map(|name| {
-                let result = crate::grade::grade(&name, None, &options).map_err(|e| e.to_string());
+                let progress = tx.clone();
+                let result = crate::grade::grade_with_progress(&name, None, &options, &mut |p| {
+                    let _ = progress.send(Event::GradeProgress(p.clone()));
+                })
+                .map_err(|e| e.to_string());
                 app::Graded { name, result }
             })
             .collect();

@@ -263,7 +263,6 @@ impl Keyboard {
 
 /// The app started in `dir` (its progress file `state.json` there) in an English locale
 /// with no language set, then with `env` set.
-
 fn spawn_app(
     dir: &std::path::Path,
     env: &[(&str, &str)],

@@ -1761,3 +1761,90 @@ fn every_step_showing_epochs_shows_the_first_and_the_last() -> TestResult {
     }
     Ok(())
 }
+
+/// A question seen again shows the latest answer to it: a fixed choice with its verdict
+/// and explanations, a prediction as a line (its verdict was about another run's numbers),
+/// kept in the progress as text.
+#[test]
+fn a_question_seen_again_shows_the_earlier_answer() -> TestResult {
+    use ppo_tutor::lesson::quiz::{Answer, QuestionKind, letter_of};
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    open_quiz(&mut app, "what-is-ppo")?;
+    let Some(QuestionKind::Choice {
+        answer: Answer::Letter(answer),
+        choices,
+        ..
+    }) = app.quiz_question(0).map(|q| q.kind.clone())
+    else {
+        return Err("lesson 1's quiz opens with a choice".into());
+    };
+    let wrong = (answer + 1) % choices.len();
+    app.update(Action::Type(letter_of(wrong)));
+    assert_eq!(
+        app.progress.answer("what-is-ppo", 1),
+        Some(choices[wrong].as_str())
+    );
+    app.update(Action::Back);
+    open_quiz(&mut app, "what-is-ppo")?;
+    let text = screen(&app, 160, 50)?;
+    assert!(
+        text.contains(&format!("✗ Not {})", letter_of(wrong))),
+        "{text}"
+    );
+    assert!(text.contains("(it was not right)"), "{text}");
+    // A prediction: the number typed, as a line.
+    open_quiz(&mut app, "td-target")?;
+    let count = app.current_lesson().map_or(0, |l| l.quiz.len());
+    for i in 0..count {
+        if matches!(
+            app.quiz_question(i).map(|q| &q.kind),
+            Some(QuestionKind::Predict { .. })
+        ) {
+            for c in "0.25".chars() {
+                app.update(Action::Type(c));
+            }
+            app.update(Action::Enter);
+            app.update(Action::Back);
+            open_quiz(&mut app, "td-target")?;
+            for _ in 0..i {
+                app.update(Action::Next);
+            }
+            let text = screen(&app, 160, 50)?;
+            assert!(text.contains("Your answer last time: 0.25"), "{text}");
+            assert!(!app.quiz.answered(), "a new prediction can be typed");
+            return Ok(());
+        }
+        app.update(Action::Next);
+    }
+    Err("lesson 7 has a prediction".into())
+}
+
+/// While the candle exercise's first build runs, the panel and the status line say what
+/// cargo is compiling (the grading runs on its own thread: the screen is never stuck on a
+/// fixed line), and the line goes when the grading ends.
+#[test]
+fn a_grading_s_progress_shows_while_it_builds() -> TestResult {
+    use ppo_tutor::grade::GradeProgress;
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    open(&mut app, "losses")?;
+    app.update(Action::Grade);
+    assert!(app.exercise.grading && app.exercise.request.is_some());
+    app.on_grade_progress(GradeProgress::Compiling {
+        krate: "candle-core".into(),
+        done: 37,
+        total: 120,
+        first_time: true,
+    });
+    let text = screen(&app, 160, 50)?;
+    assert!(
+        text.contains("candle-core") && text.contains("37/120"),
+        "{text}"
+    );
+    assert!(app.status.text().contains("37/120"), "{}", app.status);
+    app.on_graded(Vec::<ppo_tutor::tui::app::Graded>::new());
+    assert!(app.exercise.progress.is_none());
+    assert!(!screen(&app, 160, 50)?.contains("37/120"));
+    Ok(())
+}

@@ -324,7 +324,7 @@ impl App {
                     ));
                 }
             }
-            Reply::Answered(i, verdict) => self.record_answer(i, verdict.right),
+            Reply::Answered(i, verdict, answer) => self.record_answer(i, verdict.right, &answer),
             Reply::Finished => {
                 self.close(from);
                 self.leave_lesson();
@@ -484,12 +484,13 @@ impl App {
 
     /// Records an answer to question `i` (from 0) of the open lesson's quiz (the first
     /// one counts), marks the lesson done once every question has one, and says the score.
-    fn record_answer(&mut self, i: usize, right: bool) {
+    fn record_answer(&mut self, i: usize, right: bool, answer: &str) {
         let id = self
             .current_lesson()
             .map(|l| l.id.clone())
             .unwrap_or_default();
         self.progress.record_quiz(&id, i + 1, right);
+        self.progress.record_answer(&id, i + 1, answer);
         let questions = self.current_lesson().map_or(0, |l| l.quiz.len());
         if self.progress.quiz_answered(&id, questions) {
             self.progress.lessons_done.insert(id);
@@ -615,6 +616,15 @@ impl App {
     pub fn on_lab(&mut self, experiment: Experiment, state: LabState) {
         if let Some(said) = self.lab.on_event(experiment, state) {
             self.status.say(Owner::App, said);
+        }
+    }
+
+    /// Shows what the grading under way is doing (its build, cargo's progress through it,
+    /// its checks) in the exercise panel and on the status line.
+    pub fn on_grade_progress(&mut self, progress: crate::grade::GradeProgress) {
+        if self.exercise.grading {
+            self.status.set(Owner::Exercise, progress.to_string());
+            self.exercise.progress = Some(progress);
         }
     }
 

@@ -161,8 +161,9 @@ pub enum Reply {
     Open(usize),
     /// The sandbox: retrain with its settings.
     Retrain,
-    /// The quiz: record the first real answer to question `usize` (from 0).
-    Answered(usize, crate::lesson::quiz::Verdict),
+    /// The quiz: record a real answer to question `usize` (from 0): its verdict (the first
+    /// counts toward the score) and the answer itself (the choice's text, or the number).
+    Answered(usize, crate::lesson::quiz::Verdict, String),
     /// The quiz: past its last question, on to the next lesson.
     Finished,
 }

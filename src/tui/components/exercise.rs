@@ -86,6 +86,8 @@ pub struct ExercisePanel {
     pub request: Option<Vec<String>>,
     /// A save came in while grading: grade again when this grading ends.
     pub regrade: bool,
+    /// What the grading under way did last (its build, cargo's progress, its checks).
+    pub progress: Option<crate::grade::GradeProgress>,
     scroll: Scroll,
 }
 
@@ -132,6 +134,7 @@ impl ExercisePanel {
     /// says how it went. Whether a save asked for another grading is [`Self::regrade`].
     pub fn on_graded(&mut self, graded: Vec<Graded>, progress: &mut Progress) -> String {
         self.grading = false;
+        self.progress = None;
         let passed: Vec<&str> = graded
             .iter()
             .filter(|g| g.passed())
@@ -225,7 +228,10 @@ impl ExercisePanel {
                 lines.push(Line::from(spans));
             }
         }
-        if self.grading {
+        if let (true, Some(progress)) = (self.grading, &self.progress) {
+            lines.push(Line::raw(""));
+            lines.push(Line::styled(format!(" {progress}"), theme.dim()));
+        } else if self.grading {
             lines.push(Line::raw(""));
             let slow = names.iter().any(|n| {
                 crate::grade::find(n)

@@ -12,7 +12,7 @@ use ratatui::widgets::{Paragraph, Widget};
 
 use super::{Component, Ctx, Reply, Scroll, centered, clear, panel};
 use crate::i18n::t;
-use crate::lesson::quiz::{Question, QuestionKind, Verdict, letter_of};
+use crate::lesson::quiz::{Answer, Question, QuestionKind, Verdict, letter_index, letter_of};
 use crate::lesson::{Progress, Snapshot};
 use crate::tr;
 use crate::tui::keys::Action;
@@ -34,6 +34,9 @@ pub struct Quiz {
     /// The snapshot the open question shows and grades against, once it had every number
     /// the question needs (`None` before, and for a question that does not use the run).
     pinned: Option<Box<Snapshot>>,
+    /// The latest answer given before this question was opened (kept in the progress), and
+    /// whether the first answer was right: shown until the learner answers again.
+    earlier: Option<(String, Option<bool>)>,
 }
 
 impl Quiz {
@@ -44,12 +47,37 @@ impl Quiz {
     }
 
     /// Opens question `i` of `ctx`'s lesson with nothing typed, and says how to answer it.
+    /// A question answered before shows that answer: a fixed choice with its verdict and
+    /// explanations, a prediction or a choice the run decides as a line (its verdict was
+    /// about another run's numbers).
     pub fn open(&mut self, i: usize, ctx: &Ctx<'_>) -> String {
         *self = Self {
             question: i,
             ..Self::default()
         };
-        self.offer(ctx.lesson.and_then(|l| l.quiz.get(i)), ctx.snapshot);
+        let question = ctx.lesson.and_then(|l| l.quiz.get(i));
+        self.offer(question, ctx.snapshot);
+        if let (Some(lesson), Some(question)) = (ctx.lesson, question)
+            && let Some(answer) = ctx.progress.answer(&lesson.id, i + 1)
+        {
+            let key = Progress::quiz_key(&lesson.id, i + 1);
+            let first = ctx.progress.quiz.get(&key).copied();
+            let letter = match &question.kind {
+                QuestionKind::Choice {
+                    choices,
+                    answer: Answer::Letter(_),
+                    ..
+                } => choices.iter().position(|c| c == answer).map(letter_of),
+                _ => None,
+            };
+            match letter {
+                Some(letter) => {
+                    self.verdict = Some(question.choose(letter, ctx.snapshot));
+                    self.first = first;
+                }
+                None => self.earlier = Some((answer.to_string(), first)),
+            }
+        }
         let total = ctx.lesson.map_or(0, |l| l.quiz.len());
         let how = match ctx.lesson.and_then(|l| l.quiz.get(i)).map(|q| &q.kind) {
             Some(QuestionKind::Predict { .. }) => t("type a number, Enter", "输入一个数，按 Enter"),
@@ -94,14 +122,16 @@ impl Quiz {
         self.verdict.as_ref().is_some_and(|v| v.answered)
     }
 
-    /// Shows `verdict`; a real answer goes to the app to be recorded (the first counts).
-    fn give(&mut self, verdict: Verdict, ctx: &Ctx<'_>) -> Reply {
+    /// Shows `verdict` on `answer` (the choice's text, or the number typed); a real answer
+    /// goes to the app to be recorded (the first counts toward the score).
+    fn give(&mut self, verdict: Verdict, answer: String, ctx: &Ctx<'_>) -> Reply {
         self.scroll.top();
+        self.earlier = None;
         let reply = if verdict.answered {
             let id = ctx.lesson.map_or("", |l| l.id.as_str());
             let key = Progress::quiz_key(id, self.question + 1);
             self.first = ctx.progress.quiz.get(&key).copied();
-            Reply::Answered(self.question, verdict.clone())
+            Reply::Answered(self.question, verdict.clone(), answer)
         } else {
             self.first = None;
             Reply::Say(verdict.text.lines().next().unwrap_or_default().to_string())
@@ -186,6 +216,25 @@ impl Quiz {
                 columns,
             ));
         }
+        if let Some((answer, first)) = &self.earlier {
+            let score = match first {
+                Some(true) => t(" (your first answer was right)", "（第一次作答答对了）"),
+                Some(false) => t(" (your first answer was not right)", "（第一次作答没答对）"),
+                None => "",
+            };
+            lines.push(Line::raw(""));
+            lines.extend(hanging(
+                Span::raw(" "),
+                Line::styled(
+                    tr!(
+                        "Your answer last time: {answer}{score}. Answer again to see the verdict on this run's numbers.",
+                        "你上次的回答：{answer}{score}。再答一次，看按这次运行的数字给出的判定。"
+                    ),
+                    theme.dim(),
+                ),
+                columns,
+            ));
+        }
         if let Some(verdict) = &self.verdict {
             lines.push(Line::raw(""));
             if let Some(first) = self.first {
@@ -226,7 +275,11 @@ impl Component for Quiz {
                     let last = letter_of(choices.len().saturating_sub(1));
                     if c.is_ascii_lowercase() && c <= last {
                         let verdict = question.choose(c, self.snapshot(ctx));
-                        return self.give(verdict, ctx);
+                        let text = letter_index(&c.to_string())
+                            .and_then(|k| choices.get(k))
+                            .cloned()
+                            .unwrap_or_default();
+                        return self.give(verdict, text, ctx);
                     }
                     if c.is_ascii_lowercase() {
                         return Reply::Say(tr!(
@@ -254,7 +307,8 @@ impl Component for Quiz {
                     return match self.input.parse::<f64>() {
                         Ok(v) => {
                             let verdict = question.predict(v, self.snapshot(ctx));
-                            self.give(verdict, ctx)
+                            let typed = self.input.clone();
+                            self.give(verdict, typed, ctx)
                         }
                         Err(_) => Reply::Say(
                             t(

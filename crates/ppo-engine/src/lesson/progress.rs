@@ -99,6 +99,11 @@ pub struct Progress {
     /// [`Self::set_language`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lang: Option<String>,
+    /// The latest answer to each question, by the same key as [`Self::quiz`]: the chosen
+    /// choice's text (not its letter, which a reordering would change) or the predicted
+    /// number, so that a question seen again shows it. Empty in older files.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub answers: BTreeMap<String, String>,
 }
 
 impl Default for Progress {
@@ -111,6 +116,7 @@ impl Default for Progress {
             quiz: BTreeMap::new(),
             quiz_numbering: QUIZ_NUMBERING,
             lang: None,
+            answers: BTreeMap::new(),
         }
     }
 }
@@ -127,6 +133,21 @@ impl Progress {
         self.quiz
             .entry(Self::quiz_key(lesson, number))
             .or_insert(right);
+    }
+
+    /// Keeps `answer` as the latest answer to a question (the choice's text, or the number
+    /// predicted), shown when the question is seen again.
+    pub fn record_answer(&mut self, lesson: &str, number: usize, answer: &str) {
+        self.answers
+            .insert(Self::quiz_key(lesson, number), answer.to_string());
+    }
+
+    /// The latest answer to question `number` of lesson `lesson`, if one was kept.
+    #[must_use]
+    pub fn answer(&self, lesson: &str, number: usize) -> Option<&str> {
+        self.answers
+            .get(&Self::quiz_key(lesson, number))
+            .map(String::as_str)
     }
 
     /// Moves answers saved under an older numbering of the questions to the current one
@@ -155,6 +176,8 @@ impl Progress {
                 .iter()
                 .any(|(id, n)| *key == Self::quiz_key(id, *n))
         });
+        let quiz = &self.quiz;
+        self.answers.retain(|key, _| quiz.contains_key(key));
         self.quiz_numbering = QUIZ_NUMBERING;
     }
 
@@ -263,6 +286,8 @@ impl Progress {
                     .is_ok_and(|n| (1..=questions).contains(&n))
             })
         });
+        let quiz = &self.quiz;
+        self.answers.retain(|key, _| quiz.contains_key(key));
         if let Some(known) = exercises {
             self.exercises_done.retain(|e| known.contains(&e.as_str()));
         }
@@ -667,6 +692,33 @@ mod tests {
         p.step = 99;
         p.retain_known(&course, None);
         assert_eq!(p.step, first.steps.len() - 1);
+        Ok(())
+    }
+
+    /// The latest answer to a question is kept with the progress (as text), read back, and
+    /// forgotten with its question; a file without answers reads as before.
+    #[test]
+    fn the_latest_answer_is_kept() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("state.json");
+        let mut p = Progress::default();
+        p.record_quiz("gae", 2, false);
+        p.record_answer("gae", 2, "0.5");
+        p.record_answer("gae", 2, "0.75");
+        p.save(&path)?;
+        let back = Progress::load(&path).0;
+        assert_eq!(back.answer("gae", 2), Some("0.75"));
+        assert_eq!(back.answer("gae", 3), None);
+        std::fs::write(&path, r#"{"lesson":"gae","quiz":{"gae#2":true}}"#)?;
+        let old = Progress::load(&path).0;
+        assert!(old.answers.is_empty() && old.quiz.len() == 1);
+        let course = Course::embedded()?;
+        let mut unknown = back;
+        unknown.record_quiz("no-such-lesson", 1, true);
+        unknown.record_answer("no-such-lesson", 1, "a");
+        unknown.retain_known(&course, None);
+        assert_eq!(unknown.answer("no-such-lesson", 1), None);
+        assert_eq!(unknown.answer("gae", 2), Some("0.75"));
         Ok(())
     }
 }
