@@ -384,8 +384,8 @@ impl std::fmt::Display for SaveError {
         let folder = folder.display();
         let fix = match self.obstacle {
             Obstacle::Folder => crate::tr!(
-                "{file} is a folder: move it away, or set PPO_TUTOR_STATE to a file path",
-                "{file} 是一个文件夹：请把它移走，或把 PPO_TUTOR_STATE 设为一个文件路径"
+                "it is a folder: move it away, or set PPO_TUTOR_STATE to a file path",
+                "它是一个文件夹：请把它移走，或把 PPO_TUTOR_STATE 设为一个文件路径"
             ),
             Obstacle::NoFolder => crate::tr!(
                 "create the folder {folder}, or set PPO_TUTOR_STATE to a file in a folder that exists",
