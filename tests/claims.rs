@@ -1249,7 +1249,7 @@ fn the_pendulum_lesson_states_where_the_motor_can_hold_the_rod() -> TestResult {
         include_str!("../lessons/18-pendulum/quiz.toml"),
         "lessons/18-pendulum/quiz.toml",
         &format!(
-            "the motor can hold the rod still only within about {angle:.1}° of upright or of hanging, never in between"
+            "15·|sin θ| < 6 only for |sin θ| < 0.4: within about {angle:.1}° of upright or of hanging"
         ),
     );
     Ok(())
@@ -2151,7 +2151,7 @@ fn the_trust_region_lesson_quotes_its_settings_and_arithmetic() -> TestResult {
     let (a, b) = (kl(0.02, 0.03), kl(0.6, 0.9));
     let delta = c.kl_delta;
     let quiz = [
-        format!("B: about {b:.3} against about {a:.4}"),
+        format!("B: about {b:.3} against {a:.4} at A"),
         format!(
             "is {a:.4} with p = 0.02, q = 0.03, and {b:.3} with p = 0.6, q = 0.9, about {:.0} times more",
             (b / a / 10.0).round() * 10.0
@@ -2168,7 +2168,7 @@ fn the_trust_region_lesson_quotes_its_settings_and_arithmetic() -> TestResult {
         format!("δ/1.5 ≈ {:.4}", delta / 1.5),
         format!("about {:.4} to {}", delta / 1.5, 1.5 * delta),
         format!("d > 1.5·δ = {}, so β doubles", 1.5 * delta),
-        format!("tries α = {} first", c.ls_max_step),
+        format!("tries the fixed length α = {} first", c.ls_max_step),
     ];
     says_all(
         include_str!("../lessons/10-trust-region/quiz.toml"),
@@ -2176,7 +2176,7 @@ fn the_trust_region_lesson_quotes_its_settings_and_arithmetic() -> TestResult {
         &quiz,
     );
     let quiz_zh = [
-        format!("B：约 {b:.3} 对约 {a:.4}"),
+        format!("B：约 {b:.3} 对 A 的 {a:.4}"),
         format!(
             "在 p = 0.02、q = 0.03 时为 {a:.4}，在 p = 0.6、q = 0.9 时为 {b:.3}，大约是前者的 {:.0} 倍",
             (b / a / 10.0).round() * 10.0
@@ -2190,7 +2190,7 @@ fn the_trust_region_lesson_quotes_its_settings_and_arithmetic() -> TestResult {
         format!("d < δ/1.5 ≈ {:.4}", delta / 1.5),
         format!("即大约 {:.4} 到 {} 之间", delta / 1.5, 1.5 * delta),
         format!("d > 1.5·δ = {}，所以 β 加倍", 1.5 * delta),
-        format!("第一次尝试 α = {}", c.ls_max_step),
+        format!("第一次尝试固定的长度 α = {}", c.ls_max_step),
     ];
     says_all(
         include_str!("../lessons/10-trust-region/quiz.zh.toml"),

@@ -1644,7 +1644,8 @@ fn the_plot_legend_stays_whole_over_a_trained_curve() -> TestResult {
                 .find(|l| names.iter().all(|n| l.contains(n)))
                 .ok_or_else(|| format!("no legend row:\n{text}"))?;
             assert!(
-                !row.chars().any(|c| ('\u{2800}'..='\u{28FF}').contains(&c)),
+                !row.chars().any(|c| ('\u{2800}'..='\u{28FF}').contains(&c)
+                    || matches!(c, '▀' | '▄' | '█')),
                 "data on the legend's row:\n{text}"
             );
             insta::assert_snapshot!(
@@ -1846,5 +1847,41 @@ fn a_grading_s_progress_shows_while_it_builds() -> TestResult {
     app.on_graded(Vec::<ppo_tutor::tui::app::Graded>::new());
     assert!(app.exercise.progress.is_none());
     assert!(!screen(&app, 160, 50)?.contains("37/120"));
+    Ok(())
+}
+
+/// The return plot's moving average follows the run's length: the seed's 9 episodes for
+/// CartPole's 500, more for Pendulum's 2000 (39), said in the legend; its title names the
+/// algorithm that trains.
+#[test]
+fn the_plot_s_window_and_title_follow_the_run() -> TestResult {
+    let _en = Lang::En.scoped();
+    let mut app = app()?;
+    open(&mut app, "training")?;
+    app.update(Action::Next);
+    app.run.snapshot.returns = (0..30_u32).map(|i| f64::from(10 + 5 * i)).collect();
+    app.run.snapshot.moving_average =
+        ppo_tutor::ppo::moving_average(&app.run.snapshot.returns, 9)?;
+    let text = screen(&app, 160, 50)?;
+    assert!(
+        text.contains("moving average (9)") && text.contains("PPO on CartPole-v1"),
+        "{text}"
+    );
+    open(&mut app, "pendulum")?;
+    let step = app
+        .current_lesson()
+        .and_then(|l| {
+            l.steps
+                .iter()
+                .position(|s| s.show.iter().any(|v| v == "plot"))
+        })
+        .ok_or("no plot step in lesson 18")?;
+    for _ in 0..step {
+        app.update(Action::Next);
+    }
+    app.run.snapshot.returns = (0..300_u32).map(|i| -1500.0 + 4.0 * f64::from(i)).collect();
+    app.run.snapshot.episodes = 300;
+    let text = screen(&app, 160, 50)?;
+    assert!(text.contains("moving average (39)"), "{text}");
     Ok(())
 }

@@ -308,12 +308,12 @@ fn record_pass(report: &Report) {
     if progress.exercises_done.insert(report.exercise.clone())
         && let Err(e) = progress.save(&path)
     {
-        let path = path.display();
+        // The error names the file, the cause and the fix.
         eprintln!(
             "{}",
             tr!(
-                "warning: could not record the pass in {path}: {e}",
-                "警告：无法把通过记录写入 {path}：{e}"
+                "warning: the pass is not recorded: {e}",
+                "警告：没能记下这次通过：{e}"
             )
         );
     }

@@ -765,12 +765,8 @@ impl App {
         let Err(e) = self.progress.save(path) else {
             return Ok(());
         };
-        let e = ppo_engine::causes::message(&e);
-        let said = crate::tr!(
-            "could not save progress to {}: {e}",
-            "无法把进度保存到 {}：{e}",
-            path.display()
-        );
+        // One sentence naming the file, the cause and the fix.
+        let said = e.to_string();
         self.warn(&said);
         Err(said)
     }

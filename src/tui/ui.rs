@@ -456,21 +456,41 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
         .as_ref()
         .map(|p| (p.label(), p.values.as_slice()));
     match view {
-        "plot" => ReturnPlot {
-            returns: &s.returns,
-            average: &s.moving_average,
-            previous: previous
-                .as_ref()
-                .map(|(label, values)| (label.as_str(), *values)),
-            max_return: app.run.config().max_return(),
-            min_return: app.run.env.spec().plot_floor,
-            block: panel(
-                &tr!("PPO on {}", "PPO 训练 {}", app.run.config().env_id()),
+        "plot" => {
+            // The seed's window (9) up to 549 episodes; a longer run (Pendulum's 2000) is
+            // smoothed over more, or its average is as noisy as its returns.
+            let window = crate::plot::window::window(app.run.config().num_episodes());
+            let scaled = (window != crate::plot::SMOOTHING_WINDOW)
+                .then(|| crate::ppo::moving_average(&s.returns, window).ok())
+                .flatten();
+            let average = scaled.as_deref().unwrap_or(&s.moving_average);
+            let window = if scaled.is_some() {
+                window
+            } else {
+                crate::plot::SMOOTHING_WINDOW
+            };
+            ReturnPlot {
+                returns: &s.returns,
+                average,
+                window,
+                previous: previous
+                    .as_ref()
+                    .map(|(label, values)| (label.as_str(), *values)),
+                max_return: app.run.config().max_return(),
+                min_return: app.run.env.spec().plot_floor,
+                block: panel(
+                    &tr!(
+                        "{} on {}",
+                        "{} 训练 {}",
+                        crate::plot::labels::algorithm(&app.run.config()),
+                        app.run.config().env_id()
+                    ),
+                    theme,
+                ),
                 theme,
-            ),
-            theme,
+            }
+            .render(area, buf);
         }
-        .render(area, buf),
         "cartpole" => {
             let obs = s.observation(app.run.frame).unwrap_or([0.0; 4]);
             let title = tr!(

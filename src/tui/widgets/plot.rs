@@ -18,6 +18,8 @@ pub struct ReturnPlot<'a> {
     pub returns: &'a [f64],
     /// Their moving average (may be empty while fewer than 8 episodes are done).
     pub average: &'a [f64],
+    /// The moving average's window, in episodes (the legend says it).
+    pub window: usize,
     /// A previous run to overlay: label and returns' moving average or raw returns.
     pub previous: Option<(&'a str, &'a [f64])>,
     /// The y-axis top: the time limit for CartPole (500 for v1), 0 for Pendulum.
@@ -176,7 +178,7 @@ impl Widget for ReturnPlot<'_> {
         );
         if !avg.is_empty() {
             legend.push((
-                t("moving average (9)", "移动平均 (9)").to_string(),
+                crate::tr!("moving average ({})", "移动平均 ({})", self.window),
                 theme.average(),
             ));
             datasets.push(
@@ -256,6 +258,7 @@ mod tests {
             ReturnPlot {
                 returns: &returns,
                 average: &average,
+                window: 9,
                 previous: Some(("ε = 0.1", &previous)),
                 max_return: 500.0,
                 min_return: 0.0,
@@ -301,6 +304,7 @@ mod tests {
         ReturnPlot {
             returns: &returns,
             average: &average,
+            window: 9,
             previous: None,
             max_return: 500.0,
             min_return: 0.0,
