@@ -1711,7 +1711,7 @@ fn proximal_reach(arm: &ArmResult, level: f64) -> String {
         .map_or_else(|| "never".to_string(), |e| e.to_string())
 }
 
-/// Issue 28 §3: four ways to stay near π_old over seeds 0–4, 500 episodes each: the clip
+/// Four ways to stay near π_old over seeds 0–4, 500 episodes each: the clip
 /// (the seed), PPO-Penalty's adaptive β, the KL line search and none. Prints every figure
 /// the lesson may quote (score, worst seed, when the mean curve reaches 400 and 450, late
 /// falls, the per-update KL, β's range, the line search's halvings) and asserts the ones

@@ -61,8 +61,8 @@ fn grade_text(
     Ok(grade::find(name)?.grade_source(text, "learner_test.rs", &options)?)
 }
 
-/// The English words of `report` read in Chinese (issue 29: none on a Chinese screen
-/// outside code). Code is: the exercise's identifiers (every word of its signature, so its
+/// The English words of `report` read in Chinese (none on a Chinese screen outside
+/// code). Code is: the exercise's identifiers (every word of its signature, so its
 /// parameters), file paths, code spans, and what the learner's toolchain printed (the
 /// compiler's errors under a failed build, a panic's own message) or their code printed
 /// (the lines under `输出：`).
@@ -436,7 +436,7 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
         "{state}"
     );
 
-    // Resetting kl_early_stop keeps approx_kl's work in the same file (issue 25, bug 3) ...
+    // Resetting kl_early_stop keeps approx_kl's work in the same file ...
     let (code, text) = ppo_tutor(d, &["reset", "kl_early_stop"])?;
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("exercise.rs.bak"), "{text}");

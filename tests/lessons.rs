@@ -471,7 +471,7 @@ fn without_a_terminal_the_tutor_says_so_in_one_line() -> TestResult {
 }
 
 /// Every lesson ends with at least three questions, and every question graded against the
-/// agent asks what the lesson taught, in one of two ways (issue 27, section 3):
+/// agent asks what the lesson taught, in one of two ways:
 ///
 /// - a fact (`Basis::Fact`): its live value is the same, within the question's tolerance,
 ///   in runs of three seeds after 3 and after 12 episodes;
@@ -587,7 +587,7 @@ fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResul
         }
         assert!(
             depends_on_run,
-            "{}: no question depends on the run (issue 27, section 3)",
+            "{}: no question depends on the run",
             lesson.id
         );
     }
@@ -606,7 +606,7 @@ fn range(values: &[f64]) -> (f64, f64) {
         })
 }
 
-/// Issue 27, section 3: the course asks no fact twice. No two questions are graded against
+/// The course asks no fact twice. No two questions are graded against
 /// the same measure, no two against the same fact (every ratio of epoch 1 is 1 is read by
 /// several measures, and asked once), and no two choice questions have the same right
 /// answer.
@@ -652,7 +652,7 @@ fn no_fact_is_asked_twice() -> TestResult {
     Ok(())
 }
 
-/// Issue 27, section 3: a measure that depends on the run does: over two seeds, after 3
+/// A measure that depends on the run does: over two seeds, after 3
 /// and after 12 episodes, each run measure that resolves on an environment takes at least
 /// two values there.
 #[test]
@@ -687,7 +687,7 @@ fn run_measures_differ_between_runs() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: a quiz asks only what its lesson or an earlier one has taught (lesson
+/// A quiz asks only what its lesson or an earlier one has taught (lesson
 /// 1's asked about the clip at r = 1.35 and GAE with λ = 0). A question asks about a word
 /// when its prompt or its right choice uses it; a wrong choice or an explanation may point
 /// ahead. Lesson 1 names every idea in passing: the lesson in this table is the one that
@@ -747,7 +747,7 @@ fn no_quiz_asks_about_what_a_later_lesson_teaches() -> TestResult {
     Ok(())
 }
 
-/// Every exercise declares what it reveals (issue 27, section 1), in exercise.toml only: the
+/// Every exercise declares what it reveals, in exercise.toml only: the
 /// loader refuses a missing `reveals`, a name that is not a code anchor, and a Chinese twin
 /// that declares it.
 #[test]
@@ -782,7 +782,7 @@ fn an_exercise_must_declare_what_it_reveals_with_real_anchors() -> TestResult {
         error("[[exercise]]\nname = \"f\"\nidea = \"i\"\nreveals = []\nfallback = \"a\"\n"),
         ""
     );
-    // Every exercise states the idea it tests (issue 27, section 2), in both languages.
+    // Every exercise states the idea it tests, in both languages.
     let no_idea = error("[[exercise]]\nname = \"f\"\nreveals = []\nfallback = \"a\"\n");
     assert!(no_idea.contains("has no `idea`"), "{no_idea}");
     let blank = error("[[exercise]]\nname = \"f\"\nidea = \" \"\nreveals = []\nfallback = \"a\"\n");

@@ -279,7 +279,7 @@ fn each_notebook_folder_builds_in_its_own_hidden_folder() -> TestResult {
 }
 
 // ---------------------------------------------------------------------------------------
-// No answer on screen before the learner earns it (issue 27, section 1): the code each
+// No answer on screen before the learner earns it: the code each
 // exercise gives away (its `reveals` anchors in `exercise.toml`, and its reference solution)
 // shows in no code pane before the exercise is passed, and in no notebook cell before the
 // exercise's cells; after a pass, it shows.

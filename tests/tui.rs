@@ -83,7 +83,7 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
         app.run.outbox.pop(),
         Some(Command::Switch { config, .. }) if matches!(config.as_ref(), RunConfig::CartPole(_))
     ));
-    // Issue 25, bug 2: browsing back continues the CartPole run, and the Pendulum one waits.
+    // Browsing back continues the CartPole run, and the Pendulum one waits.
     assert_eq!(
         app.run.snapshot.episodes, 3,
         "the CartPole run was thrown away"
@@ -167,7 +167,7 @@ fn keys_move_through_the_course() -> TestResult {
     );
     assert!(
         !app.progress.lessons_done.contains("what-is-ppo"),
-        "skipping the quiz with → does not make the lesson done (issue 25, bug 8)"
+        "skipping the quiz with → does not make the lesson done"
     );
     app.update(Action::Prev);
     assert_eq!((app.lesson, app.step), (0, steps - 1));
@@ -266,7 +266,7 @@ fn quitting_saves_progress() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, bug 2: the worker keeps one session per environment: switching to Pendulum and
+/// The worker keeps one session per environment: switching to Pendulum and
 /// back continues the CartPole run where it stopped.
 #[test]
 fn the_worker_keeps_one_session_per_environment() -> TestResult {
@@ -481,7 +481,7 @@ fn progress_saved_before_the_reorder_opens_the_same_lesson() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, bug 8: what a progress file names that the course does not know is not
+/// What a progress file names that the course does not know is not
 /// counted, and an unknown lesson opens the first lesson at its first step.
 #[test]
 fn unknown_lessons_in_the_progress_file_count_for_nothing() -> TestResult {
@@ -890,7 +890,7 @@ fn l_switches_the_language_live_and_keeps_the_place() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, bug 9: a status line about one lesson (its quiz, its hints) does not follow the
+/// A status line about one lesson (its quiz, its hints) does not follow the
 /// learner into the next.
 #[test]
 fn a_lesson_s_status_line_does_not_follow_into_another_lesson() -> TestResult {
@@ -925,7 +925,7 @@ fn a_lesson_s_status_line_does_not_follow_into_another_lesson() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 4: a status message belongs to the face that set it and goes when that
+/// A status message belongs to the face that set it and goes when that
 /// face closes; the lesson view's own messages and warnings stay.
 #[test]
 fn each_face_s_status_line_goes_when_it_closes() -> TestResult {
@@ -972,7 +972,7 @@ fn each_face_s_status_line_goes_when_it_closes() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: at 80×24 a quiz question's feedback (each choice's explanation)
+/// At 80×24 a quiz question's feedback (each choice's explanation)
 /// scrolls, and the panel says that more follows; the keys stay on its last row.
 #[test]
 fn quiz_feedback_scrolls_at_80x24_and_says_more_follows() -> TestResult {
@@ -1033,7 +1033,7 @@ fn quiz_feedback_scrolls_at_80x24_and_says_more_follows() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: answering a question again shows that only the first answer counts.
+/// Answering a question again shows that only the first answer counts.
 #[test]
 fn answering_again_says_only_the_first_answer_counts() -> TestResult {
     use ppo_tutor::lesson::quiz::{Answer, QuestionKind, letter_of};
@@ -1058,7 +1058,7 @@ fn answering_again_says_only_the_first_answer_counts() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: the explanation says when more of it is below, and ↓ stops at its
+/// The explanation says when more of it is below, and ↓ stops at its
 /// end (so ↑ moves at once after holding ↓).
 #[test]
 fn the_explanation_says_more_follows_and_stops_at_its_end() -> TestResult {
@@ -1127,7 +1127,7 @@ fn the_worker_s_reset_does_not_overwrite_the_lesson_s_message() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: at 80×24 the key bar keeps stepping, help and quit (the least
+/// At 80×24 the key bar keeps stepping, help and quit (the least
 /// essential keys make room), in both languages; a warning comes first in the status line.
 #[test]
 fn the_key_bar_keeps_help_and_quit_at_80x24() -> TestResult {
@@ -1183,7 +1183,7 @@ fn live_headers(screen: &str) -> Vec<String> {
         .unwrap_or_default()
 }
 
-/// Issue 25, section 2: at 80×24, every live column a step's text names is shown whole or
+/// At 80×24, every live column a step's text names is shown whole or
 /// reached with `>` from a visible marker that says so; the policy maps label θ̇ down the
 /// rows and θ across. Both languages; snapshots at offset 0 (English: the Chinese ones are
 /// in the 80×24 course snapshots) and scrolled to the last column named (both).
@@ -1265,7 +1265,7 @@ fn live_columns_the_text_names_fit_or_scroll_at_80x24() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: a live tensor's title line wider than the pane ends in a `…`, as
+/// A live tensor's title line wider than the pane ends in a `…`, as
 /// a cut code line does.
 #[test]
 fn cut_tensor_title_lines_show_that_they_go_on() -> TestResult {
@@ -1613,7 +1613,7 @@ fn page_keys_and_home_end_scroll_the_live_tables() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: over a trained curve (it runs along the top right, where ratatui
+/// Over a trained curve (it runs along the top right, where ratatui
 /// drew its legend) the plot's legend has a row of its own, with no data on it, at both
 /// sizes and in both languages.
 #[test]
@@ -1657,7 +1657,7 @@ fn the_plot_legend_stays_whole_over_a_trained_curve() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 2: `<` and `>` scroll the live tables by a column, stop at the first
+/// `<` and `>` scroll the live tables by a column, stop at the first
 /// and the last, and a new step starts at the first.
 #[test]
 fn angle_brackets_scroll_the_live_columns() -> TestResult {

@@ -1,4 +1,4 @@
-//! No English on a Chinese screen (issue 29, section 1): every Chinese screen of the terminal
+//! No English on a Chinese screen: every Chinese screen of the terminal
 //! app (the `*zh*` insta snapshots `tests/tui.rs` writes) and every Chinese notebook's outputs
 //! (`notebooks/zh/*.ipynb`, as the last `dev notebooks` run left them), read as a user reads
 //! them, hold no English word outside code, identifiers, units and names.

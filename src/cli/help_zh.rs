@@ -1,4 +1,4 @@
-//! The command line's help in Chinese (issue 29 §1 and §2): one catalogue keyed by id.
+//! The command line's help in Chinese: one catalogue keyed by id.
 //!
 //! The English help stays where clap derive reads it, in the `///` doc comments of
 //! `cli.rs` and `cli/*.rs`. The Chinese lives only here, in [`HELP_ZH`], keyed by the

@@ -221,7 +221,7 @@ mod tests {
     use super::render_step;
     use crate::lesson::{Course, Snapshot};
 
-    /// Issue 25, section 2: `show` prints a step as the app shows it, without markdown's
+    /// `show` prints a step as the app shows it, without markdown's
     /// stars and pipes.
     #[test]
     fn a_step_prints_without_markdown_markers() -> Result<(), Box<dyn std::error::Error>> {

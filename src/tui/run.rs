@@ -298,8 +298,8 @@ impl Run {
 
     /// A lesson on `env` opened: if it is the other environment, that environment's run
     /// continues if one was set aside, else a fresh one starts there (paused), with that
-    /// environment's settings in force; the run left behind is set aside, not thrown away
-    /// (issue 25, bug 2). Says which, when the environment changed.
+    /// environment's settings in force; the run left behind is set aside, not thrown away.
+    /// Says which, when the environment changed.
     pub fn follow(&mut self, env: Environment) -> Option<String> {
         if env == self.env {
             return None;

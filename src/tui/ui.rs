@@ -613,8 +613,8 @@ fn draw_footer(theme: Theme, status: &[String], area: Rect, buf: &mut Buffer) {
         ("q", t("quit", "退出")),
     ];
     // On a narrow terminal the least essential keys go first (`?` lists them all), so that
-    // stepping, training, help and quit always show (issue 25: at 80×24 in Chinese `q 退出`
-    // was cut to `q`).
+    // stepping, training, help and quit always show (at 80×24 in Chinese `q 退出` was once
+    // cut to `q`).
     const DROP_ORDER: [&str; 6] = ["e", "r", "s", "L", "l", "t"];
     let width_of = |(k, what): &(&str, &str)| 3 + text::width(k) + text::width(what);
     let mut shown: Vec<(&str, &str)> = keys.to_vec();

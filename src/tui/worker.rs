@@ -37,7 +37,7 @@ pub enum Command {
     /// Go to `config`'s environment (paused): the current session is kept aside, and the
     /// one kept for that environment, if any, continues where it stopped; otherwise a fresh
     /// agent starts from `config` and `seed`. One live session per environment, so browsing
-    /// from a CartPole lesson to a Pendulum one and back loses no training (issue 25, bug 2).
+    /// from a CartPole lesson to a Pendulum one and back loses no training.
     Switch {
         /// The environment and hyper-parameters of a fresh run there.
         config: Box<RunConfig>,

@@ -453,7 +453,7 @@ fn a_wrong_answer_is_graded_in_chinese_with_the_same_exit_code() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, bug 6: a missing argument is named, and a negative count is refused by name.
+/// A missing argument is named, and a negative count is refused by name.
 #[test]
 fn a_missing_argument_is_named_and_a_negative_count_refused() -> TestResult {
     for cmd in ["show", "reset", "play", "replay"] {
@@ -501,7 +501,7 @@ fn a_missing_argument_is_named_and_a_negative_count_refused() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, bug 7: a SIGTERM ends `ppo-tutor` whole. Without `RAYON_NUM_THREADS` it runs
+/// A SIGTERM ends `ppo-tutor` whole. Without `RAYON_NUM_THREADS` it runs
 /// itself again with one candle thread; that run now replaces the process (same PID)
 /// instead of being a child that outlived its parent.
 #[cfg(target_os = "linux")]
@@ -839,7 +839,7 @@ fn ctrl_c_stops_several_seeds_in_the_language_asked_for() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, bug 10: grading the candle exercise when its file is missing announces no
+/// Grading the candle exercise when its file is missing announces no
 /// candle build (nothing is built: the file is reported missing), in either language; and
 /// `--time-limit 0` (an exercise that could never run) is refused by name.
 #[test]
@@ -956,7 +956,7 @@ fn the_score_table_lines_up_and_a_missing_file_is_named() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, bug 3: `reset` of one exercise in a file that holds others restores only that
+/// `reset` of one exercise in a file that holds others restores only that
 /// function, keeps the others' work, and keeps the old file as `.bak`, saying where.
 #[test]
 fn reset_restores_one_function_and_keeps_a_backup() -> TestResult {
@@ -1020,7 +1020,7 @@ fn reset_restores_one_function_and_keeps_a_backup() -> TestResult {
     Ok(())
 }
 
-/// Issue 25, section 3: `init DIR` writes every starter so the exercises can be done outside
+/// `init DIR` writes every starter so the exercises can be done outside
 /// the clone (keeping files already there), `watch` with no name skips missing files, and a
 /// pass shows the embedded reference solution where no solution file exists.
 #[test]

@@ -1,4 +1,4 @@
-//! The command line's help and usage errors in Chinese (issue 29 §1): every subcommand's
+//! The command line's help and usage errors in Chinese: every subcommand's
 //! help, whichever way Chinese is chosen, and one Chinese line for a usage error.
 
 use crate::common::with_env;

@@ -620,7 +620,7 @@ fn train_switches_to_reinforce_or_drops_the_clip() -> TestResult {
     Ok(())
 }
 
-/// Issue 26, section 3: `train` says which implementation ran its updates, and
+/// `train` says which implementation ran its updates, and
 /// `PPO_TUTOR_UPDATE=candle` runs every update on candle with the same numbers, on both
 /// agents; a value it does not know changes nothing.
 #[test]

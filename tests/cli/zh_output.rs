@@ -1,4 +1,4 @@
-//! What the command line prints for a Chinese user, enumerated (issue 29 §1): for every leaf
+//! What the command line prints for a Chinese user, enumerated: for every leaf
 //! subcommand of [`Cli`] a successful run and the error paths the English tests of this
 //! binary exercise (bad values, refusals, missing and unreadable files), each run with
 //! `--lang zh`, and every line it prints checked for English words

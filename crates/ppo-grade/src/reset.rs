@@ -5,7 +5,7 @@
 //! replaces only that function (from `fn` to its closing brace) with the starter's, and
 //! keeps the rest of the file; an exercise alone in its file gets the whole starter back.
 //! Either way, a file that changed is first copied beside itself (`exercise.rs.bak`), and
-//! the reply says where (issue 25, bug 3: `reset gae_rollout` once wiped a passing
+//! the reply says where (`reset gae_rollout` once wiped a passing
 //! `td_target_truncation` with no prompt and no backup).
 
 use std::ops::Range;

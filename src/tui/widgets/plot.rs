@@ -88,9 +88,9 @@ fn legend_rows(
 
 /// Draws `chart` in `area` inside `block`, with `legend` (the named series and their
 /// styles) and the y axis's title on rows of their own above the graph and the x axis's
-/// title in the block's bottom border, so that no data is ever drawn under them (issue 25,
-/// section 2: ratatui's own legend and axis titles sit inside the graph, where a trained
-/// curve runs through them). The legend is left out when the graph would keep fewer than
+/// title in the block's bottom border, so that no data is ever drawn under them (ratatui's
+/// own legend and axis titles sit inside the graph, where a trained curve runs through
+/// them). The legend is left out when the graph would keep fewer than
 /// four rows.
 pub(super) fn draw_chart(
     chart: Chart<'_>,
@@ -236,7 +236,7 @@ mod tests {
         ('\u{2800}'..='\u{28FF}').contains(&c) || ['•', '▀', '▄', '█'].contains(&c)
     }
 
-    /// Issue 25, section 2: a trained curve runs along the top right, where ratatui drew its
+    /// A trained curve runs along the top right, where ratatui drew its
     /// legend; the legend now has rows of its own, and its names stay whole.
     #[test]
     fn the_legend_stays_whole_over_a_trained_curve() {

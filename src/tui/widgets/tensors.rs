@@ -664,7 +664,7 @@ mod tests {
             .ok_or("no header row")
     }
 
-    /// Issue 25: `int64` actions show as integers, floats keep four decimals.
+    /// `int64` actions show as integers, floats keep four decimals.
     #[test]
     fn integers_show_as_integers() {
         let values = vec![0.0, 1.0];
@@ -690,7 +690,7 @@ mod tests {
         assert!(shown.contains("True in 1 of 2"), "{shown}");
     }
 
-    /// Issue 25, section 2: a table wider than the pane shows the columns that fit whole
+    /// A table wider than the pane shows the columns that fit whole
     /// (no `actio`), never a line wider than the pane, and says how many follow and which
     /// key scrolls to them.
     #[test]
@@ -726,7 +726,7 @@ mod tests {
         Ok(())
     }
 
-    /// Issue 25, section 2: with offset k, column k comes first (the step column stays),
+    /// With offset k, column k comes first (the step column stays),
     /// the marker says that columns precede, and every column can be reached.
     #[test]
     fn the_horizontal_offset_picks_the_first_column_shown() -> Result<(), &'static str> {
@@ -758,7 +758,7 @@ mod tests {
         Ok(())
     }
 
-    /// Issue 25, section 2: the marker in Chinese is all Chinese (and keys), and fits.
+    /// The marker in Chinese is all Chinese (and keys), and fits.
     #[test]
     fn the_marker_speaks_the_screen_s_language() -> Result<(), &'static str> {
         let _zh = Lang::Zh.scoped();
@@ -777,7 +777,7 @@ mod tests {
         Ok(())
     }
 
-    /// Issue 25, section 2: a grid labels its rows `θ̇=…` (not `t`) and its columns `θ=…`,
+    /// A grid labels its rows `θ̇=…` (not `t`) and its columns `θ=…`,
     /// and its columns scroll like a table's.
     #[test]
     fn a_grid_labels_both_axes_and_scrolls() -> Result<(), &'static str> {

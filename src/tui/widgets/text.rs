@@ -243,7 +243,7 @@ mod tests {
     use super::{breakable, cut, pad_left, pad_right, truncate, width, wrap};
     use ratatui::text::{Line, Span};
 
-    /// Issue 25, section 2: a line cut at a pane's edge ends in a mark, and never in half a
+    /// A line cut at a pane's edge ends in a mark, and never in half a
     /// wide glyph.
     #[test]
     fn a_cut_line_shows_that_it_goes_on() {

@@ -376,8 +376,8 @@ impl CartPole {
         // its sin and cos (needed by the next step) are computed here. The CPU works on
         // them while this step's divisions are in flight. They come after the
         // accelerations in the code, so that the compiler keeps the accelerations in
-        // registers. (README, "CartPole speed", has what each change gave; the numbers
-        // are the same.)
+        // registers. (docs/measurements.md, "CartPole speed", has what each change gave;
+        // the numbers are the same.)
         let (sintheta, costheta) = self.trig;
         let (xacc, thetaacc) = accelerations_with(math, action, state[3], sintheta, costheta);
         let next_trig = match self.config.integrator {

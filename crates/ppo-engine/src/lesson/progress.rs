@@ -27,7 +27,7 @@ pub const QUIZ_NUMBERING: u32 = 3;
 /// A quiz question by lesson id and number (from 1), as in [`Progress::quiz_key`].
 pub type QuestionAt = (&'static str, usize);
 
-/// How questions moved from numbering 0 to 1 (issue 25, section 2): `(lesson, number)` before,
+/// How questions moved from numbering 0 to 1: `(lesson, number)` before,
 /// then after. Lesson 1's questions 2 (the clip at r = 1.35) and 3 (GAE with λ = 0) went to
 /// the lessons that teach them, as clipping's question 1 and gae's question 2, and the
 /// questions from there on in those quizzes are one number later; lesson 1's question 4 is
@@ -45,7 +45,7 @@ pub const RENUMBERED: &[(QuestionAt, QuestionAt)] = &[
     (("clipping", 4), ("clipping", 5)),
 ];
 
-/// Questions replaced in place at numbering 2 (issue 27, section 3): the fixed-fact
+/// Questions replaced in place at numbering 2: the fixed-fact
 /// predictions that asked again what another lesson asks ("every ratio is 1 in epoch 1",
 /// one done per batch) or that a question depending on the run now asks better. An answer
 /// saved before belongs to the old question, and is forgotten.
@@ -61,7 +61,7 @@ pub const REPLACED: &[QuestionAt] = &[
     ("pendulum", 2),
 ];
 
-/// Questions replaced in place at numbering 3 (issue 27, section 5): the hyper-parameter
+/// Questions replaced in place at numbering 3: the hyper-parameter
 /// recap's questions on the critic's rate and on epochs and ε, now questions on that
 /// lesson's own one-knob experiments, and the training lesson's questions on the smoothed
 /// curve's first value and on centred windows, now questions on what seeds show. An answer
@@ -269,7 +269,7 @@ impl Progress {
         }
     }
 
-    /// Forgets what the course does not know (issue 25, bug 8): lessons, quiz questions
+    /// Forgets what the course does not know: lessons, quiz questions
     /// and, given `exercises` (their names), exercises that are not in it, and a saved
     /// position in a lesson that no longer exists (the first lesson opens at its first
     /// step, not at the old step number). A step past the lesson's end becomes its last.
@@ -567,8 +567,8 @@ mod tests {
     -> Result<(), Box<dyn std::error::Error>> {
         let dir = tempfile::tempdir()?;
         let path = dir.path().join("state.json");
-        // Written before issue 25 moved lesson 1's questions 2 and 3 (no quiz_numbering), and
-        // so before issue 27 replaced lesson 1's question 3 and gae's question 5.
+        // Written before lesson 1's questions 2 and 3 moved (no quiz_numbering), and so
+        // before lesson 1's question 3 and gae's question 5 were replaced.
         std::fs::write(
             &path,
             r#"{"quiz":{"what-is-ppo#1":true,"what-is-ppo#2":false,"what-is-ppo#3":true,

@@ -157,7 +157,7 @@ mod tests {
             .collect()
     }
 
-    /// Issue 25, section 2: emphasis that wraps keeps its style on both rows and shows no
+    /// Emphasis that wraps keeps its style on both rows and shows no
     /// stars (as the hard-wrapped source and a narrow pane split it).
     #[test]
     fn emphasis_across_a_wrap_has_no_markers() {

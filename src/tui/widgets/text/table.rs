@@ -250,7 +250,7 @@ mod tests {
             .collect()
     }
 
-    /// Issue 25, section 2: a table is drawn as columns, not as its source's pipes.
+    /// A table is drawn as columns, not as its source's pipes.
     #[test]
     fn a_table_that_fits_is_aligned_by_display_width() {
         let body = "| 序号 | 含义 | unit |\n|---|---|--:|\n| 0 | 小车位置 | m |\n| 1 | `x` **速度** | m/s |";

@@ -751,7 +751,7 @@ mod tests {
         assert_eq!(g, [1.5, 1.0, 1.5, 1.0]);
     }
 
-    /// Issue 25, section 2: the policy maps carry their axes, θ̇ down the rows and θ across.
+    /// The policy maps carry their axes, θ̇ down the rows and θ across.
     #[test]
     fn the_policy_maps_name_both_axes() -> Result<(), &'static str> {
         let snapshot = Snapshot {
