@@ -316,7 +316,7 @@ impl Component for ExercisePanel {
         let [body, gauge] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)])
             .areas(rect.inner(Margin::new(1, 1)));
         panel(t("exercise", "练习"), theme).render(rect, buf);
-        let lines = text::wrap(self.lines(ctx, theme), body.width);
+        let lines = text::wrap_hanging(self.lines(ctx, theme), body.width);
         self.scroll.render(lines, theme, body, buf);
         let total = crate::grade::exercise_names().len();
         let done = ctx.progress.exercises_done.len().min(total);

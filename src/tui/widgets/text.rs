@@ -238,6 +238,77 @@ pub fn wrap<'a>(lines: impl IntoIterator<Item = Line<'a>>, columns: u16) -> Vec<
     out
 }
 
+/// [`wrap`], with each line's later rows indented under its text: under the first word
+/// after its leading spaces, or, for a `label:` line (a grader report's `hint:     …`),
+/// under the value after the label. A wrapped paragraph keeps its left edge.
+#[must_use]
+pub fn wrap_hanging<'a>(
+    lines: impl IntoIterator<Item = Line<'a>>,
+    columns: u16,
+) -> Vec<Line<'static>> {
+    let mut out = Vec::new();
+    for line in lines {
+        let plain: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+        let indent = hang(&plain);
+        let room = usize::from(columns).saturating_sub(indent);
+        if line.width() <= usize::from(columns) || room < 16 {
+            out.extend(wrap([line], columns));
+            continue;
+        }
+        // The line's first `indent` columns stay on its first row; the rest wraps in the
+        // room beside them.
+        let (head, rest) = split_at_width(&line, indent);
+        let rows = wrap([rest], u16::try_from(room).unwrap_or(u16::MAX));
+        let pad = " ".repeat(indent);
+        for (i, row) in rows.into_iter().enumerate() {
+            let mut spans = if i == 0 {
+                head.clone()
+            } else {
+                vec![Span::raw(pad.clone())]
+            };
+            spans.extend(row.spans);
+            out.push(Line::from(spans).style(line.style));
+        }
+    }
+    out
+}
+
+/// Where a line's later rows start: after its leading spaces, and after a short `label:`
+/// and the spaces that follow it.
+fn hang(text: &str) -> usize {
+    let lead = text.len() - text.trim_start().len();
+    let rest = &text[lead..];
+    let label = rest
+        .find(": ")
+        .filter(|&i| i > 0 && i <= 16 && !rest[..i].contains(' '))
+        .map_or(0, |i| {
+            let after = &rest[i + 1..];
+            i + 1 + (after.len() - after.trim_start().len())
+        });
+    width(&text[..lead]) + width(&rest[..label])
+}
+
+/// `line` split after `columns` display columns: the spans before, and the rest as a line.
+fn split_at_width(line: &Line<'_>, columns: usize) -> (Vec<Span<'static>>, Line<'static>) {
+    let mut head = Vec::new();
+    let mut tail = Vec::new();
+    let mut used = 0;
+    for span in &line.spans {
+        if used >= columns {
+            tail.push(Span::styled(span.content.to_string(), span.style));
+            continue;
+        }
+        let kept = truncate(&span.content, columns - used);
+        used += width(&kept);
+        let rest = span.content[kept.len()..].to_string();
+        head.push(Span::styled(kept, span.style));
+        if !rest.is_empty() {
+            tail.push(Span::styled(rest, span.style));
+        }
+    }
+    (head, Line::from(tail))
+}
+
 #[cfg(test)]
 mod tests {
     use super::{breakable, cut, pad_left, pad_right, truncate, width, wrap};
@@ -318,5 +389,40 @@ mod tests {
             .collect();
         assert_eq!(english, ["  one two", "three", "supercalif", "ragilistic"]);
         assert_eq!(wrap([Line::raw("")], 10).len(), 1);
+    }
+
+    /// A report line that wraps keeps its value column; an indented line its indent.
+    #[test]
+    fn hanging_rows_stay_under_the_text() {
+        let rows: Vec<String> = super::wrap_hanging(
+            [Line::raw(
+                "        hint:     each advantage sums the TD errors of the steps after it, so the loop",
+            )],
+            40,
+        )
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+        assert!(rows.len() > 1, "{rows:#?}");
+        assert!(rows[0].starts_with("        hint:     each"), "{rows:#?}");
+        for row in &rows[1..] {
+            assert!(row.starts_with(&" ".repeat(18)), "{rows:#?}");
+            assert!(!row[18..].starts_with(' '), "{rows:#?}");
+        }
+        assert!(rows.iter().all(|r| width(r) <= 40), "{rows:#?}");
+        let plain: Vec<String> = super::wrap_hanging(
+            [Line::raw(
+                "   one two three four five six seven eight nine ten eleven",
+            )],
+            20,
+        )
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+        assert!(
+            plain[1..]
+                .iter()
+                .all(|r| r.starts_with("   ") && !r.starts_with("    "))
+        );
     }
 }
