@@ -41,7 +41,9 @@ const KEYWORDS: &[&str] = &[
 ];
 
 /// Names of keyboard keys as printed on the keys (the app's key bar and help).
-const KEY_CAPS: &[&str] = &["Esc", "Enter", "Ctrl-C", "Backspace", "Tab"];
+const KEY_CAPS: &[&str] = &[
+    "Esc", "Enter", "Ctrl-C", "Backspace", "Tab", "PgDn", "PgUp", "Home", "End",
+];
 
 /// Python's bool literals: a bool tensor's elements as the seed's PyTorch prints them (the
 /// live pane's `clipped` and `dones` columns).
@@ -223,9 +225,11 @@ impl Known {
     }
 
     /// Whether `cell` (a piece of a screen row) is code the code pane shows: what is left
-    /// of it, without a cut mark, is part of a line of code.
+    /// of it, without a cut mark or a wrapped line's `↪`, is part of a line of code.
     fn is_code(&self, cell: &str) -> bool {
-        let c = cell.trim().trim_end_matches('…').trim();
+        let c = cell.trim();
+        let c = c.strip_prefix('↪').unwrap_or(c);
+        let c = c.trim().trim_end_matches('…').trim();
         c.is_empty() || self.code_lines.iter().any(|l| l.contains(c))
     }
 
