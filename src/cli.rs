@@ -580,7 +580,7 @@ mod tests {
             (
                 &["show", "td-target", "--step", "x"][..],
                 "ValueValidation",
-                "'x' 无效：不是整数",
+                "'x' 无效：应为不小于 1 的整数",
             ),
             (
                 &["train", "--eps", "abc"][..],
