@@ -109,35 +109,8 @@ fn walk(words: &Words) -> TestResult {
     let course = Course::embedded_in(words.lang)?;
     let english = Course::embedded_in(Lang::En)?;
     let dir = tempfile::tempdir()?;
-    let pty = native_pty_system().openpty(PtySize {
-        rows: 50,
-        cols: 160,
-        pixel_width: 0,
-        pixel_height: 0,
-    })?;
-    let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    cmd.env("PPO_TUTOR_STATE", dir.path().join("state.json"));
-    cmd.env("TERM", "xterm-256color");
-    cmd.env("PPO_TUTOR_LANG", words.lang.code());
-    cmd.cwd(dir.path());
-    let mut child = pty.slave.spawn_command(cmd)?;
-    drop(pty.slave);
-    let parser = Arc::new(Mutex::new(vt100::Parser::new(50, 160, 0)));
-    let mut reader = pty.master.try_clone_reader()?;
-    let sink = Arc::clone(&parser);
-    std::thread::spawn(move || {
-        let mut buf = [0_u8; 8192];
-        while let Ok(n) = reader.read(&mut buf) {
-            if n == 0 {
-                break;
-            }
-            if let Ok(mut p) = sink.lock() {
-                p.process(&buf[..n]);
-            }
-        }
-    });
-    let mut writer = pty.master.take_writer()?;
-    let screen = Screen { parser };
+    let (mut child, screen, _, mut writer) =
+        spawn_app(dir.path(), &[("PPO_TUTOR_LANG", words.lang.code())])?;
     let mut key = |bytes: &[u8]| -> std::io::Result<()> {
         writer.write_all(bytes)?;
         writer.flush()?;

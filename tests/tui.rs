@@ -1149,13 +1149,14 @@ fn the_key_bar_keeps_help_and_quit_at_80x24() -> TestResult {
     Ok(())
 }
 
-/// The live-values pane's rows on a screen from [`checked_screen`]: what lies right of the
-/// text pane (`││`), from the pane's title to its bottom border.
-fn live_pane(screen: &str) -> Vec<String> {
+/// The rows of the right-hand pane titled one of `titles` on a screen from
+/// [`checked_screen`]: what lies right of the text pane (`││`), from the pane's title to
+/// its bottom border.
+fn pane_rows(screen: &str, titles: &[&str]) -> Vec<String> {
     let mut rows = Vec::new();
     let mut inside = false;
     for line in screen.lines() {
-        if line.contains("┌ live values") || line.contains("┌ 实时数值") {
+        if titles.iter().any(|t| line.contains(&format!("┌ {t}"))) {
             inside = true;
         } else if inside {
             if line.contains('└') {
@@ -1167,6 +1168,11 @@ fn live_pane(screen: &str) -> Vec<String> {
         }
     }
     rows
+}
+
+/// The live-values pane's rows ([`pane_rows`]), in either language.
+fn live_pane(screen: &str) -> Vec<String> {
+    pane_rows(screen, &["live values", "实时数值"])
 }
 
 /// The column headers the live pane shows: its table's header row (the row that starts
@@ -1288,23 +1294,7 @@ fn code_lines_wrap_and_the_code_pane_scrolls() -> TestResult {
     let _en = Lang::En.scoped();
     let mut app = app()?;
     open(&mut app, "td-target")?;
-    let code_rows = |text: &str| -> Vec<String> {
-        let mut rows = Vec::new();
-        let mut inside = false;
-        for line in text.lines() {
-            if line.contains("┌ the code that runs") {
-                inside = true;
-            } else if inside {
-                if line.contains('└') {
-                    break;
-                }
-                if let Some((_, right)) = line.rsplit_once("││") {
-                    rows.push(right.trim_end_matches(['"', '│']).to_string());
-                }
-            }
-        }
-        rows
-    };
+    let code_rows = |text: &str| pane_rows(text, &["the code that runs"]);
     let text = screen(&app, 80, 24)?;
     let rows = code_rows(&text);
     assert!(!rows.iter().any(|r| r.trim_end().ends_with('…')), "{text}");
@@ -1860,8 +1850,7 @@ fn the_plot_s_window_and_title_follow_the_run() -> TestResult {
     open(&mut app, "training")?;
     app.update(Action::Next);
     app.run.snapshot.returns = (0..30_u32).map(|i| f64::from(10 + 5 * i)).collect();
-    app.run.snapshot.moving_average =
-        ppo_tutor::ppo::moving_average(&app.run.snapshot.returns, 9)?;
+    app.run.snapshot.moving_average = ppo_tutor::ppo::moving_average(&app.run.snapshot.returns, 9)?;
     let text = screen(&app, 160, 50)?;
     assert!(
         text.contains("moving average (9)") && text.contains("PPO on CartPole-v1"),

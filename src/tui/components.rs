@@ -265,46 +265,70 @@ impl Scroll {
         area: Rect,
         buf: &mut Buffer,
     ) {
-        use ratatui::text::Line;
         use ratatui::widgets::Paragraph;
+        let marks = Marks {
+            up: |n| {
+                crate::tr!(
+                    " ↑ {n} lines above: ↑ scrolls",
+                    " ↑ 上面还有 {n} 行：按 ↑ 滚动"
+                )
+            },
+            down: |n| {
+                crate::tr!(
+                    " ↓ {n} more lines: ↓ scrolls",
+                    " ↓ 下面还有 {n} 行：按 ↓ 滚动"
+                )
+            },
+        };
         let height = usize::from(area.height);
-        let total = lines.len();
-        if total <= height || height < 3 {
-            self.max.set(0);
-            Paragraph::new(lines).render(area, buf);
-            return;
-        }
-        // With both marks shown, `height - 2` lines of text fit.
-        let max = total.saturating_sub(height - 1);
+        let (shown, max) = window(lines, height, usize::from(self.offset), &marks, theme);
         self.max.set(u16::try_from(max).unwrap_or(u16::MAX));
-        let offset = usize::from(self.offset());
-        let above = offset > 0;
-        let room = height - usize::from(above);
-        let below = total - offset > room;
-        let room = room - usize::from(below);
-        let mut shown: Vec<Line<'static>> = Vec::with_capacity(height);
-        if above {
-            shown.push(Line::styled(
-                crate::tr!(
-                    " ↑ {offset} lines above: ↑ scrolls",
-                    " ↑ 上面还有 {offset} 行：按 ↑ 滚动"
-                ),
-                theme.dim(),
-            ));
-        }
-        shown.extend(lines.into_iter().skip(offset).take(room));
-        if below {
-            let more = total - offset - room;
-            shown.push(Line::styled(
-                crate::tr!(
-                    " ↓ {more} more lines: ↓ scrolls",
-                    " ↓ 下面还有 {more} 行：按 ↓ 滚动"
-                ),
-                theme.dim(),
-            ));
-        }
         Paragraph::new(shown).render(area, buf);
     }
+}
+
+/// What a scrolled window says above and below its lines, given how many are hidden there
+/// (and which key scrolls).
+pub struct Marks {
+    /// The first row, when lines are above.
+    pub up: fn(usize) -> String,
+    /// The last row, when lines are below.
+    pub down: fn(usize) -> String,
+}
+
+/// The `height` rows of `lines` from `offset` (kept within the text): when lines are hidden,
+/// the first row says how many are above and the last how many below ([`Marks`]); and the
+/// largest useful offset. Text that fits (or a window under 3 rows) comes back whole.
+#[must_use]
+pub fn window(
+    lines: Vec<ratatui::text::Line<'static>>,
+    height: usize,
+    offset: usize,
+    marks: &Marks,
+    theme: Theme,
+) -> (Vec<ratatui::text::Line<'static>>, usize) {
+    use ratatui::text::Line;
+    let total = lines.len();
+    if total <= height || height < 3 {
+        return (lines, 0);
+    }
+    // With both marks shown, `height - 2` lines of text fit.
+    let max = total.saturating_sub(height - 1);
+    let offset = offset.min(max);
+    let above = offset > 0;
+    let room = height - usize::from(above);
+    let below = total - offset > room;
+    let room = room - usize::from(below);
+    let mut shown: Vec<Line<'static>> = Vec::with_capacity(height);
+    if above {
+        shown.push(Line::styled((marks.up)(offset), theme.dim()));
+    }
+    shown.extend(lines.into_iter().skip(offset).take(room));
+    if below {
+        let more = total - offset - room;
+        shown.push(Line::styled((marks.down)(more), theme.dim()));
+    }
+    (shown, max)
 }
 
 #[cfg(test)]

@@ -191,40 +191,22 @@ fn scroll_code(
     rows: usize,
     theme: Theme,
 ) -> Vec<Line<'static>> {
-    let total = code.len();
-    if total <= rows || rows < 3 {
-        app.code_max.set(0);
-        return code;
-    }
-    // With both marks shown, `rows - 2` lines of code fit.
-    let max = total - (rows - 1);
+    let marks = super::components::Marks {
+        up: |n| {
+            tr!(
+                "↑ {n} lines above: [ scrolls",
+                "↑ 上面还有 {n} 行：按 [ 滚动"
+            )
+        },
+        down: |n| {
+            tr!(
+                "↓ {n} more lines: ] scrolls",
+                "↓ 下面还有 {n} 行：按 ] 滚动"
+            )
+        },
+    };
+    let (shown, max) = super::components::window(code, rows, app.code_scroll, &marks, theme);
     app.code_max.set(max);
-    let offset = app.code_scroll.min(max);
-    let above = offset > 0;
-    let room = rows - usize::from(above);
-    let below = total - offset > room;
-    let room = room - usize::from(below);
-    let mut shown = Vec::with_capacity(rows);
-    if above {
-        shown.push(Line::styled(
-            tr!(
-                "↑ {offset} lines above: [ scrolls",
-                "↑ 上面还有 {offset} 行：按 [ 滚动"
-            ),
-            theme.dim(),
-        ));
-    }
-    shown.extend(code.into_iter().skip(offset).take(room));
-    if below {
-        let more = total - offset - room;
-        shown.push(Line::styled(
-            tr!(
-                "↓ {more} more lines: ] scrolls",
-                "↓ 下面还有 {more} 行：按 ] 滚动"
-            ),
-            theme.dim(),
-        ));
-    }
     shown
 }
 
@@ -700,7 +682,7 @@ pub fn status_lines(app: &App, width: usize) -> Vec<String> {
             format!("{}{sep}{part}", last.trim_end())
         };
         if text::width(&joined) > room {
-            break;
+            continue;
         }
         *last = joined;
     }
