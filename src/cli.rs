@@ -469,8 +469,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Dev(args)) => dev::run(&args),
         // The language was chosen for this run, or the app takes the one last chosen in it.
         None => crate::tui::run(
-            cli.lang.is_some()
-                || std::env::var_os("PPO_TUTOR_LANG").is_some_and(|v| !v.is_empty()),
+            cli.lang.is_some() || std::env::var_os("PPO_TUTOR_LANG").is_some_and(|v| !v.is_empty()),
         ),
     }
 }

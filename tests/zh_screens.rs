@@ -42,7 +42,15 @@ const KEYWORDS: &[&str] = &[
 
 /// Names of keyboard keys as printed on the keys (the app's key bar and help).
 const KEY_CAPS: &[&str] = &[
-    "Esc", "Enter", "Ctrl-C", "Backspace", "Tab", "PgDn", "PgUp", "Home", "End",
+    "Esc",
+    "Enter",
+    "Ctrl-C",
+    "Backspace",
+    "Tab",
+    "PgDn",
+    "PgUp",
+    "Home",
+    "End",
 ];
 
 /// Python's bool literals: a bool tensor's elements as the seed's PyTorch prints them (the

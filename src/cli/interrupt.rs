@@ -5,7 +5,7 @@
 //!
 //! On Unix `ppo-tutor` re-runs itself with one candle thread by replacing its process
 //! (`exec`, see `cli::rerun`), so the signal reaches this process and no other. Elsewhere
-//! the first process waits for its child: it ignores Ctrl-C ([`ignore_in_parent`]) so that
+//! the first process waits for its child: it ignores Ctrl-C (`ignore_in_parent`) so that
 //! the child's message and exit code are what the user sees.
 
 use std::sync::Arc;

@@ -12,7 +12,7 @@
 //! the lesson's features, `:env` and `:restart` for the language) and the kernel's own
 //! display of rich outputs. Here:
 //! - a cell's last expression, which the kernel displays, becomes a call that records what
-//!   it would show: its [`super::Rich`] outputs, or its `Debug` text as evcxr does;
+//!   it would show: its [`Rich`](crate::notebook::Rich) outputs, or its `Debug` text as evcxr does;
 //! - `println!` writes into the cell's recorded output (the test defines the macro);
 //! - the exercise's cells (its starters, with `todo!()`, and their grading cells) form one
 //!   block, so that the reference solutions, graded at the end as `tests/notebooks.rs`

@@ -226,7 +226,7 @@ pub fn pad_left(text: &str, columns: usize) -> String {
 
 /// Interface text kept in both languages until it is shown: a grader's check name, the
 /// reason a check did not run, a quiz measure's description. Written where the thing is
-/// defined, as a pair (`Text::new("a single row", "只有一行")`, or [`text!`] with
+/// defined, as a pair (`Text::new("a single row", "只有一行")`, or [`text!`](crate::text!) with
 /// arguments), and resolved when rendered ([`Text::get`], `Display`), so a report made
 /// in one language reads in the other after the app's `L` key, and no string is ever
 /// looked up by its English.
@@ -246,7 +246,7 @@ impl Text {
         }
     }
 
-    /// A pair made at run time (what [`text!`] builds).
+    /// A pair made at run time (what [`text!`](crate::text!) builds).
     #[must_use]
     pub fn owned(en: String, zh: String) -> Self {
         Self {

@@ -43,7 +43,7 @@ pub fn rod_tip(theta: f64, l: f64) -> (f64, f64) {
 }
 
 /// Points along the torque arc for torque `u`: from straight up, counter-clockwise for
-/// `u > 0`, clockwise for `u < 0`, sweeping `|u| / 2` of [`ARC_SWEEP`] (none for `u = 0`).
+/// `u > 0`, clockwise for `u < 0`, sweeping `|u| / 2` of `ARC_SWEEP` (none for `u = 0`).
 #[must_use]
 pub fn torque_arc(u: f64) -> Vec<(f64, f64)> {
     let sweep = (u / MAX_TORQUE).clamp(-1.0, 1.0) * ARC_SWEEP;

@@ -31,7 +31,7 @@ use super::model::{NamedWeights, WeightTensor};
 /// Which agent a checkpoint holds: the environment and the algorithm it was trained for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CheckpointKind {
-    /// The seed's PPO on `CartPole-v1`: a softmax policy over two actions ([`Agent`]).
+    /// The seed's PPO on `CartPole-v1`: a softmax policy over two actions ([`Agent`](crate::ppo::Agent)).
     CartPolePpo,
     /// The book's `PPOContinuous` on `Pendulum-v1`: a Gaussian policy
     /// ([`PpoContinuous`](super::PpoContinuous)).

@@ -1,5 +1,5 @@
 //! Recorded PyTorch updates (`tests/fixtures/*_update_pytorch.json`): reading them (the
-//! [`Reader`] both agents' replay modules use), and a replay file of any agent (the seed's
+//! `Reader` both agents' replay modules use), and a replay file of any agent (the seed's
 //! discrete PPO, the book's `PPOContinuous`, ...), told apart by the weights of its first
 //! case ([`OnPolicyAgent::replays`]).
 
