@@ -507,6 +507,20 @@ fn unknown_lessons_in_the_progress_file_count_for_nothing() -> TestResult {
     Ok(())
 }
 
+/// Question `i` of the open quiz, a choice whose right letter does not depend on the run:
+/// the right choice's index and the choices.
+fn fixed_choice(app: &App, i: usize) -> Result<(usize, Vec<String>), String> {
+    use ppo_tutor::lesson::quiz::{Answer, QuestionKind};
+    match app.quiz_question(i).map(|q| q.kind.clone()) {
+        Some(QuestionKind::Choice {
+            answer: Answer::Letter(answer),
+            choices,
+            ..
+        }) => Ok((answer, choices)),
+        _ => Err(format!("question {} is not a fixed choice", i + 1)),
+    }
+}
+
 /// Opens the quiz of lesson `id` (→ past its last step).
 fn open_quiz(app: &mut App, id: &str) -> TestResult {
     open(app, id)?;
@@ -1036,16 +1050,10 @@ fn quiz_feedback_scrolls_at_80x24_and_says_more_follows() -> TestResult {
 /// Answering a question again shows that only the first answer counts.
 #[test]
 fn answering_again_says_only_the_first_answer_counts() -> TestResult {
-    use ppo_tutor::lesson::quiz::{Answer, QuestionKind, letter_of};
+    use ppo_tutor::lesson::quiz::letter_of;
     let mut app = app()?;
     open_quiz(&mut app, "what-is-ppo")?;
-    let Some(QuestionKind::Choice {
-        answer: Answer::Letter(answer),
-        ..
-    }) = app.quiz_question(0).map(|q| q.kind.clone())
-    else {
-        return Err("lesson 1's quiz opens with a choice".into());
-    };
+    let (answer, _) = fixed_choice(&app, 0)?;
     app.update(Action::Type(letter_of((answer + 1) % 4)));
     assert!(!screen(&app, 160, 50)?.contains("first answer counts"));
     app.update(Action::Type(letter_of(answer)));
@@ -1758,18 +1766,11 @@ fn every_step_showing_epochs_shows_the_first_and_the_last() -> TestResult {
 /// kept in the progress as text.
 #[test]
 fn a_question_seen_again_shows_the_earlier_answer() -> TestResult {
-    use ppo_tutor::lesson::quiz::{Answer, QuestionKind, letter_of};
+    use ppo_tutor::lesson::quiz::{QuestionKind, letter_of};
     let _en = Lang::En.scoped();
     let mut app = app()?;
     open_quiz(&mut app, "what-is-ppo")?;
-    let Some(QuestionKind::Choice {
-        answer: Answer::Letter(answer),
-        choices,
-        ..
-    }) = app.quiz_question(0).map(|q| q.kind.clone())
-    else {
-        return Err("lesson 1's quiz opens with a choice".into());
-    };
+    let (answer, choices) = fixed_choice(&app, 0)?;
     let wrong = (answer + 1) % choices.len();
     app.update(Action::Type(letter_of(wrong)));
     assert_eq!(

@@ -120,22 +120,15 @@ impl Scene {
     }
 }
 
-/// Opens step `step` (from 1) of lesson `id` with the keys: the lesson list, then → .
+/// Opens step `step` (from 1) of lesson `id`: the lesson, as the lesson list opens it,
+/// then → .
 fn open(app: &mut App, id: &str, step: usize) -> anyhow::Result<()> {
-    let index = app.course.index_of(id).ok_or_else(|| {
-        anyhow::anyhow!(crate::tr!(
+    if !app.open_lesson(id) {
+        anyhow::bail!(crate::tr!(
             "the course has no lesson `{id}` for the screenshots (src/screenshot/scenes.rs)",
             "课程里没有截图要用的课 `{id}`（src/screenshot/scenes.rs）"
-        ))
-    })?;
-    app.update(Action::Lessons);
-    for _ in 0..app.course.lessons.len() {
-        app.update(Action::Up);
+        ));
     }
-    for _ in 0..index {
-        app.update(Action::Down);
-    }
-    app.update(Action::Enter);
     for _ in 1..step {
         app.update(Action::Next);
     }

@@ -673,6 +673,17 @@ impl App {
         self.run.tick();
     }
 
+    /// Opens lesson `id` at its first step (closing what is open), as the lesson list's
+    /// Enter does; `false` when the course has no such lesson.
+    pub fn open_lesson(&mut self, id: &str) -> bool {
+        let Some(index) = self.course.index_of(id) else {
+            return false;
+        };
+        self.close(self.overlay);
+        self.go_to(index, 0);
+        true
+    }
+
     fn next_step(&mut self) {
         let Some(lesson) = self.current_lesson() else {
             return;

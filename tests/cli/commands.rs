@@ -689,77 +689,16 @@ fn errors_name_a_file_once_and_a_negative_delay_is_explained() -> TestResult {
     Ok(())
 }
 
-/// Runs `ppo-tutor ARGS` in a terminal with `env` (and no `RAYON_NUM_THREADS`: it re-runs
-/// itself as a user's would), presses Ctrl-C once `ready` is on the screen, and returns the
-/// exit code and the screen.
+/// Runs `ppo-tutor ARGS` in a terminal with `env`, presses Ctrl-C once `ready` is on the
+/// screen, and returns the exit code and the screen.
 #[cfg(unix)]
 fn ctrl_c_in_a_terminal(
     args: &[&std::ffi::OsStr],
     env: &[(&str, &str)],
     ready: &str,
 ) -> Result<(u32, String), Box<dyn std::error::Error>> {
-    use portable_pty::{CommandBuilder, PtySize, native_pty_system};
-    use std::io::{Read as _, Write as _};
-    let (rows, cols) = (30, 220);
-    let pty = native_pty_system().openpty(PtySize {
-        rows,
-        cols,
-        pixel_width: 0,
-        pixel_height: 0,
-    })?;
-    let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    cmd.args(args);
-    cmd.env("TERM", "xterm-256color");
-    for key in [
-        "PPO_TUTOR_LANG",
-        "LC_ALL",
-        "LC_MESSAGES",
-        "RAYON_NUM_THREADS",
-    ] {
-        cmd.env_remove(key);
-    }
-    cmd.env("LANG", "C.UTF-8");
-    for (key, value) in env {
-        cmd.env(key, value);
-    }
-    let mut child = pty.slave.spawn_command(cmd)?;
-    drop(pty.slave);
-    let mut reader = pty.master.try_clone_reader()?;
-    let (seen, shown) = std::sync::mpsc::channel::<()>();
-    let ready = ready.to_string();
-    let reading = std::thread::spawn(move || {
-        let mut bytes = Vec::new();
-        let mut buf = [0_u8; 8192];
-        let mut told = false;
-        while let Ok(n) = reader.read(&mut buf) {
-            if n == 0 {
-                break;
-            }
-            bytes.extend_from_slice(&buf[..n]);
-            if !told && String::from_utf8_lossy(&bytes).contains(&ready) {
-                told = seen.send(()).is_ok();
-            }
-        }
-        bytes
-    });
-    // Training has begun (its bar is drawn): press Ctrl-C.
-    let began = shown
-        .recv_timeout(std::time::Duration::from_secs(120))
-        .is_ok();
-    let mut writer = pty.master.take_writer()?;
-    writer.write_all(b"\x03")?;
-    writer.flush()?;
-    let status = child.wait()?;
-    drop(writer);
-    drop(pty.master);
-    let bytes = reading.join().map_err(|_| "the reader panicked")?;
-    let mut screen = vt100::Parser::new(rows, cols, 0);
-    screen.process(&bytes);
-    let text = screen.screen().contents();
-    if !began {
-        return Err(format!("no bar on the screen: {text}").into());
-    }
-    Ok((status.exit_code(), text))
+    let run = common::in_terminal(args, env, (30, 220), (ready, b"\x03"))?;
+    Ok((run.status.exit_code(), run.screen))
 }
 
 /// Ctrl-C in a terminal while `train` draws its bars: the run stops at the end of the

@@ -3,11 +3,9 @@
 //! that only CartPole has, and the animation in a real terminal.
 
 use std::collections::BTreeSet;
-use std::io::Read;
 use std::path::Path;
 use std::process::Output;
 
-use portable_pty::{CommandBuilder, PtySize, native_pty_system};
 use serde_json::Value;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
@@ -30,7 +28,7 @@ const PYTORCH_NAMES: [&str; 10] = [
 ];
 
 use crate::common;
-use common::english;
+use common::{english, numbers};
 
 fn ppo_tutor(args: &[&str]) -> Result<Output, std::io::Error> {
     english().args(args).output()
@@ -46,12 +44,6 @@ fn path(p: &Path) -> Result<&str, &'static str> {
 
 fn read_json(p: &Path) -> Result<Value, Box<dyn std::error::Error>> {
     Ok(serde_json::from_str(&std::fs::read_to_string(p)?)?)
-}
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .map(|a| a.iter().filter_map(Value::as_f64).collect())
-        .unwrap_or_default()
 }
 
 fn keys(v: &Value) -> BTreeSet<String> {
@@ -366,41 +358,11 @@ fn play_animates_the_pendulum_in_a_terminal() -> TestResult {
     ])?;
     assert!(out.status.success(), "{}", stderr(&out));
 
-    let (rows, cols) = (40, 100);
-    let pty = native_pty_system().openpty(PtySize {
-        rows,
-        cols,
-        pixel_width: 0,
-        pixel_height: 0,
-    })?;
-    let mut cmd = CommandBuilder::new(env!("CARGO_BIN_EXE_ppo-tutor"));
-    cmd.args(["play", "--load", path(&agent)?, "--delay-ms", "0"]);
-    cmd.env("TERM", "xterm-256color");
-    cmd.env("PPO_TUTOR_LANG", "en");
-    cmd.env_remove("LC_ALL");
-    cmd.env_remove("LC_MESSAGES");
-    cmd.env("LANG", "C.UTF-8");
-    let mut child = pty.slave.spawn_command(cmd)?;
-    drop(pty.slave);
-    let mut reader = pty.master.try_clone_reader()?;
-    let reading = std::thread::spawn(move || {
-        let mut bytes = Vec::new();
-        let mut buf = [0_u8; 8192];
-        while let Ok(n) = reader.read(&mut buf) {
-            if n == 0 {
-                break;
-            }
-            bytes.extend_from_slice(&buf[..n]);
-        }
-        bytes
-    });
-    let status = child.wait()?;
-    drop(pty.master);
-    let bytes = reading.join().map_err(|_| "the reader panicked")?;
-    assert!(status.success(), "{}", String::from_utf8_lossy(&bytes));
-    let mut screen = vt100::Parser::new(rows, cols, 0);
-    screen.process(&bytes);
-    let text = screen.screen().contents();
+    let words = ["play", "--load", path(&agent)?, "--delay-ms", "0"];
+    let play: Vec<&std::ffi::OsStr> = words.iter().map(std::ffi::OsStr::new).collect();
+    let run = common::in_terminal(&play, &[("PPO_TUTOR_LANG", "en")], (40, 100), ("", b""))?;
+    let (bytes, text) = (run.bytes, run.screen);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&bytes));
     assert!(
         text.contains("Pendulum-v1 episode 0 step 200"),
         "the last frame: {text}"

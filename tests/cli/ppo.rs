@@ -724,18 +724,11 @@ fn a_longer_run_smooths_over_more_episodes() -> TestResult {
     let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
     assert_eq!(run["moving_average_window"].as_u64(), Some(11));
     // The curve is the seed's rl_utils.moving_average over 11.
-    let returns: Vec<f64> = run["returns"]
-        .as_array()
-        .ok_or("no returns")?
-        .iter()
-        .filter_map(Value::as_f64)
-        .collect();
-    let average: Vec<f64> = run["moving_average"]
-        .as_array()
-        .ok_or("no average")?
-        .iter()
-        .filter_map(Value::as_f64)
-        .collect();
+    let (returns, average) = (
+        crate::common::numbers(&run["returns"]),
+        crate::common::numbers(&run["moving_average"]),
+    );
+    assert_eq!(returns.len(), 550);
     assert_eq!(average, ppo_tutor::ppo::moving_average(&returns, 11)?);
     Ok(())
 }

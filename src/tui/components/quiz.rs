@@ -390,23 +390,7 @@ impl Component for Quiz {
     }
 }
 
-/// `line` wrapped to `columns` after `prefix`, its later lines indented by the prefix's
-/// width, so that a wrapped paragraph keeps its left edge.
+/// `line` wrapped after `prefix` ([`text::hanging`]).
 fn hanging(prefix: Span<'static>, line: Line<'static>, columns: u16) -> Vec<Line<'static>> {
-    let indent = u16::try_from(prefix.width()).unwrap_or(0);
-    let body = text::wrap([line], columns.saturating_sub(indent).max(8));
-    let pad = " ".repeat(usize::from(indent));
-    body.into_iter()
-        .enumerate()
-        .map(|(i, l)| {
-            let lead = if i == 0 {
-                prefix.clone()
-            } else {
-                Span::raw(pad.clone())
-            };
-            let mut spans = vec![lead];
-            spans.extend(l.spans);
-            Line::from(spans).style(l.style)
-        })
-        .collect()
+    text::hanging(vec![prefix], line, columns)
 }

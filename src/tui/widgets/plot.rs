@@ -236,6 +236,32 @@ mod tests {
         ('\u{2800}'..='\u{28FF}').contains(&c) || ['•', '▀', '▄', '█'].contains(&c)
     }
 
+    /// The plot of `returns` and `average` (and `previous`) drawn `width`×`height`, as
+    /// rows of text, on the CartPole scale (0 to 500, the seed's window of 9).
+    fn drawn(
+        returns: &[f64],
+        average: &[f64],
+        previous: Option<(&str, &[f64])>,
+        (width, height): (u16, u16),
+    ) -> Vec<String> {
+        let area = Rect::new(0, 0, width, height);
+        let mut buf = Buffer::empty(area);
+        ReturnPlot {
+            returns,
+            average,
+            window: 9,
+            previous,
+            max_return: 500.0,
+            min_return: 0.0,
+            block: Block::bordered(),
+            theme: Theme { color: false },
+        }
+        .render(area, &mut buf);
+        (0..height)
+            .map(|y| (0..width).map(|x| buf[(x, y)].symbol()).collect())
+            .collect()
+    }
+
     /// A trained curve runs along the top right, where ratatui drew its
     /// legend; the legend now has rows of its own, and its names stay whole.
     #[test]
@@ -253,22 +279,12 @@ mod tests {
         let average: Vec<f64> = returns.iter().map(|r| r.min(470.0)).collect();
         let previous: Vec<f64> = returns.iter().map(|r| r * 0.9).collect();
         for (width, height) in [(44, 14), (72, 24)] {
-            let area = Rect::new(0, 0, width, height);
-            let mut buf = Buffer::empty(area);
-            ReturnPlot {
-                returns: &returns,
-                average: &average,
-                window: 9,
-                previous: Some(("ε = 0.1", &previous)),
-                max_return: 500.0,
-                min_return: 0.0,
-                block: Block::bordered(),
-                theme: Theme { color: false },
-            }
-            .render(area, &mut buf);
-            let rows: Vec<String> = (0..height)
-                .map(|y| (0..width).map(|x| buf[(x, y)].symbol()).collect())
-                .collect();
+            let rows = drawn(
+                &returns,
+                &average,
+                Some(("ε = 0.1", &previous)),
+                (width, height),
+            );
             let screen = rows.join("\n");
             let names = ["ε = 0.1", "returns", "moving average (9)"];
             for name in names {
@@ -298,23 +314,8 @@ mod tests {
     fn the_average_is_heavier_than_the_returns() {
         let returns: Vec<f64> = (0..100_u32).map(|i| f64::from(i % 7) * 60.0).collect();
         let average = vec![200.0; returns.len()];
-        let (width, height) = (60, 16);
-        let area = Rect::new(0, 0, width, height);
-        let mut buf = Buffer::empty(area);
-        ReturnPlot {
-            returns: &returns,
-            average: &average,
-            window: 9,
-            previous: None,
-            max_return: 500.0,
-            min_return: 0.0,
-            block: Block::bordered(),
-            theme: Theme { color: false },
-        }
-        .render(area, &mut buf);
-        let rows: Vec<String> = (0..height)
-            .map(|y| (0..width).map(|x| buf[(x, y)].symbol()).collect())
-            .collect();
+        let width = 60;
+        let rows = drawn(&returns, &average, None, (width, 16));
         let screen = rows.join("\n");
         // The flat average at 200 is one row of half blocks across the graph.
         let blocks = |r: &String| r.chars().filter(|c| ['▀', '▄', '█'].contains(c)).count();

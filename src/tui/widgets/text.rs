@@ -258,19 +258,37 @@ pub fn wrap_hanging<'a>(
         // The line's first `indent` columns stay on its first row; the rest wraps in the
         // room beside them.
         let (head, rest) = split_at_width(&line, indent);
-        let rows = wrap([rest], u16::try_from(room).unwrap_or(u16::MAX));
-        let pad = " ".repeat(indent);
-        for (i, row) in rows.into_iter().enumerate() {
+        out.extend(hanging(head, rest.style(line.style), columns));
+    }
+    out
+}
+
+/// `line` wrapped to `columns` after `prefix`, its later rows indented by the prefix's
+/// width, so that a wrapped paragraph keeps its left edge (a quiz choice's rows under its
+/// words, not under its letter).
+#[must_use]
+pub fn hanging(
+    prefix: Vec<Span<'static>>,
+    line: Line<'static>,
+    columns: u16,
+) -> Vec<Line<'static>> {
+    let indent: usize = prefix.iter().map(Span::width).sum();
+    let room = usize::from(columns).saturating_sub(indent).max(8);
+    let style = line.style;
+    let pad = " ".repeat(indent);
+    wrap([line], u16::try_from(room).unwrap_or(u16::MAX))
+        .into_iter()
+        .enumerate()
+        .map(|(i, row)| {
             let mut spans = if i == 0 {
-                head.clone()
+                prefix.clone()
             } else {
                 vec![Span::raw(pad.clone())]
             };
             spans.extend(row.spans);
-            out.push(Line::from(spans).style(line.style));
-        }
-    }
-    out
+            Line::from(spans).style(style)
+        })
+        .collect()
 }
 
 /// Where a line's later rows start: after its leading spaces, and after a short `label:`
