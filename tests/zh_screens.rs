@@ -19,9 +19,9 @@ use ppo_tutor::i18n::{ALLOWED_WORDS, Lang, english_words};
 use ppo_tutor::lesson::live::NAMES;
 use ppo_tutor::lesson::reveal::{Row, listing};
 use ppo_tutor::lesson::{Course, Session, Snapshot};
-use ppo_tutor::ppo::knobs::KnobKind;
+use ppo_tutor::ppo::knobs::{KnobKind, Tunable};
 use ppo_tutor::ppo::lab::Experiment;
-use ppo_tutor::ppo::{AgentConfig, PpoConfig, PpoContinuousConfig};
+use ppo_tutor::ppo::{PpoConfig, PpoContinuousConfig};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -386,7 +386,7 @@ impl Known {
 
 /// The sandbox's setting names for agents configured by `C`, and the values it shows for
 /// each, a few notches up and down from the default.
-fn knob_words<C: AgentConfig + Default>(out: &mut BTreeSet<String>) {
+fn knob_words<C: Tunable + Default>(out: &mut BTreeSet<String>) {
     for knob in C::KNOBS {
         out.insert(knob.id.to_string());
         if let KnobKind::Value { show, nudge } = &knob.kind {

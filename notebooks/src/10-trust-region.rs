@@ -40,6 +40,7 @@ for (k, e) in trace.epochs.iter().enumerate() {
 // The probe, as `ppo-tutor trust-region` runs it: from θ_old (the actor that played the
 // latest batch) along the batch's surrogate gradient, twelve step lengths α from 0 to 3.2,
 // each measured on 150 held-out episodes. The table, then the chart.
+use ppo_engine::notebook::Rich as _; // shows the probe: its table, then its chart
 use ppo_engine::ppo::trust_region::{ProbeSettings, TrustRegionProbe, probe_snapshot};
 let probe: TrustRegionProbe = probe_snapshot(&snap, &config, &ProbeSettings::default())?;
 probe

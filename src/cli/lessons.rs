@@ -89,8 +89,8 @@ pub fn render_step(
         .then(|| reveal::listing(&s.code, passed))
         .flatten()
     {
-        let (path, code) = (&listing.path, listing.text());
-        let _ = writeln!(out, "## ppo-engine (crates/ppo-engine/src/{path})");
+        let (krate, path, code) = (listing.krate, &listing.path, listing.text());
+        let _ = writeln!(out, "## {krate} (crates/{krate}/src/{path})");
         for gate in listing.shown.iter().filter(|g| g.lesson == l.order) {
             if let Ok(ex) = crate::grade::find(&gate.exercise) {
                 let (name, folder, file) = (&gate.exercise, &gate.folder, ex.meta().starter);

@@ -13,7 +13,7 @@ use anyhow::Context;
 use clap::Args;
 
 use crate::i18n::t;
-use crate::ppo::replay_file::replay_any;
+use crate::run::replay_any;
 use crate::tr;
 
 /// Arguments of `ppo-tutor replay`.

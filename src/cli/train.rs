@@ -18,10 +18,11 @@ use crate::env::EnvId;
 use crate::i18n::t;
 use crate::lesson::RunConfig;
 use crate::plot::{ascii_return_plot, labels, save_return_plot};
+use crate::ppo::knobs::Tunable;
 use crate::ppo::train::mean_last;
 use crate::ppo::{
-    AgentConfig, Algorithm, EpisodeReport, Objective, OnPolicyAgent, PpoConfig, PpoError,
-    TrainSummary, UpdatePath, train,
+    Algorithm, EpisodeReport, Objective, OnPolicyAgent, PpoConfig, PpoError, TrainSummary,
+    UpdatePath, train,
 };
 use crate::run::RunVisitor;
 use crate::tr;
@@ -394,7 +395,7 @@ struct TrainOne<'a> {
 impl RunVisitor for TrainOne<'_> {
     type Output = Result<(TrainSummary, SaveAgent), PpoError>;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> Self::Output {
+    fn visit<C: Tunable>(self, config: &C) -> Self::Output {
         let (bars, paths, interrupt) = (self.bars, self.paths, self.interrupt);
         let (summary, agent) = train(config.clone(), self.seed, |report| {
             bars.update(&Progress::from(report));

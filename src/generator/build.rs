@@ -602,8 +602,9 @@ fn passed_before(lesson: &Lesson) -> impl Fn(&str) -> bool + use<> {
 
 /// An anchor's code as a notebook shows it: a bold line naming the file, then the code.
 fn listing_markdown(listing: &crate::lesson::reveal::Listing) -> String {
+    let krate = listing.krate;
     format!(
-        "\n**ppo-engine (`crates/ppo-engine/src/{}`){}**\n\n```rust\n{}\n```\n",
+        "\n**{krate} (`crates/{krate}/src/{}`){}**\n\n```rust\n{}\n```\n",
         listing.path,
         t(":", "："),
         listing.text().trim_end()

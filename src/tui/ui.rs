@@ -239,8 +239,8 @@ fn code_lines(
         .then(|| crate::lesson::reveal::listing(&step.code, passed))
         .flatten()
     {
-        let path = &listing.path;
-        lines.push(Line::styled(format!("// ppo-engine: {path}"), theme.dim()));
+        let (krate, path) = (listing.krate, &listing.path);
+        lines.push(Line::styled(format!("// {krate}: {path}"), theme.dim()));
         for gate in listing.shown.iter().filter(|g| g.lesson == order) {
             if let Ok(ex) = crate::grade::find(&gate.exercise) {
                 let (name, file) = (&gate.exercise, ex.meta().starter);

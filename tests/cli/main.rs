@@ -6,7 +6,9 @@ mod common;
 
 mod commands;
 mod help_zh;
+mod parity;
 mod pendulum;
+mod pendulum_learns;
 mod pendulum_train;
 mod ppo;
 mod screenshots;

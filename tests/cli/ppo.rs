@@ -302,6 +302,10 @@ fn train_with_the_penalty_objective() -> TestResult {
             "--objective penalty and --no-clip do not go together",
         ),
         (
+            &["--algorithm", "reinforce", "--no-clip"][..],
+            "--algorithm reinforce and --no-clip do not go together: REINFORCE has no ratio",
+        ),
+        (
             &["--objective", "penalty", "--beta-init", "0"][..],
             "invalid --beta-init 0: expected a finite number > 0",
         ),

@@ -23,7 +23,7 @@
 //!   (their keys are the fixtures' and Gymnasium's, not sentences); a run with `--json` on
 //!   stdout has only its stderr checked;
 //! - code: `show` prints the seed's PyTorch and the crate's Rust under `## …（PyTorch）` and
-//!   `## ppo-engine (…)`; those blocks run to the next `## ` section or step header and are
+//!   `## ppo-rl (…)` or `## ppo-engine (…)`; those blocks run to the next `## ` section or step header and are
 //!   dropped before checking ([`strip_code`]). A line that is a command to type (`cargo …`,
 //!   `ppo-tutor …` alone on its line) is code too;
 //! - drawings: the canvas of a terminal plot, right of its axis `|` (its markers `o`, `*`,
@@ -239,7 +239,7 @@ fn code_words(code: &str) -> impl Iterator<Item = String> + '_ {
 }
 
 /// `text` without the code blocks `show` prints: from a `## …（PyTorch）` or
-/// `## ppo-engine (…)` heading to the next `## ` section or step header (`# title — 第 n/m
+/// `## ppo-rl (…)` or `## ppo-engine (…)` heading to the next `## ` section or step header (`# title — 第 n/m
 /// 节`; a Python comment `# …` inside the code does not end the block).
 fn strip_code(text: &str) -> String {
     let mut out = String::new();
@@ -247,7 +247,9 @@ fn strip_code(text: &str) -> String {
     for line in text.lines() {
         let section = line.starts_with("## ") || (line.starts_with("# ") && line.contains(" — "));
         if section {
-            in_code = line.starts_with("## ppo-engine") || line.contains("（PyTorch）");
+            in_code = line.starts_with("## ppo-rl (")
+                || line.starts_with("## ppo-engine (")
+                || line.contains("（PyTorch）");
             if in_code {
                 continue;
             }
@@ -857,7 +859,7 @@ fn every_enumerated_output_is_chinese() -> TestResult {
 /// section (not at a Python comment), escapes are removed, English is found.
 #[test]
 fn the_filters_drop_only_code() {
-    let show = "# 课 — 第 1/2 节：标题\n\n正文\n\n## 原教程代码（PyTorch）\n# 注释 comment\nx = torch.clamp(a)\n\n## ppo-engine (crates/x.rs)\nfn main() {}\n## values [3]\n  [0] 1.0\n";
+    let show = "# 课 — 第 1/2 节：标题\n\n正文\n\n## 原教程代码（PyTorch）\n# 注释 comment\nx = torch.clamp(a)\n\n## ppo-rl (crates/x.rs)\nfn main() {}\n## values [3]\n  [0] 1.0\n";
     let kept = strip_code(show);
     assert!(
         kept.contains("正文") && kept.contains("## values [3]"),

@@ -1,8 +1,11 @@
 //! # ppo-engine
 //!
 //! The engine under ppo-tutor's three faces (the terminal app, the notebooks and the graded
-//! exercises): everything that runs, and nothing that draws a terminal, parses a command
-//! line or grades a learner's file.
+//! exercises): the course on its RL core, and nothing that draws a terminal, parses a
+//! command line or grades a learner's file. The RL core is its own crate, `ppo-rl` (the
+//! environments, the agents, training, checkpoints, replay), re-exported here under the same
+//! paths, so a notebook's `:dep ppo-engine` reaches both; the two languages are the leaf
+//! crate `ppo-i18n`.
 //!
 //! - [`env`](mod@env): a native CartPole-v1 and Pendulum-v1 identical to Gymnasium's (same
 //!   states, bit for bit, same seeds).
@@ -22,15 +25,18 @@
 //! The engine never imports a face: the terminal app, the notebooks and the graders all
 //! drive the same engine.
 
-pub mod causes;
-pub mod env;
-pub mod files;
-pub mod i18n;
 pub mod lesson;
 pub mod notebook;
 pub mod plot;
 pub mod ppo;
 pub mod run;
+
+/// The language of what is printed, from the leaf crate `ppo-i18n`.
+pub use ppo_i18n::{causes, i18n, text, tr};
+/// The environments, from the RL core.
+pub use ppo_rl::env;
+/// Writing a file atomically, from the RL core.
+pub use ppo_rl::files;
 
 /// The candle-core the engine is built on, so a notebook cell can write the candle exercise
 /// without a `:dep` of its own: `use ppo_engine::candle_core::{Result, Tensor};`.

@@ -55,6 +55,16 @@ fn emit(mime: &str, content: &str) {
 pub trait Rich {
     /// The outputs, at most one per mime type.
     fn rich(&self) -> Vec<(&'static str, String)>;
+
+    /// evcxr's display hook, for a type of the RL core that cannot have an inherent one
+    /// (a trust-region probe): a cell that shows such a value brings this trait into scope
+    /// (`use ppo_engine::notebook::Rich as _;`).
+    fn evcxr_display(&self)
+    where
+        Self: Sized,
+    {
+        emit_rich(self);
+    }
 }
 
 /// Prints a value's rich outputs as evcxr's blocks (what `evcxr_display` does).

@@ -4,14 +4,15 @@
 //! differs between environments from [`Environment::spec`].
 //!
 //! ```
-//! use ppo_engine::ppo::{AgentConfig, OnPolicyAgent, Training};
+//! use ppo_engine::ppo::knobs::Tunable;
+//! use ppo_engine::ppo::{OnPolicyAgent, Training};
 //! use ppo_engine::run::{Environment, RunConfig, RunVisitor};
 //!
 //! /// The first return of a run, for any agent.
 //! struct FirstReturn;
 //! impl RunVisitor for FirstReturn {
 //!     type Output = Result<f64, ppo_engine::ppo::PpoError>;
-//!     fn visit<C: AgentConfig>(self, config: &C) -> Self::Output
+//!     fn visit<C: Tunable>(self, config: &C) -> Self::Output
 //!     where
 //!         C::Agent: ppo_engine::lesson::live::session::LiveAgent,
 //!     {
@@ -32,8 +33,11 @@ use std::ops::{Index, IndexMut};
 use crate::i18n::t;
 use crate::lesson::Snapshot;
 use crate::lesson::live::session::LiveAgent;
+use crate::ppo::knobs::Tunable;
 use crate::ppo::knobs::{self, KnobValue};
-use crate::ppo::{AgentConfig, PpoConfig, PpoContinuousConfig, PpoError};
+use crate::ppo::on_policy::Replayed;
+use crate::ppo::replay_file::first_weights;
+use crate::ppo::{AgentConfig, OnPolicyAgent, PpoConfig, PpoContinuousConfig, PpoError};
 
 /// Declares the agents a run can train: the [`Environment`] enum, the [`RunConfig`] enum
 /// and the dispatch between them. One line per agent: `Variant(ConfigType) = SPEC`; the
@@ -248,7 +252,7 @@ pub trait RunVisitor {
     type Output;
 
     /// Called with the run's configuration.
-    fn visit<C: AgentConfig>(self, config: &C) -> Self::Output
+    fn visit<C: Tunable>(self, config: &C) -> Self::Output
     where
         C::Agent: LiveAgent;
 }
@@ -260,7 +264,7 @@ pub trait RunVisitorMut {
     type Output;
 
     /// Called with the run's configuration.
-    fn visit_mut<C: AgentConfig>(self, config: &mut C) -> Self::Output;
+    fn visit_mut<C: Tunable>(self, config: &mut C) -> Self::Output;
 }
 
 /// One value per [`Environment`] (the settings of each environment's run, say), indexed by
@@ -435,7 +439,7 @@ struct KnobIds;
 impl RunVisitor for KnobIds {
     type Output = Vec<&'static str>;
 
-    fn visit<C: AgentConfig>(self, _: &C) -> Vec<&'static str> {
+    fn visit<C: Tunable>(self, _: &C) -> Vec<&'static str> {
         C::KNOBS.iter().map(|k| k.id).collect()
     }
 }
@@ -445,7 +449,7 @@ struct ReadKnob<'a>(&'a str);
 impl RunVisitor for ReadKnob<'_> {
     type Output = Option<KnobValue>;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> Option<KnobValue> {
+    fn visit<C: Tunable>(self, config: &C) -> Option<KnobValue> {
         knobs::find::<C>(self.0).map(|k| k.kind.read(config))
     }
 }
@@ -455,7 +459,7 @@ struct Nudge<'a>(&'a str, bool);
 impl RunVisitorMut for Nudge<'_> {
     type Output = bool;
 
-    fn visit_mut<C: AgentConfig>(self, config: &mut C) -> bool {
+    fn visit_mut<C: Tunable>(self, config: &mut C) -> bool {
         match knobs::find::<C>(self.0).map(|k| &k.kind) {
             Some(knobs::KnobKind::Value { nudge, .. }) => {
                 nudge(config, self.1);
@@ -471,7 +475,7 @@ struct EnvIds;
 impl RunVisitor for EnvIds {
     type Output = &'static [&'static str];
 
-    fn visit<C: AgentConfig>(self, _: &C) -> &'static [&'static str] {
+    fn visit<C: Tunable>(self, _: &C) -> &'static [&'static str] {
         C::ENV_IDS
     }
 }
@@ -481,7 +485,7 @@ struct SetEnvId<'a>(&'a str);
 impl RunVisitorMut for SetEnvId<'_> {
     type Output = bool;
 
-    fn visit_mut<C: AgentConfig>(self, config: &mut C) -> bool {
+    fn visit_mut<C: Tunable>(self, config: &mut C) -> bool {
         config.set_env_id(self.0)
     }
 }
@@ -491,7 +495,7 @@ struct NumEpisodes;
 impl RunVisitor for NumEpisodes {
     type Output = usize;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> usize {
+    fn visit<C: Tunable>(self, config: &C) -> usize {
         config.num_episodes()
     }
 }
@@ -501,7 +505,7 @@ struct Validate;
 impl RunVisitor for Validate {
     type Output = Result<(), PpoError>;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> Result<(), PpoError> {
+    fn visit<C: Tunable>(self, config: &C) -> Result<(), PpoError> {
         config.validate()
     }
 }
@@ -511,7 +515,7 @@ struct EnvId;
 impl RunVisitor for EnvId {
     type Output = &'static str;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> &'static str {
+    fn visit<C: Tunable>(self, config: &C) -> &'static str {
         config.env_id()
     }
 }
@@ -521,7 +525,7 @@ struct MaxReturn;
 impl RunVisitor for MaxReturn {
     type Output = f64;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> f64 {
+    fn visit<C: Tunable>(self, config: &C) -> f64 {
         config.max_return()
     }
 }
@@ -531,11 +535,59 @@ struct FirstSnapshot(u64);
 impl RunVisitor for FirstSnapshot {
     type Output = Snapshot;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> Snapshot
+    fn visit<C: Tunable>(self, config: &C) -> Snapshot
     where
         C::Agent: LiveAgent,
     {
         C::Agent::first_snapshot(config, self.0)
+    }
+}
+
+/// Replays every case of a recorded PyTorch update of any agent: the agent whose weights
+/// the first case's `weights_before` holds (the first agent, the seed's PPO, when none
+/// claims them); `file` names it in errors. One result per case.
+///
+/// # Errors
+/// [`PpoError::File`] for a file that is not JSON; as [`OnPolicyAgent::replay`] for one
+/// that is not that agent's cases.
+#[allow(clippy::type_complexity)]
+pub fn replay_any(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError> {
+    let weights = first_weights(text, file)?;
+    let env = Environment::ALL
+        .into_iter()
+        .find(|env| RunConfig::default_for(*env).visit(Claims(&weights)))
+        .unwrap_or_default();
+    RunConfig::default_for(env).visit(Replay { text, file })
+}
+
+/// Whether an agent claims a replay file's weights.
+struct Claims<'a>(&'a serde_json::Value);
+
+impl RunVisitor for Claims<'_> {
+    type Output = bool;
+
+    fn visit<C: Tunable>(self, _config: &C) -> bool
+    where
+        C::Agent: LiveAgent,
+    {
+        C::Agent::replays(self.0)
+    }
+}
+
+/// Replays a file as an agent's.
+struct Replay<'a> {
+    text: &'a str,
+    file: &'a str,
+}
+
+impl RunVisitor for Replay<'_> {
+    type Output = Result<Vec<Result<Replayed, PpoError>>, PpoError>;
+
+    fn visit<C: Tunable>(self, _config: &C) -> Self::Output
+    where
+        C::Agent: LiveAgent,
+    {
+        C::Agent::replay(self.text, self.file)
     }
 }
 

@@ -19,7 +19,7 @@ use crate::env::EnvId;
 use crate::env::pendulum::ENV_ID as PENDULUM_V1;
 use crate::i18n::t;
 use crate::lesson::RunConfig;
-use crate::ppo::{PpoContinuousConfig, PpoError};
+use crate::ppo::{PpoConfig, PpoContinuousConfig, PpoError, RuleSetting};
 use crate::tr;
 
 /// A Gymnasium id `ppo-tutor train` and `play` accept.
@@ -85,7 +85,9 @@ pub fn run_config(args: &TrainArgs) -> Result<RunConfig, String> {
         TrainEnv::CartPole(env_id) => {
             refuse_lone_penalty_flags(args)?;
             refuse_lone_line_search_flags(args)?;
-            RunConfig::CartPole(args.config_for(env_id))
+            let config = args.config_for(env_id);
+            refuse_rule_clash(&config)?;
+            RunConfig::CartPole(config)
         }
         TrainEnv::Pendulum => {
             refuse_cartpole_switches(args)?;
@@ -208,8 +210,7 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
 }
 
 /// Refuses PPO-Penalty's flags where they would change nothing: `--beta-init` and
-/// `--kl-delta` without `--objective penalty`, and `--objective penalty` with REINFORCE
-/// (no ratio) or `--no-clip` (PPO-Penalty has no clip to drop).
+/// `--kl-delta` without `--objective penalty`.
 fn refuse_lone_penalty_flags(args: &TrainArgs) -> Result<(), String> {
     let penalty = args.objective == ObjectiveArg::Penalty;
     // δ is also the line search's bound (refused there by its own check)
@@ -224,33 +225,11 @@ fn refuse_lone_penalty_flags(args: &TrainArgs) -> Result<(), String> {
             "{flag} 是 PPO-惩罚的设置：请加上 --objective penalty，或去掉 {flag}"
         ));
     }
-    let clash = [
-        (
-            args.algorithm == AlgorithmArg::Reinforce,
-            "--algorithm reinforce",
-            t(
-                "REINFORCE has no ratio to penalise",
-                "REINFORCE 没有比率可供惩罚",
-            ),
-        ),
-        (
-            args.no_clip,
-            "--no-clip",
-            t("PPO-Penalty has no clip to drop", "PPO-惩罚本来就没有截断"),
-        ),
-    ];
-    match clash.into_iter().find(|(on, _, _)| penalty && *on) {
-        Some((_, flag, why)) => Err(tr!(
-            "--objective penalty and {flag} do not go together: {why}",
-            "--objective penalty 不能与 {flag} 同用：{why}"
-        )),
-        None => Ok(()),
-    }
+    Ok(())
 }
 
 /// Refuses the KL line search's flags where they would change nothing: `--ls-max-step` and
-/// `--ls-backtracks` without `--objective line-search`, and `--objective line-search` with
-/// REINFORCE (no ratio, no surrogate to search along) or `--no-clip` (it has no clip).
+/// `--ls-backtracks` without `--objective line-search`.
 fn refuse_lone_line_search_flags(args: &TrainArgs) -> Result<(), String> {
     let search = args.objective == ObjectiveArg::LineSearch;
     let unused = [
@@ -263,31 +242,27 @@ fn refuse_lone_line_search_flags(args: &TrainArgs) -> Result<(), String> {
             "{flag} 是 KL 线搜索的设置：请加上 --objective line-search，或去掉 {flag}"
         ));
     }
-    let clash = [
-        (
-            args.algorithm == AlgorithmArg::Reinforce,
-            "--algorithm reinforce",
-            t(
-                "REINFORCE has no ratio, so no surrogate to search along",
-                "REINFORCE 没有比率，也就没有可供搜索的替代目标",
-            ),
-        ),
-        (
-            args.no_clip,
-            "--no-clip",
-            t(
-                "the KL line search has no clip to drop",
-                "KL 线搜索本来就没有截断",
-            ),
-        ),
-    ];
-    match clash.into_iter().find(|(on, _, _)| search && *on) {
-        Some((_, flag, why)) => Err(tr!(
-            "--objective line-search and {flag} do not go together: {why}",
-            "--objective line-search 不能与 {flag} 同用：{why}"
-        )),
-        None => Ok(()),
-    }
+    Ok(())
+}
+
+/// Refuses settings that name no update rule together ([`PpoConfig::rule`]): REINFORCE with
+/// `--objective penalty`, `--objective line-search` or `--no-clip`, and `--no-clip` with
+/// PPO-Penalty or the KL line search, each with why.
+fn refuse_rule_clash(config: &PpoConfig) -> Result<(), String> {
+    let Err(clash) = config.rule() else {
+        return Ok(());
+    };
+    let flag = |setting: RuleSetting| match setting {
+        RuleSetting::Reinforce => "--algorithm reinforce",
+        RuleSetting::NoClip => "--no-clip",
+        RuleSetting::Penalty => "--objective penalty",
+        RuleSetting::LineSearch => "--objective line-search",
+    };
+    let (chosen, with, why) = (flag(clash.chosen), flag(clash.with), clash.why());
+    Err(tr!(
+        "{chosen} and {with} do not go together: {why}",
+        "{chosen} 不能与 {with} 同用：{why}"
+    ))
 }
 
 /// The `--flag` spelling of a config field.

@@ -15,7 +15,7 @@ use crate::cli::interrupt::Interrupt;
 use crate::i18n::t;
 use crate::lesson::RunConfig;
 use crate::plot::{ascii_band_plot, labels, save_band_plot};
-use crate::ppo::AgentConfig;
+use crate::ppo::knobs::Tunable;
 use crate::ppo::seeds::ReportOf;
 use crate::ppo::seeds::{Band, SeedError, SeedRun, mean_std, train_seeds};
 use crate::run::RunVisitor;
@@ -222,7 +222,7 @@ struct Seeds<'a> {
 impl RunVisitor for Seeds<'_> {
     type Output = Result<Vec<SeedRun>, SeedError>;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> Self::Output {
+    fn visit<C: Tunable>(self, config: &C) -> Self::Output {
         let on_episode = self.on_episode;
         train_seeds(
             config,

@@ -115,7 +115,14 @@ impl Sandbox {
             Action::Down | Action::ScrollDown => select(at + 1),
             Action::Increase => self.nudge(self.selected, true),
             Action::Decrease => self.nudge(self.selected, false),
-            Action::Enter => return Reply::Retrain,
+            // settings that name no update rule (REINFORCE with PPO-Penalty, say) are
+            // refused here, with why, rather than by a run that fails to start
+            Action::Enter => {
+                return match self.run_config().validate() {
+                    Ok(()) => Reply::Retrain,
+                    Err(e) => Reply::Say(crate::tr!("Not retrained: {e}", "没有重新训练：{e}")),
+                };
+            }
             Action::Sandbox | Action::Back => return Reply::Close,
             _ => {}
         }
@@ -352,6 +359,24 @@ mod tests {
         s.update(Action::Increase);
         assert_eq!(s.value("env"), "CartPole-v0");
         assert_eq!(s.value("eps"), "0.3");
+    }
+
+    #[test]
+    fn enter_refuses_settings_that_name_no_update_rule() {
+        let mut s = Sandbox::default();
+        for id in ["algorithm", "no_clip"] {
+            s.selected = id;
+            s.update(Action::Increase);
+        }
+        let Reply::Say(said) = s.update(Action::Enter) else {
+            panic!("REINFORCE with no_clip retrained");
+        };
+        assert!(
+            said.contains("no_clip") && said.contains("REINFORCE"),
+            "{said}"
+        );
+        s.update(Action::Increase); // no_clip off again: plain REINFORCE
+        assert_eq!(s.update(Action::Enter), Reply::Retrain);
     }
 
     #[test]

@@ -47,6 +47,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 探测，与 `ppo-tutor trust-region` 的做法相同：从 θ_old（采集最近这一批数据的策略网络）出发，
     // 沿这一批替代目标的梯度走十二种步长 α，从 0 到 3.2，每种都在另跑的 150 个回合上测量。
     // 先是表格，然后是图。
+    use ppo_engine::notebook::Rich as _; // 显示探测结果：先表格，后图
     use ppo_engine::ppo::trust_region::{ProbeSettings, TrustRegionProbe, probe_snapshot};
     let probe: TrustRegionProbe = probe_snapshot(&snap, &config, &ProbeSettings::default())?;
     nb.show((&Shown(&(probe))).outputs());

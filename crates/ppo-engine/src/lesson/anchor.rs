@@ -1,7 +1,8 @@
 //! Code pulled from the crate's own source by anchor, so a lesson cannot drift from the code.
 //!
 //! Source files mark regions with `// ANCHOR: name` and `// ANCHOR_END: name` (the
-//! mdBook convention). The whole `src/` tree is embedded at compile time, so what the
+//! mdBook convention). The whole `src/` tree of this crate and of the RL core it builds
+//! on (`ppo-rl`, where nearly every anchor is) is embedded at compile time, so what the
 //! tutor shows is exactly the code that was compiled into it.
 //!
 //! ```
@@ -16,15 +17,22 @@ use std::sync::OnceLock;
 
 use include_dir::{Dir, include_dir};
 
-static SRC: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/src");
+/// Each embedded crate's name and `src/` tree: the RL core first, then this crate.
+static SOURCES: [(&str, Dir<'static>); 2] = [
+    ("ppo-rl", include_dir!("$CARGO_MANIFEST_DIR/../ppo-rl/src")),
+    ("ppo-engine", include_dir!("$CARGO_MANIFEST_DIR/src")),
+];
 
-/// Every anchor in the embedded `src/`, indexed once: name → (path, the whole file's text).
-fn index() -> &'static BTreeMap<String, (String, &'static str)> {
-    static INDEX: OnceLock<BTreeMap<String, (String, &'static str)>> = OnceLock::new();
+/// Every anchor in the embedded sources, indexed once: name → (crate, path, the whole
+/// file's text).
+fn index() -> &'static BTreeMap<String, (&'static str, String, &'static str)> {
+    static INDEX: OnceLock<BTreeMap<String, (&'static str, String, &'static str)>> =
+        OnceLock::new();
     INDEX.get_or_init(|| {
         let mut map = BTreeMap::new();
-        let mut stack = vec![&SRC];
-        while let Some(dir) = stack.pop() {
+        let mut stack: Vec<(&'static str, &'static Dir<'static>)> =
+            SOURCES.iter().map(|(krate, dir)| (*krate, dir)).collect();
+        while let Some((krate, dir)) = stack.pop() {
             for file in dir.files() {
                 let Some(text) = file.contents_utf8() else {
                     continue;
@@ -35,10 +43,10 @@ fn index() -> &'static BTreeMap<String, (String, &'static str)> {
                     .filter_map(|l| l.trim().strip_prefix("// ANCHOR: "))
                 {
                     map.entry(name.to_string())
-                        .or_insert_with(|| (path.clone(), text));
+                        .or_insert_with(|| (krate, path.clone(), text));
                 }
             }
-            stack.extend(dir.dirs());
+            stack.extend(dir.dirs().map(|d| (krate, d)));
         }
         map
     })
@@ -123,13 +131,20 @@ fn extract(text: &str, name: &str) -> String {
         .join("\n")
 }
 
-/// Finds anchor `name` in the embedded `src/`: the file's path (relative to `src/`) and
-/// the code between the markers, de-indented, without nested anchor lines.
+/// Finds anchor `name` in the embedded sources: the file's path (relative to its crate's
+/// `src/`, the crate named by [`crate_of`]) and the code between the markers, de-indented,
+/// without nested anchor lines.
 #[must_use]
 pub fn find(name: &str) -> Option<(String, String)> {
     index()
         .get(name)
-        .map(|(path, text)| (path.clone(), extract(text, name)))
+        .map(|(_, path, text)| (path.clone(), extract(text, name)))
+}
+
+/// The crate whose `src/` holds anchor `name` (`ppo-rl` or `ppo-engine`).
+#[must_use]
+pub fn crate_of(name: &str) -> Option<&'static str> {
+    index().get(name).map(|(krate, _, _)| *krate)
 }
 
 /// [`find`], line by line, with each nested anchor for which `mask` holds left out as one
@@ -148,13 +163,13 @@ pub fn find(name: &str) -> Option<(String, String)> {
 pub fn find_masked(name: &str, mask: &dyn Fn(&str) -> bool) -> Option<(String, Vec<Line>)> {
     index()
         .get(name)
-        .map(|(path, text)| (path.clone(), extract_lines(text, name, mask)))
+        .map(|(_, path, text)| (path.clone(), extract_lines(text, name, mask)))
 }
 
 /// The anchors nested in anchor `name`, at any depth, in the order they open.
 #[must_use]
 pub fn nested(name: &str) -> Vec<String> {
-    let Some((_, text)) = index().get(name) else {
+    let Some((_, _, text)) = index().get(name) else {
         return Vec::new();
     };
     let (start, end) = (
@@ -175,7 +190,7 @@ pub fn nested(name: &str) -> Vec<String> {
 #[must_use]
 pub fn all() -> Vec<String> {
     let mut names = Vec::new();
-    let mut stack = vec![&SRC];
+    let mut stack: Vec<&Dir<'static>> = SOURCES.iter().map(|(_, dir)| dir).collect();
     while let Some(dir) = stack.pop() {
         for file in dir.files() {
             let Some(text) = file.contents_utf8() else {

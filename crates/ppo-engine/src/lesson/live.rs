@@ -11,6 +11,7 @@
 //!   terminal app's worker, `ppo-tutor show`, the notebooks and the tests all go through it.
 //! - [`values`]: [`LIVE`], the table of live value names and their views.
 
+pub mod probe;
 pub mod session;
 pub mod values;
 

@@ -121,7 +121,9 @@ pub enum Row {
 /// An anchor's code as a face may show it now.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Listing {
-    /// The file, relative to the engine's `src/`.
+    /// The crate whose source it is (`ppo-rl`, the RL core, or `ppo-engine`).
+    pub krate: &'static str,
+    /// The file, relative to that crate's `src/`.
     pub path: String,
     /// The rows, de-indented.
     pub rows: Vec<Row>,
@@ -177,6 +179,7 @@ pub fn listing(name: &str, passed: &dyn Fn(&str) -> bool) -> Option<Listing> {
     if !open(name) {
         let (path, _) = anchor::find(name)?;
         return Some(Listing {
+            krate: anchor::crate_of(name)?,
             path,
             rows: vec![Row::Hidden {
                 indent: 0,
@@ -212,7 +215,12 @@ pub fn listing(name: &str, passed: &dyn Fn(&str) -> bool) -> Option<Listing> {
         }
     }
     shown.sort_by_key(|g| g.lesson);
-    Some(Listing { path, rows, shown })
+    Some(Listing {
+        krate: anchor::crate_of(name)?,
+        path,
+        rows,
+        shown,
+    })
 }
 
 /// What a hidden region says instead of its code: "solve exercise `compute_advantage` (lesson 8)

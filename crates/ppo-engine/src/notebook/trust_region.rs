@@ -28,7 +28,7 @@
 
 use std::fmt::Write as _;
 
-use super::{Rich, Svg, emit_rich, escape};
+use super::{Rich, Svg, escape};
 use crate::i18n::{pad_left, t};
 use crate::ppo::PpoConfig;
 use crate::ppo::trust_region::{ProbePoint, TrustRegionProbe};
@@ -282,19 +282,7 @@ fn marker(circle: bool, x: f64, y: f64, colour: &str) -> String {
     }
 }
 
-impl TrustRegionProbe {
-    /// The probe's chart (see [`trust_region_svg`]).
-    #[must_use]
-    pub fn chart(&self) -> Svg {
-        trust_region_svg(self)
-    }
-
-    /// evcxr's display hook: the table, then the chart.
-    pub fn evcxr_display(&self) {
-        emit_rich(self);
-    }
-}
-
+/// The table, then the chart.
 impl Rich for TrustRegionProbe {
     fn rich(&self) -> Vec<(&'static str, String)> {
         vec![

@@ -15,7 +15,7 @@
 //! ```
 
 use crate::i18n::{Lang, t};
-use crate::ppo::{Algorithm, Objective, PpoConfig};
+use crate::ppo::{Algorithm, PpoConfig, RuleSetting, UpdateRule};
 use crate::run::RunConfig;
 use crate::tr;
 
@@ -105,12 +105,19 @@ pub fn algorithm(run: &RunConfig) -> &'static str {
     let Some(c) = run.get::<PpoConfig>() else {
         return "PPO";
     };
-    match (c.algorithm, c.objective) {
-        (Algorithm::Reinforce, _) => "REINFORCE",
-        (Algorithm::Ppo, Objective::Penalty) => t("PPO-Penalty", "PPO-惩罚"),
-        (Algorithm::Ppo, Objective::LineSearch) => t("KL line search", "KL 线搜索"),
-        (Algorithm::Ppo, Objective::Clip) if c.no_clip => t("PPO without the clip", "不截断的 PPO"),
-        (Algorithm::Ppo, Objective::Clip) => "PPO",
+    match c.rule() {
+        Ok(UpdateRule::Reinforce) => "REINFORCE",
+        Ok(UpdateRule::Penalty) => t("PPO-Penalty", "PPO-惩罚"),
+        Ok(UpdateRule::LineSearch) => t("KL line search", "KL 线搜索"),
+        Ok(UpdateRule::NoClip) => t("PPO without the clip", "不截断的 PPO"),
+        Ok(UpdateRule::Clip) => "PPO",
+        // settings that name no rule (refused before any training): the algorithm first
+        Err(_) if c.algorithm == Algorithm::Reinforce => "REINFORCE",
+        Err(clash) => match clash.chosen {
+            RuleSetting::Penalty => t("PPO-Penalty", "PPO-惩罚"),
+            RuleSetting::LineSearch => t("KL line search", "KL 线搜索"),
+            RuleSetting::Reinforce | RuleSetting::NoClip => "PPO",
+        },
     }
 }
 
@@ -184,25 +191,7 @@ pub fn all(lang: Lang) -> Vec<String> {
     .collect();
     // Every algorithm's title (the flags that change what trains).
     let cartpole = PpoConfig::default();
-    let runs = [
-        RunConfig::CartPole(cartpole.clone()),
-        RunConfig::CartPole(PpoConfig {
-            algorithm: Algorithm::Reinforce,
-            ..cartpole.clone()
-        }),
-        RunConfig::CartPole(PpoConfig {
-            objective: Objective::Penalty,
-            ..cartpole.clone()
-        }),
-        RunConfig::CartPole(PpoConfig {
-            objective: Objective::LineSearch,
-            ..cartpole.clone()
-        }),
-        RunConfig::CartPole(PpoConfig {
-            no_clip: true,
-            ..cartpole
-        }),
-    ];
+    let runs = UpdateRule::ALL.map(|rule| RunConfig::CartPole(cartpole.clone().with_rule(rule)));
     for run in &runs {
         labels.push(return_title(algorithm(run), "CartPole-v1"));
     }

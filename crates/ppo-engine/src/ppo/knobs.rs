@@ -1,6 +1,6 @@
 //! The settings of a run a learner can change, one notch at a time: [`Knob`].
 //!
-//! Each [`AgentConfig`] lists its knobs ([`AgentConfig::KNOBS`]) in the order the sandbox
+//! Each agent's settings list their knobs ([`Tunable::KNOBS`]) in the order the sandbox
 //! shows them: the agent's own settings, each with how its value is shown and how `+`/`−`
 //! changes it (steps, ladders and ranges), and where the run's seed and environment go.
 //! [`RunConfig`](crate::run::RunConfig) reaches them without naming the agent
@@ -8,8 +8,8 @@
 //! [`RunConfig::nudge`](crate::run::RunConfig::nudge)), so the sandbox is written once.
 //!
 //! ```
-//! use ppo_engine::ppo::{AgentConfig, PpoConfig};
-//! use ppo_engine::ppo::knobs::KnobKind;
+//! use ppo_engine::ppo::PpoConfig;
+//! use ppo_engine::ppo::knobs::{KnobKind, Tunable};
 //!
 //! let mut config = PpoConfig::default();
 //! let eps = PpoConfig::KNOBS.iter().find(|k| k.id == "eps").map(|k| &k.kind);
@@ -20,7 +20,7 @@
 //! assert_eq!(show(&config), "0.25"); // the seed's 0.2, one step of 0.05 up
 //! ```
 
-use super::AgentConfig;
+use super::{AgentConfig, Algorithm, PpoConfig, PpoContinuousConfig};
 use crate::i18n::t;
 
 /// One editable setting of a run of an agent whose settings are `C`.
@@ -109,7 +109,7 @@ impl<C> KnobKind<C> {
 
 /// The knob of `C` called `id`, if it has one.
 #[must_use]
-pub fn find<C: AgentConfig>(id: &str) -> Option<&'static Knob<C>> {
+pub fn find<C: Tunable>(id: &str) -> Option<&'static Knob<C>> {
     C::KNOBS.iter().find(|k| k.id == id)
 }
 
@@ -176,6 +176,172 @@ pub fn show_switch(on: bool) -> String {
 #[must_use]
 pub fn show_rate(v: f64) -> String {
     format!("{v:.2e}")
+}
+
+/// An agent's settings as the sandbox changes them: the knobs it shows.
+pub trait Tunable: AgentConfig {
+    /// The settings a learner can change in the sandbox, in the order it shows them, with
+    /// where the run's seed and environment go ([`Knob::SEED`], [`Knob::ENV`]).
+    const KNOBS: &'static [Knob<Self>];
+}
+
+impl Tunable for PpoConfig {
+    /// The seed's five numbers, the seed, the CleanRL-style switches, the objective (clip,
+    /// PPO-Penalty or the KL line search, with their defaults β₀ = 1, δ = 0.01, α₀ = 0.25 and
+    /// 10 halvings) and the algorithm:
+    /// the three switches with a value toggle between off and the value their source uses
+    /// (an entropy bonus of 0.01, CleanRL's gradient clip of 0.5, Spinning Up's target KL
+    /// of 0.01).
+    const KNOBS: &'static [Knob<Self>] = &[
+        Knob::value(
+            "eps",
+            |c| c.eps.to_string(),
+            |c, up| {
+                c.eps = step(c.eps, 0.05, 0.05, 0.95, up);
+            },
+        ),
+        Knob::value(
+            "gamma",
+            |c| c.gamma.to_string(),
+            |c, up| {
+                c.gamma = step(c.gamma, 0.01, 0.5, 1.0, up);
+            },
+        ),
+        Knob::value(
+            "lmbda",
+            |c| c.lmbda.to_string(),
+            |c, up| {
+                c.lmbda = step(c.lmbda, 0.05, 0.0, 1.0, up);
+            },
+        ),
+        Knob::value(
+            "actor_lr",
+            |c| show_rate(c.actor_lr),
+            |c, up| {
+                c.actor_lr = double_or_halve(c.actor_lr, up);
+            },
+        ),
+        Knob::value(
+            "critic_lr",
+            |c| show_rate(c.critic_lr),
+            |c, up| {
+                c.critic_lr = double_or_halve(c.critic_lr, up);
+            },
+        ),
+        Knob::SEED,
+        Knob::value(
+            "bootstrap_on_truncation",
+            |c| show_switch(c.bootstrap_on_truncation),
+            |c, _| c.bootstrap_on_truncation = !c.bootstrap_on_truncation,
+        ),
+        Knob::value(
+            "normalize_advantage",
+            |c| show_switch(c.normalize_advantage),
+            |c, _| c.normalize_advantage = !c.normalize_advantage,
+        ),
+        Knob::ENV,
+        Knob::value(
+            "entropy_coef",
+            |c| c.entropy_coef.to_string(),
+            |c, _| {
+                c.entropy_coef = toggle_amount(c.entropy_coef, 0.01);
+            },
+        ),
+        Knob::value(
+            "max_grad_norm",
+            |c| show_option(c.max_grad_norm),
+            |c, _| {
+                c.max_grad_norm = toggle_option(c.max_grad_norm, 0.5);
+            },
+        ),
+        Knob::value(
+            "target_kl",
+            |c| show_option(c.target_kl),
+            |c, _| {
+                c.target_kl = toggle_option(c.target_kl, 0.01);
+            },
+        ),
+        Knob::value(
+            "epochs",
+            |c| c.epochs.to_string(),
+            |c, up| {
+                c.epochs = climb(c.epochs, &EPOCHS, up);
+            },
+        ),
+        Knob::value(
+            "no_clip",
+            |c| show_switch(c.no_clip),
+            |c, _| c.no_clip = !c.no_clip,
+        ),
+        Knob::value(
+            "objective",
+            |c| c.objective.as_str().into(),
+            |c, _| {
+                c.objective = c.objective.next(); // clip → penalty → line-search → clip
+            },
+        ),
+        Knob::value(
+            "algorithm",
+            |c| c.algorithm.as_str().into(),
+            |c, _| {
+                c.algorithm = match c.algorithm {
+                    Algorithm::Ppo => Algorithm::Reinforce,
+                    Algorithm::Reinforce => Algorithm::Ppo,
+                };
+            },
+        ),
+    ];
+}
+
+impl Tunable for PpoContinuousConfig {
+    /// The discrete PPO's five numbers, steps and ranges, the seed, and the epochs; the
+    /// discrete PPO's switches do not apply.
+    const KNOBS: &'static [Knob<Self>] = &[
+        Knob::value(
+            "eps",
+            |c| c.eps.to_string(),
+            |c, up| {
+                c.eps = step(c.eps, 0.05, 0.05, 0.95, up);
+            },
+        ),
+        Knob::value(
+            "gamma",
+            |c| c.gamma.to_string(),
+            |c, up| {
+                c.gamma = step(c.gamma, 0.01, 0.5, 1.0, up);
+            },
+        ),
+        Knob::value(
+            "lmbda",
+            |c| c.lmbda.to_string(),
+            |c, up| {
+                c.lmbda = step(c.lmbda, 0.05, 0.0, 1.0, up);
+            },
+        ),
+        Knob::value(
+            "actor_lr",
+            |c| show_rate(c.actor_lr),
+            |c, up| {
+                c.actor_lr = double_or_halve(c.actor_lr, up);
+            },
+        ),
+        Knob::value(
+            "critic_lr",
+            |c| show_rate(c.critic_lr),
+            |c, up| {
+                c.critic_lr = double_or_halve(c.critic_lr, up);
+            },
+        ),
+        Knob::SEED,
+        Knob::ENV,
+        Knob::value(
+            "epochs",
+            |c| c.epochs.to_string(),
+            |c, up| {
+                c.epochs = climb(c.epochs, &EPOCHS, up);
+            },
+        ),
+    ];
 }
 
 #[cfg(test)]

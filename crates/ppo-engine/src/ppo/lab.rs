@@ -30,7 +30,7 @@ use crate::i18n::{pad_left, pad_right, t};
 use crate::tr;
 use serde::Serialize;
 
-use super::config::{Algorithm, Objective, PpoConfig};
+use super::config::{PpoConfig, UpdateRule};
 use super::moving_average::smoothed_returns;
 use super::seeds::{Band, SeedError, mean_std, train_jobs};
 use super::train::{EpisodeReport, mean_last};
@@ -177,7 +177,10 @@ impl Experiment {
             Self::Eps => vec![
                 first(format!("ε = {}", base.eps)),
                 arm("ε = 0.05".into(), with(&|c| c.eps = 0.05)),
-                arm(t("no clip", "不截断").into(), with(&|c| c.no_clip = true)),
+                arm(
+                    t("no clip", "不截断").into(),
+                    base.clone().with_rule(UpdateRule::NoClip),
+                ),
             ],
             Self::Epochs => {
                 let (actor, critic) = base.epochs_of_each();
@@ -230,7 +233,7 @@ impl Experiment {
                 first("PPO".into()),
                 arm(
                     t("REINFORCE + baseline", "REINFORCE + 基线").into(),
-                    with(&|c| c.algorithm = Algorithm::Reinforce),
+                    base.clone().with_rule(UpdateRule::Reinforce),
                 ),
             ],
             Self::CriticLr => vec![
@@ -261,7 +264,7 @@ impl Experiment {
                     arm(
                         t("penalty, adaptive β (no clip)", "惩罚，自适应 β（不截断）").into(),
                         with(&|c| {
-                            c.objective = Objective::Penalty;
+                            *c = c.clone().with_rule(UpdateRule::Penalty);
                             c.beta_init = 1.0;
                             c.kl_delta = delta;
                         }),
@@ -273,13 +276,13 @@ impl Experiment {
                             "KL 线搜索 δ={delta}（不截断，一步，无 Adam）"
                         ),
                         with(&|c| {
-                            c.objective = Objective::LineSearch;
+                            *c = c.clone().with_rule(UpdateRule::LineSearch);
                             c.kl_delta = delta;
                         }),
                     ),
                     arm(
                         t("none (no clip, no penalty)", "都不用（不截断，无惩罚）").into(),
-                        with(&|c| c.no_clip = true),
+                        base.clone().with_rule(UpdateRule::NoClip),
                     ),
                 ]
             }
@@ -743,17 +746,14 @@ mod tests {
             ..PpoConfig::default()
         };
         let arms = Experiment::Proximal.arms(&base);
-        let objectives: Vec<(Objective, bool)> = arms
-            .iter()
-            .map(|a| (a.config.objective, a.config.no_clip))
-            .collect();
+        let rules: Vec<_> = arms.iter().map(|a| a.config.rule()).collect();
         assert_eq!(
-            objectives,
+            rules,
             [
-                (Objective::Clip, false),
-                (Objective::Penalty, false),
-                (Objective::LineSearch, false),
-                (Objective::Clip, true),
+                Ok(UpdateRule::Clip),
+                Ok(UpdateRule::Penalty),
+                Ok(UpdateRule::LineSearch),
+                Ok(UpdateRule::NoClip),
             ]
         );
         assert_eq!(Experiment::ALL.last(), Some(&Experiment::Proximal));
@@ -766,8 +766,8 @@ mod tests {
                 "{}: {u:?}",
                 arm.label
             );
-            let penalty = arm.config.objective == Objective::Penalty;
-            let search = arm.config.objective == Objective::LineSearch;
+            let penalty = arm.config.rule() == Ok(UpdateRule::Penalty);
+            let search = arm.config.rule() == Ok(UpdateRule::LineSearch);
             assert_eq!(u.beta_range.is_some(), penalty, "{}", arm.label);
             assert_eq!(u.ls_halvings.is_some(), search, "{}", arm.label);
             if search {

@@ -16,10 +16,11 @@
 //! ```
 
 use super::{PolicyMap, Snapshot};
+use crate::ppo::knobs::Tunable;
 use crate::ppo::model::ActorSnapshot;
 use crate::ppo::{
-    Agent, AgentConfig, EpisodeReport, OnPolicyAgent, PpoContinuous, PpoError, Training,
-    moving_average, surrogate_gradients,
+    Agent, EpisodeReport, OnPolicyAgent, PpoContinuous, PpoError, Training, moving_average,
+    surrogate_gradients,
 };
 use crate::run::{RunConfig, RunVisitor};
 
@@ -27,8 +28,9 @@ use crate::run::{RunConfig, RunVisitor};
 pub const MOVING_AVERAGE_WINDOW: usize = 9;
 
 /// An agent the live session can show: what it keeps of the policy before an episode,
-/// and how the episode's report fills the snapshot.
-pub trait LiveAgent: OnPolicyAgent {
+/// and how the episode's report fills the snapshot. Its settings carry the sandbox's
+/// knobs ([`Tunable`](crate::ppo::knobs::Tunable)).
+pub trait LiveAgent: OnPolicyAgent<Config: crate::ppo::knobs::Tunable> {
     /// What is kept of the policy that plays the episode, before its update changes it.
     type Before: Send;
 
@@ -155,7 +157,7 @@ struct Start(u64);
 impl RunVisitor for Start {
     type Output = Result<Box<dyn LiveRun>, PpoError>;
 
-    fn visit<C: AgentConfig>(self, config: &C) -> Self::Output
+    fn visit<C: Tunable>(self, config: &C) -> Self::Output
     where
         C::Agent: LiveAgent,
     {

@@ -1,0 +1,316 @@
+//! One abstraction for every agent the course trains: [`OnPolicyAgent`].
+//!
+//! The seed's PPO and REINFORCE on CartPole ([`Agent`](super::Agent), the algorithm chosen by
+//! [`PpoConfig::algorithm`](super::PpoConfig)) and the book's `PPOContinuous` on Pendulum
+//! ([`PpoContinuous`](super::PpoContinuous)) all do the same five things: act on one
+//! observation, collect an episode into a batch, update on the batch (returning a trace of
+//! every intermediate), validate their configuration, and save and load their weights.
+//! Everything that drives an agent is written once, generic over this trait:
+//!
+//! - [`Training`](super::train::Training): `train_on_policy_agent`, one episode at a time;
+//! - [`train_seeds`](super::seeds::train_seeds): one configuration over several seeds;
+//! - in the course crate above this one (`ppo-engine`): the live session, `ppo-tutor
+//!   train`, the lab and the sandbox, through its run registry, the one place that
+//!   matches on the agent.
+//!
+//! Adding an agent: CONTRIBUTING.md, "Adding an agent".
+//!
+//! ```
+//! use ppo_rl::ppo::{OnPolicyAgent, PpoConfig, PpoContinuousConfig, Training};
+//!
+//! fn mean_return<A: OnPolicyAgent>(config: A::Config) -> Result<f64, ppo_rl::ppo::PpoError> {
+//!     let mut run = Training::<A>::new(config, 0)?;
+//!     while run.next_episode()?.is_some() {}
+//!     Ok(run.summary().mean_last(2))
+//! }
+//! let cartpole = PpoConfig { num_episodes: 2, ..PpoConfig::default() };
+//! let pendulum = PpoContinuousConfig { num_episodes: 2, ..PpoContinuousConfig::default() };
+//! assert!(mean_return::<ppo_rl::ppo::Agent>(cartpole)? > 0.0);
+//! assert!(mean_return::<ppo_rl::ppo::PpoContinuous>(pendulum)? < 0.0);
+//! # Ok::<(), ppo_rl::ppo::PpoError>(())
+//! ```
+
+use std::fmt::Debug;
+use std::path::Path;
+
+use serde::Serialize;
+
+use super::PpoError;
+use super::checkpoint::CheckpointKind;
+use super::model::NamedWeights;
+use crate::env::{CartPole, EnvError, Pendulum};
+
+/// One step of an [`Environment`], as Gymnasium's `env.step` returns it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnvStep<O> {
+    /// The next observation.
+    pub obs: O,
+    /// The reward.
+    pub reward: f64,
+    /// The episode ended in a terminal state (the pole fell, the cart left the track).
+    pub terminated: bool,
+    /// The time limit cut the episode.
+    pub truncated: bool,
+}
+
+/// An environment an agent trains on: Gymnasium's `reset` and `step`.
+pub trait Environment: Clone + Debug + Send + 'static {
+    /// One observation.
+    type Obs: Copy + Debug + Send + 'static;
+    /// One action.
+    type Action: Copy + Debug + Send + 'static;
+
+    /// Starts an episode; `seed` reseeds the environment's generator (Gymnasium's
+    /// `reset(seed=...)`), `None` continues it.
+    fn reset(&mut self, seed: Option<u64>) -> Self::Obs;
+
+    /// Applies `action`.
+    ///
+    /// # Errors
+    /// An [`EnvError`] for an invalid action or a step before `reset`.
+    fn step(&mut self, action: Self::Action) -> Result<EnvStep<Self::Obs>, EnvError>;
+
+    /// The time limit: steps after which an episode is truncated.
+    fn time_limit(&self) -> usize;
+}
+
+impl Environment for CartPole {
+    type Obs = [f32; 4];
+    type Action = usize;
+
+    fn reset(&mut self, seed: Option<u64>) -> [f32; 4] {
+        CartPole::reset(self, seed)
+    }
+
+    fn step(&mut self, action: usize) -> Result<EnvStep<[f32; 4]>, EnvError> {
+        let s = CartPole::step(self, action)?;
+        Ok(EnvStep {
+            obs: s.obs,
+            reward: s.reward,
+            terminated: s.terminated,
+            truncated: s.truncated,
+        })
+    }
+
+    fn time_limit(&self) -> usize {
+        self.config().env_id.max_episode_steps() as usize
+    }
+}
+
+impl Environment for Pendulum {
+    type Obs = [f32; 3];
+    /// The sampled torque, unclipped: the environment clips it to `[-2, 2]`, as the book's
+    /// `env.step([action])` leaves it to Gymnasium.
+    type Action = f32;
+
+    fn reset(&mut self, seed: Option<u64>) -> [f32; 3] {
+        Pendulum::reset(self, seed)
+    }
+
+    fn step(&mut self, torque: f32) -> Result<EnvStep<[f32; 3]>, EnvError> {
+        let s = Pendulum::step(self, f64::from(torque))?;
+        Ok(EnvStep {
+            obs: s.obs,
+            reward: s.reward,
+            terminated: s.terminated,
+            truncated: s.truncated,
+        })
+    }
+
+    fn time_limit(&self) -> usize {
+        crate::env::pendulum::MAX_EPISODE_STEPS as usize
+    }
+}
+
+/// One episode's transitions, the seed's `transition_dict`.
+pub trait Batch: Default + Clone + Debug + Send + 'static {
+    /// One observation.
+    type Obs;
+    /// One action.
+    type Action;
+
+    /// Appends one step, as the seed's five `transition_dict[...].append(...)`:
+    /// `done = terminated or truncated`; an agent that does not bootstrap on truncation
+    /// ignores `terminated`.
+    fn record(
+        &mut self,
+        state: Self::Obs,
+        action: Self::Action,
+        reward: f32,
+        next_state: Self::Obs,
+        done: bool,
+        terminated: bool,
+    );
+
+    /// The number of transitions.
+    fn steps(&self) -> usize;
+
+    /// Gymnasium's `terminated` for each step.
+    fn terminated(&self) -> Vec<bool>;
+}
+
+/// Checks one episode's columns: at least one step, and every column (name, length) as long
+/// as `actions`, the `n` steps.
+///
+/// # Errors
+/// [`PpoError::EmptyBatch`], or [`PpoError::InvalidBatch`] naming the first column of
+/// another length.
+pub(crate) fn check_columns(n: usize, columns: &[(&str, usize)]) -> Result<(), PpoError> {
+    if n == 0 {
+        return Err(PpoError::EmptyBatch);
+    }
+    match columns.iter().find(|(_, len)| *len != n) {
+        Some((name, len)) => Err(PpoError::InvalidBatch(format!(
+            "{name} has {len} entries but actions has {n}: every column needs one per step"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The hyper-parameters of an agent's run.
+pub trait AgentConfig: Clone + Debug + PartialEq + Send + Sync + Serialize + 'static {
+    /// The agent these settings train.
+    type Agent: OnPolicyAgent<Config = Self>;
+
+    /// Every field in its range.
+    ///
+    /// # Errors
+    /// [`PpoError::InvalidConfig`] naming the first field out of range and its range.
+    fn validate(&self) -> Result<(), PpoError>;
+
+    /// Episodes the run trains for (one update per episode).
+    fn num_episodes(&self) -> usize;
+
+    /// The Gymnasium id of the environment the run plays (`CartPole-v0` where the settings
+    /// say so).
+    fn env_id(&self) -> &'static str;
+
+    /// The highest return an episode can have, for a plot's scale (CartPole's time limit,
+    /// Pendulum's 0).
+    fn max_return(&self) -> f64;
+
+    /// The Gymnasium ids a run of this agent can play, in the sandbox's order
+    /// (`CartPole-v1`, `CartPole-v0`).
+    const ENV_IDS: &'static [&'static str];
+
+    /// Plays `id`, one of [`AgentConfig::ENV_IDS`]; `false` (nothing changed) for another.
+    fn set_env_id(&mut self, id: &str) -> bool;
+}
+
+/// An on-policy agent: the seed's `take_action` and `update`, with the environment it
+/// plays, the batch it learns from and the trace each update records.
+pub trait OnPolicyAgent: Sized + Clone + Debug + Send + 'static {
+    /// Its hyper-parameters.
+    type Config: AgentConfig<Agent = Self>;
+    /// The environment it plays.
+    type Env: Environment;
+    /// One episode of that environment.
+    type Batch: Batch<Obs = Obs<Self>, Action = Action<Self>>;
+    /// What one update records: every intermediate the faces show.
+    type Trace: Clone + Debug + PartialEq + Send + Serialize + 'static;
+
+    /// How its checkpoints are marked (environment and algorithm).
+    const CHECKPOINT: CheckpointKind;
+
+    /// A fresh agent: networks initialised from `seed` (as `torch.manual_seed(seed)`).
+    ///
+    /// # Errors
+    /// [`PpoError::InvalidConfig`] for a hyper-parameter out of range.
+    fn create(config: &Self::Config, seed: u64) -> Result<Self, PpoError>;
+
+    /// The environment a run of `config` plays.
+    fn environment(config: &Self::Config) -> Self::Env;
+
+    /// Samples an action for one observation (the seed's `take_action`).
+    ///
+    /// # Errors
+    /// [`PpoError::NonFinite`] when the policy's output is not finite.
+    fn act(&mut self, obs: &Obs<Self>) -> Result<Action<Self>, PpoError>;
+
+    /// One update on an episode (the seed's `update`), recording every intermediate.
+    ///
+    /// # Errors
+    /// [`PpoError::EmptyBatch`], [`PpoError::InvalidBatch`] or [`PpoError::NonFinite`].
+    fn learn(&mut self, batch: &Self::Batch) -> Result<Self::Trace, PpoError>;
+
+    /// Which implementation ran the update `trace` records (plain `f32` kernels or candle).
+    fn path_of(trace: &Self::Trace) -> super::UpdatePath;
+
+    /// The weights, with PyTorch's names.
+    ///
+    /// # Errors
+    /// [`PpoError::Candle`] if a tensor cannot be read back (a bug).
+    fn named_weights(&self) -> Result<NamedWeights, PpoError>;
+
+    /// Writes the weights to a safetensors checkpoint marked [`Self::CHECKPOINT`].
+    ///
+    /// # Errors
+    /// [`PpoError::File`] when the file cannot be written.
+    fn save_to(&self, path: &Path) -> Result<(), PpoError> {
+        super::checkpoint::write_checkpoint(path, self.named_weights()?, Self::CHECKPOINT)
+    }
+
+    /// Reads a checkpoint written by [`OnPolicyAgent::save_to`] (hidden width from the
+    /// file); actions are sampled with `seed`.
+    ///
+    /// # Errors
+    /// [`PpoError::File`], [`PpoError::MissingKey`] or [`PpoError::WrongShape`], naming the
+    /// file and the tensor.
+    fn load_from(path: &Path, config: &Self::Config, seed: u64) -> Result<Self, PpoError>;
+
+    /// Whether a recorded update whose first case starts from `weights_before` (the
+    /// fixture's JSON object of named tensors) is this agent's.
+    fn replays(weights_before: &serde_json::Value) -> bool;
+
+    /// Replays every case of a recorded PyTorch update of this agent
+    /// (`tests/fixtures/*_update_pytorch.json`): one result per case; `file` names the file
+    /// in errors.
+    ///
+    /// # Errors
+    /// [`PpoError::File`], [`PpoError::MissingKey`] or [`PpoError::WrongShape`] naming the
+    /// key, when the file cannot be read as this agent's cases.
+    #[allow(clippy::type_complexity)]
+    fn replay(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError>;
+}
+
+/// One case of a recorded PyTorch update, replayed: what `ppo-tutor replay` prints.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Replayed {
+    /// The case's transitions.
+    pub transitions: usize,
+    /// `(actor_loss, critic_loss)` of each epoch.
+    pub losses: Vec<(f32, f32)>,
+    /// Every tensor the update computed, as JSON text in the fixture's key names, shapes
+    /// and order (f32 values printed as f32, shortest form).
+    pub output: String,
+}
+
+impl Replayed {
+    /// Replays `cases` with `replay`; `summary` gives a case's transitions and each epoch's
+    /// `(actor_loss, critic_loss)` from the case and its output.
+    pub(crate) fn all<C, O: Serialize>(
+        cases: &[C],
+        replay: impl Fn(&C) -> Result<O, PpoError>,
+        summary: impl Fn(&C, &O) -> (usize, Vec<(f32, f32)>),
+    ) -> Vec<Result<Self, PpoError>> {
+        cases
+            .iter()
+            .map(|case| {
+                let out = replay(case)?;
+                let (transitions, losses) = summary(case, &out);
+                let output = serde_json::to_string(&out)
+                    .map_err(|e| PpoError::NonFinite(format!("the replay's output: {e}")))?;
+                Ok(Self {
+                    transitions,
+                    losses,
+                    output,
+                })
+            })
+            .collect()
+    }
+}
+
+/// The observation type of agent `A`.
+pub type Obs<A> = <<A as OnPolicyAgent>::Env as Environment>::Obs;
+/// The action type of agent `A`.
+pub type Action<A> = <<A as OnPolicyAgent>::Env as Environment>::Action;
