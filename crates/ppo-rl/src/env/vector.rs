@@ -40,8 +40,12 @@ pub struct VecStep<O = [f32; 4]> {
     pub terminated: Vec<bool>,
     /// Whether each environment was truncated by the time limit on this step.
     pub truncated: Vec<bool>,
-    /// The terminal observation of each environment that ended on this step.
+    /// The terminal observation of each environment that ended on this step (same-step
+    /// autoreset; under next-step it is in `obs`).
     pub final_obs: Vec<Option<O>>,
+    /// Next-step autoreset: this step reset the environment; its action was ignored, its
+    /// reward is 0 and both flags are false. Always false under same-step autoreset.
+    pub reset: Vec<bool>,
 }
 
 /// N CartPoles with automatic reset, stored as a struct of arrays.
@@ -81,6 +85,7 @@ impl CartPoleVec {
                 terminated: vec![false; n],
                 truncated: vec![false; n],
                 final_obs: vec![None; n],
+                reset: vec![false; n],
             },
         };
         for i in 0..n {
@@ -116,6 +121,23 @@ impl CartPoleVec {
             self.theta[i],
             self.theta_dot[i],
         ])
+    }
+
+    /// Resets every environment, as Gymnasium's `envs.reset(seed=...)`: `Some(s)` reseeds
+    /// environment `i` with `s + i` (wrapping), `None` continues each generator.
+    pub fn reset_all(&mut self, seed: Option<u64>) {
+        if let Some(s) = seed {
+            for (i, rng) in self.rngs.iter_mut().enumerate() {
+                *rng = NumpyRng::from_seed(s.wrapping_add(i as u64));
+            }
+        }
+        for i in 0..self.len() {
+            self.reset_one(i);
+        }
+        self.out.rewards.fill(0.0);
+        self.out.terminated.fill(false);
+        self.out.truncated.fill(false);
+        self.out.final_obs.fill(None);
     }
 
     fn reset_one(&mut self, i: usize) {
@@ -278,6 +300,7 @@ impl PendulumVec {
                 terminated: vec![false; n],
                 truncated: vec![false; n],
                 final_obs: vec![None; n],
+                reset: vec![false; n],
             },
         };
         for i in 0..n {
@@ -308,6 +331,23 @@ impl PendulumVec {
     #[must_use]
     pub fn state(&self, i: usize) -> Option<[f64; 2]> {
         Some([*self.theta.get(i)?, self.theta_dot[i]])
+    }
+
+    /// Resets every environment, as Gymnasium's `envs.reset(seed=...)`: `Some(s)` reseeds
+    /// environment `i` with `s + i` (wrapping), `None` continues each generator.
+    pub fn reset_all(&mut self, seed: Option<u64>) {
+        if let Some(s) = seed {
+            for (i, rng) in self.rngs.iter_mut().enumerate() {
+                *rng = NumpyRng::from_seed(s.wrapping_add(i as u64));
+            }
+        }
+        for i in 0..self.len() {
+            self.reset_one(i);
+        }
+        self.out.rewards.fill(0.0);
+        self.out.terminated.fill(false);
+        self.out.truncated.fill(false);
+        self.out.final_obs.fill(None);
     }
 
     fn reset_one(&mut self, i: usize) {
