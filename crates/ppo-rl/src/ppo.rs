@@ -10,7 +10,10 @@
 //! - [`agent`]: [`Agent`] with `take_action` and `update`, which returns an [`UpdateTrace`].
 //! - [`trace`]: the recorded intermediates every face displays.
 //! - [`gradient`]: the policy gradient and PPO's surrogate have one gradient at θ_old, computed.
-//! - [`train`](mod@train): `train_on_policy_agent` as a step-by-step [`Trainer`].
+//! - [`rollout`]: how experience is collected between updates, written once: the seed's
+//!   one episode ([`OneEpisode`]) or `T` steps of a vector of environments ([`FixedSteps`]).
+//! - [`train`](mod@train): `train_on_policy_agent` as a step-by-step [`Trainer`], driving the
+//!   agent's rollout.
 //! - [`moving_average`](mod@moving_average): `rl_utils.moving_average`, for the return curve.
 //! - [`seeds`]: one configuration over several seeds in parallel, and the band of their curves.
 //! - [`checkpoint`]: saving and loading an agent as safetensors with PyTorch's names.
@@ -50,6 +53,7 @@ pub mod on_policy;
 pub mod ops;
 pub(crate) mod ranges;
 pub mod replay_file;
+pub mod rollout;
 pub mod seeds;
 pub mod train;
 pub mod update_path;
@@ -71,9 +75,14 @@ pub use continuous::{
 pub use gradient::{SurrogateGradients, surrogate_gradients};
 pub use model::{Linear, NamedWeights, PolicyNet, ValueNet, WeightTensor};
 pub use moving_average::moving_average;
-pub use on_policy::{AgentConfig, Batch, EnvStep, Environment, OnPolicyAgent};
+pub use on_policy::{AgentConfig, Batch, Budget, EnvStep, Environment, OnPolicyAgent};
+pub use rollout::{
+    Collected, FinishedEpisode, FixedSteps, OneEpisode, Rollout, StepBuffer, VecActor,
+};
 pub use trace::{EarlyStop, EpochTrace, PenaltyTrace, UpdateTrace};
-pub use train::{ContinuousTrainer, EpisodeReport, TrainSummary, Trainer, Training, train};
+pub use train::{
+    ContinuousTrainer, EpisodeReport, TrainSummary, Trainer, Training, UpdateReport, train,
+};
 pub use update_path::UpdatePath;
 
 use crate::env::EnvError;

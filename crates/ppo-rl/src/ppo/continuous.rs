@@ -138,6 +138,7 @@ impl AgentConfig for PpoContinuousConfig {
 impl OnPolicyAgent for PpoContinuous {
     type Config = PpoContinuousConfig;
     type Env = Pendulum;
+    type Rollout = super::rollout::OneEpisode<Pendulum>;
     type Batch = ContinuousTransitions;
     type Trace = ContinuousUpdateTrace;
 

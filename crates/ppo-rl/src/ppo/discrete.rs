@@ -95,6 +95,7 @@ impl AgentConfig for PpoConfig {
 impl OnPolicyAgent for Agent {
     type Config = PpoConfig;
     type Env = CartPole;
+    type Rollout = super::rollout::OneEpisode<CartPole>;
     type Batch = Transitions;
     type Trace = UpdateTrace;
 

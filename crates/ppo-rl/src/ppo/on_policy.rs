@@ -85,6 +85,15 @@ pub(crate) fn check_columns(n: usize, columns: &[(&str, usize)]) -> Result<(), P
     }
 }
 
+/// How long a run trains.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Budget {
+    /// Until this many episodes have finished (the seed's `num_episodes`).
+    Episodes(usize),
+    /// Until this many environment steps have been taken (CleanRL's `total_timesteps`).
+    Steps(u64),
+}
+
 /// The hyper-parameters of an agent's run.
 pub trait AgentConfig: Clone + Debug + PartialEq + Send + Sync + Serialize + 'static {
     /// The agent these settings train.
@@ -98,6 +107,12 @@ pub trait AgentConfig: Clone + Debug + PartialEq + Send + Sync + Serialize + 'st
 
     /// Episodes the run trains for (one update per episode).
     fn num_episodes(&self) -> usize;
+
+    /// When the run stops: after [`AgentConfig::num_episodes`] episodes unless the agent
+    /// says otherwise (a fixed-steps rollout counts environment steps).
+    fn budget(&self) -> Budget {
+        Budget::Episodes(self.num_episodes())
+    }
 
     /// The Gymnasium id of the environment the run plays (`CartPole-v0` where the settings
     /// say so).
@@ -122,8 +137,11 @@ pub trait OnPolicyAgent: Sized + Clone + Debug + Send + 'static {
     type Config: AgentConfig<Agent = Self>;
     /// The environment it plays.
     type Env: Environment;
-    /// One episode of that environment.
+    /// What one update learns from (one episode of that environment, for the seed's agents).
     type Batch: Batch<Obs = Obs<Self>, Action = Action<Self>>;
+    /// How that batch is collected ([`OneEpisode`](super::rollout::OneEpisode) for the
+    /// seed's agents).
+    type Rollout: super::rollout::Rollout<Self>;
     /// What one update records: every intermediate the faces show.
     type Trace: Clone + Debug + PartialEq + Send + Serialize + 'static;
 

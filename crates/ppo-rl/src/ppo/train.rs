@@ -36,7 +36,8 @@ use serde::Serialize;
 use super::PpoError;
 use super::agent::{Agent, Losses};
 use super::continuous::PpoContinuous;
-use super::on_policy::{AgentConfig, Batch, Environment, OnPolicyAgent};
+use super::on_policy::{AgentConfig, Batch, Budget, OnPolicyAgent};
+use super::rollout::{FinishedEpisode, Rollout};
 use super::trace::UpdateTrace;
 
 /// The seed's number of progress bars.
@@ -68,6 +69,23 @@ pub struct EpisodeReport<T = UpdateTrace> {
     pub trace: T,
 }
 
+/// What one update produced, for any rollout; `T` is the agent's update trace.
+#[derive(Debug, Clone, Serialize)]
+pub struct UpdateReport<T = UpdateTrace> {
+    /// The update, from 0.
+    pub update: usize,
+    /// Environment steps in its rollout.
+    pub steps: usize,
+    /// Environment steps since training began.
+    pub total_steps: u64,
+    /// The episodes that finished in its rollout (`end_step` counted since training began).
+    pub episodes: Vec<FinishedEpisode>,
+    /// Gymnasium's `terminated` for each transition of the batch.
+    pub terminated: Vec<bool>,
+    /// The update, every intermediate.
+    pub trace: T,
+}
+
 /// Training so far, and the final result.
 #[derive(Debug, Clone, Serialize)]
 pub struct TrainSummary {
@@ -75,6 +93,9 @@ pub struct TrainSummary {
     pub returns: Vec<f64>,
     /// Environment steps over all episodes.
     pub env_steps: u64,
+    /// Environment steps since training began at the end of each episode: the x-axis on
+    /// which runs with different rollouts compare.
+    pub episode_end_steps: Vec<u64>,
     /// Wall-clock time spent in [`Training::next_episode`].
     pub wall_s: f64,
 }
@@ -126,15 +147,16 @@ pub fn iteration_of(num_episodes: usize, episode: usize) -> (usize, usize, usize
     (bars - 1, episode.saturating_sub(start), base)
 }
 
-/// The training loop of any agent as a state machine: call [`Training::next_episode`]
-/// until it gives `None`.
+/// The training loop of any agent as a state machine: call [`Training::next_update`] (or,
+/// for a one-episode rollout, [`Training::next_episode`]) until it gives `None`.
 #[derive(Debug, Clone)]
 pub struct Training<A: OnPolicyAgent> {
     config: A::Config,
-    seed: u64,
     agent: A,
-    env: A::Env,
+    rollout: A::Rollout,
+    updates: usize,
     returns: Vec<f64>,
+    episode_end_steps: Vec<u64>,
     env_steps: u64,
     elapsed: Duration,
 }
@@ -152,13 +174,14 @@ impl<A: OnPolicyAgent> Training<A> {
     /// [`PpoError::InvalidConfig`] for a hyper-parameter out of range.
     pub fn new(config: A::Config, seed: u64) -> Result<Self, PpoError> {
         let agent = A::create(&config, seed)?;
-        let env = A::environment(&config);
+        let rollout = A::Rollout::start(&config, seed);
         Ok(Self {
             config,
-            seed,
             agent,
-            env,
+            rollout,
+            updates: 0,
             returns: Vec::new(),
+            episode_end_steps: Vec::new(),
             env_steps: 0,
             elapsed: Duration::ZERO,
         })
@@ -188,10 +211,19 @@ impl<A: OnPolicyAgent> Training<A> {
         &self.returns
     }
 
-    /// Whether every episode has been played.
+    /// The rollout, as far as it has run.
+    #[must_use]
+    pub fn rollout(&self) -> &A::Rollout {
+        &self.rollout
+    }
+
+    /// Whether the run's budget (episodes or environment steps) is spent.
     #[must_use]
     pub fn is_done(&self) -> bool {
-        self.returns.len() >= self.config.num_episodes()
+        match self.config.budget() {
+            Budget::Episodes(n) => self.returns.len() >= n,
+            Budget::Steps(n) => self.env_steps >= n,
+        }
     }
 
     /// The result so far.
@@ -200,6 +232,7 @@ impl<A: OnPolicyAgent> Training<A> {
         TrainSummary {
             returns: self.returns.clone(),
             env_steps: self.env_steps,
+            episode_end_steps: self.episode_end_steps.clone(),
             wall_s: self.elapsed.as_secs_f64(),
         }
     }
@@ -210,11 +243,69 @@ impl<A: OnPolicyAgent> Training<A> {
         iteration_of(self.config.num_episodes(), episode)
     }
 
+    /// Collects one rollout and updates the agent on it; `None` once the budget is spent.
+    ///
+    /// # Errors
+    /// [`PpoError::Diverged`] naming the update when an action, target or loss turns NaN or
+    /// infinite.
+    pub fn next_update(&mut self) -> Result<Option<UpdateReport<A::Trace>>, PpoError> {
+        self.update_with(A::learn)
+    }
+
+    /// [`Training::next_update`] with the update done by `update` (the agent's own
+    /// [`OnPolicyAgent::learn`], or one with a learner's losses).
+    ///
+    /// # Errors
+    /// As [`Training::next_update`], plus an error `update` returned.
+    pub fn update_with(
+        &mut self,
+        update: impl FnOnce(&mut A, &A::Batch) -> Result<A::Trace, PpoError>,
+    ) -> Result<Option<UpdateReport<A::Trace>>, PpoError> {
+        if self.is_done() {
+            return Ok(None);
+        }
+        let started = Instant::now();
+        // A one-episode run names the episode that diverged, as the seed counts them.
+        let episode = self.returns.len();
+        let diverged = |e: PpoError| match e {
+            PpoError::NonFinite(what) => PpoError::Diverged { episode, what },
+            other => other,
+        };
+        let collected = self.rollout.collect(&mut self.agent).map_err(diverged)?;
+        let trace = update(&mut self.agent, &collected.batch).map_err(diverged)?;
+        let before = self.env_steps;
+        self.env_steps += collected.steps as u64;
+        let episodes: Vec<FinishedEpisode> = collected
+            .episodes
+            .into_iter()
+            .map(|e| FinishedEpisode {
+                end_step: before + e.end_step,
+                ..e
+            })
+            .collect();
+        for e in &episodes {
+            self.returns.push(e.episode_return);
+            self.episode_end_steps.push(e.end_step);
+        }
+        let update = self.updates;
+        self.updates += 1;
+        self.elapsed += started.elapsed();
+        Ok(Some(UpdateReport {
+            update,
+            steps: collected.steps,
+            total_steps: self.env_steps,
+            episodes,
+            terminated: collected.batch.terminated(),
+            trace,
+        }))
+    }
+
     /// Plays one episode and updates the agent on it; `None` once all episodes are done.
     ///
     /// # Errors
     /// [`PpoError::Diverged`] naming the episode when an action, target or loss turns NaN
-    /// or infinite.
+    /// or infinite; [`PpoError::InvalidBatch`] when the agent's rollout is not one episode
+    /// (use [`Training::next_update`] for those).
     pub fn next_episode(&mut self) -> Result<Option<EpisodeReport<A::Trace>>, PpoError> {
         self.episode(A::learn)
     }
@@ -228,64 +319,35 @@ impl<A: OnPolicyAgent> Training<A> {
         &mut self,
         update: impl FnOnce(&mut A, &A::Batch) -> Result<A::Trace, PpoError>,
     ) -> Result<Option<EpisodeReport<A::Trace>>, PpoError> {
-        if self.is_done() {
-            return Ok(None);
-        }
-        let started = Instant::now();
         let episode = self.returns.len();
-        let diverged = |e: PpoError| match e {
-            PpoError::NonFinite(what) => PpoError::Diverged { episode, what },
-            other => other,
+        let Some(report) = self.update_with(update)? else {
+            return Ok(None);
         };
-        let (transitions, episode_return) = self.play_episode(episode).map_err(diverged)?;
-        let trace = update(&mut self.agent, &transitions).map_err(diverged)?;
-        let steps = transitions.steps();
-        self.returns.push(episode_return);
-        self.env_steps += steps as u64;
-        self.elapsed += started.elapsed();
+        let [finished] = report.episodes[..] else {
+            return Err(PpoError::InvalidBatch(format!(
+                "update {} finished {} episodes: next_episode needs a one-episode rollout; \
+                 call next_update for this agent",
+                report.update,
+                report.episodes.len()
+            )));
+        };
         let (iteration, episode_in_iteration, iteration_len) = self.iteration_of(episode);
-        let limit = self.env.time_limit();
+        let steps = report.steps;
         Ok(Some(EpisodeReport {
             episode,
             iteration,
             episode_in_iteration,
             iteration_len,
-            episode_return,
+            episode_return: finished.episode_return,
             steps,
-            total_steps: self.env_steps,
-            terminated: transitions.terminated(),
-            truncated: (1..=steps).map(|t| t >= limit).collect(),
-            trace,
+            total_steps: report.total_steps,
+            terminated: report.terminated,
+            truncated: (1..=steps)
+                .map(|t| t == steps && finished.truncated)
+                .collect(),
+            trace: report.trace,
         }))
     }
-
-    // ANCHOR: episode_loop
-    /// One episode with the current policy: the `while not done` loop of the seed and the book.
-    fn play_episode(&mut self, episode: usize) -> Result<(A::Batch, f64), PpoError> {
-        let seed = (episode == 0).then_some(self.seed); // env.reset(seed=seed) only once
-        let mut state = self.env.reset(seed);
-        let mut transition_dict = A::Batch::default();
-        let mut episode_return = 0.0;
-        loop {
-            let action = self.agent.act(&state)?; // the seed's agent.take_action(state)
-            let step = self.env.step(action)?;
-            let done = step.terminated || step.truncated;
-            transition_dict.record(
-                state,
-                action,
-                step.reward as f32,
-                step.obs,
-                done,
-                step.terminated,
-            );
-            state = step.obs;
-            episode_return += step.reward;
-            if done {
-                return Ok((transition_dict, episode_return));
-            }
-        }
-    }
-    // ANCHOR_END: episode_loop
 }
 
 impl Training<Agent> {
@@ -367,6 +429,38 @@ mod tests {
         assert_eq!(t.iteration_of(1), (0, 1, 2));
         assert_eq!(t.iteration_of(2), (1, 0, 2));
         assert_eq!(t.iteration_of(11), (9, 0, 1));
+        Ok(())
+    }
+
+    #[test]
+    fn updates_and_episodes_agree_and_count_steps() -> Result<(), PpoError> {
+        let config = PpoConfig {
+            num_episodes: 4,
+            ..PpoConfig::default()
+        };
+        let mut by_episode = Trainer::new(config.clone(), 3)?;
+        let mut by_update = Trainer::new(config, 3)?;
+        let mut total = 0;
+        while let Some(e) = by_episode.next_episode()? {
+            let Some(u) = by_update.next_update()? else {
+                panic!("the same budget gives the same number of updates");
+            };
+            total += e.steps as u64;
+            assert_eq!(
+                (u.update, u.steps, u.total_steps),
+                (e.episode, e.steps, total)
+            );
+            assert_eq!(u.episodes.len(), 1, "one episode per update");
+            assert_eq!(u.episodes[0].episode_return, e.episode_return);
+            assert_eq!(u.episodes[0].end_step, total);
+            assert_eq!(u.episodes[0].truncated, e.truncated.last() == Some(&true));
+            assert_eq!(u.trace, e.trace);
+        }
+        assert!(by_update.next_update()?.is_none());
+        let (a, b) = (by_episode.summary(), by_update.summary());
+        assert_eq!(a.returns, b.returns);
+        assert_eq!(a.episode_end_steps, b.episode_end_steps);
+        assert_eq!(a.episode_end_steps.last(), Some(&a.env_steps));
         Ok(())
     }
 

@@ -7,10 +7,10 @@
 //! fresh Adam state. `expected` holds every intermediate of that update, `weights_after` the
 //! weights after its 10 epochs.
 //!
-//! Tolerances (from the issue): every tensor (scaled_rewards, td_target, td_delta,
-//! advantage, mu, std, old_log_probs; per epoch log_probs, ratio, surr1, surr2) within 1e-5
-//! relative; the losses within 1e-4 relative; the weights after the update within 1e-5
-//! absolute.
+//! Tolerances (fair for float32 rounding over these reductions): every tensor
+//! (scaled_rewards, td_target, td_delta, advantage, mu, std, old_log_probs; per epoch
+//! log_probs, ratio, surr1, surr2) within 1e-5 relative; the losses within 1e-4 relative;
+//! the weights after the update within 1e-5 absolute.
 //!
 //! "Relative" is entry by entry, against `max(|value|, floor)`. For the values that are
 //! sums of larger terms the floor is the size of those terms: td_target (`scaled_r + γV'`),
