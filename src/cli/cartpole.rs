@@ -1,6 +1,10 @@
-//! `ppo-tutor cartpole`: run the native CartPole and print what Gymnasium would.
+//! `ppo-tutor cartpole`: run the native CartPole and print what Gymnasium would; with
+//! `--envs N`, N of them as Gymnasium's `SyncVectorEnv` ([`vector`]).
+
+pub mod vector;
 
 use std::io::Write;
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
 
@@ -9,14 +13,14 @@ use clap::{Args, ValueEnum};
 
 use super::args::{ActionList, parse_actions, parse_env, parse_seed};
 use super::pad_left;
-use crate::env::{CartPoleConfig, EnvId, Integrator, Policy, Trajectory};
+use crate::env::{Autoreset, CartPoleConfig, EnvId, Integrator, Policy, Trajectory};
 use crate::i18n::t as t_;
 use crate::tr;
 
 /// Arguments of `ppo-tutor cartpole`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  ppo-tutor cartpole --seed 0 --actions 0,1,1,0 --json\n  ppo-tutor cartpole --seed 3 --policy lean --render"
+    after_help = "Examples:\n  ppo-tutor cartpole --seed 0 --actions 0,1,1,0 --json\n  ppo-tutor cartpole --seed 3 --policy lean --render\n  ppo-tutor cartpole --envs 4 --seed 0 --autoreset next-step --actions-file steps.json --json"
 )]
 pub struct CartpoleArgs {
     /// Seed for reset(seed=...), any integer from 0 to 2^64-1.
@@ -49,6 +53,45 @@ pub struct CartpoleArgs {
     /// Animate the cart and pole in the terminal instead of printing a table.
     #[arg(long)]
     pub render: bool,
+    /// Step N CartPoles together, as Gymnasium's SyncVectorEnv (env i reset with seed + i); needs --actions-file.
+    #[arg(long, value_name = "N", value_parser = parse_envs, requires = "actions_file",
+          conflicts_with_all = ["actions", "policy", "render", "resets"], allow_hyphen_values = true)]
+    pub envs: Option<usize>,
+    /// With --envs: how an env whose episode ended is reset, same-step (gymnasium 0.29, CleanRL) or next-step (Gymnasium 1.x).
+    #[arg(long, value_name = "MODE", value_enum, default_value_t = AutoresetArg::SameStep, requires = "envs")]
+    pub autoreset: AutoresetArg,
+    /// With --envs N: a JSON file of steps, each an array of N actions 0 or 1, like [[0, 1], [1, 1]].
+    #[arg(long, value_name = "FILE", requires = "envs")]
+    pub actions_file: Option<PathBuf>,
+}
+
+/// `--envs`: a number of environments, 1 or more.
+fn parse_envs(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n > 0 => Ok(n),
+        _ => Err(tr!(
+            "expected a number of environments, 1 or more, got '{s}'",
+            "应为环境的个数，至少 1，实际是 '{s}'"
+        )),
+    }
+}
+
+/// The `--autoreset` choices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum AutoresetArg {
+    /// The ending step returns the next episode's first observation, the last one in final_obs.
+    SameStep,
+    /// The ending step returns the last observation; the next step resets that env.
+    NextStep,
+}
+
+impl From<AutoresetArg> for Autoreset {
+    fn from(mode: AutoresetArg) -> Self {
+        match mode {
+            AutoresetArg::SameStep => Autoreset::SameStep,
+            AutoresetArg::NextStep => Autoreset::NextStep,
+        }
+    }
 }
 
 /// The `--policy` choices.
@@ -70,6 +113,9 @@ pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
         config.integrator = Integrator::SemiImplicitEuler;
     }
     config.sutton_barto_reward = args.sutton_barto_reward;
+    if let (Some(n), Some(file)) = (args.envs, &args.actions_file) {
+        return vector::run(config, n, args.seed, args.autoreset.into(), file, args.json);
+    }
     let (policy, max_steps) = match (&args.actions, args.policy) {
         (Some(ActionList(list)), _) => (Policy::Actions(list.clone()), list.len()),
         (None, Some(PolicyArg::Random)) => (Policy::Random, args.max_steps),
@@ -79,8 +125,8 @@ pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
                 "{}{}{}",
                 super::error_prefix(),
                 t_(
-                    "give --actions 0,1,... or --policy random|lean",
-                    "请给出 --actions 0,1,...，或者 --policy random 或 --policy lean"
+                    "give --actions 0,1,... or --policy random|lean (or --envs N --actions-file FILE)",
+                    "请给出 --actions 0,1,...，或者 --policy random 或 --policy lean（或者 --envs N --actions-file FILE）"
                 ),
                 super::see_help()
             );

@@ -58,7 +58,7 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     ),
     (
         "cartpole#after",
-        "示例：\n  ppo-tutor cartpole --seed 0 --actions 0,1,1,0 --json\n  ppo-tutor cartpole --seed 3 --policy lean --render",
+        "示例：\n  ppo-tutor cartpole --seed 0 --actions 0,1,1,0 --json\n  ppo-tutor cartpole --seed 3 --policy lean --render\n  ppo-tutor cartpole --envs 4 --seed 0 --autoreset next-step --actions-file steps.json --json",
     ),
     (
         "cartpole:seed",
@@ -93,6 +93,26 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     (
         "cartpole:resets",
         "再记录 N 次不带随机种子的重置后的状态（记在 `next_resets` 里）",
+    ),
+    (
+        "cartpole:envs",
+        "把 N 个车杆一起步进，如同 Gymnasium 的 `SyncVectorEnv`（环境 i 用种子 seed + i 重置）；需要 --actions-file",
+    ),
+    (
+        "cartpole:autoreset",
+        "配合 --envs：回合结束的环境如何重置，`same-step`（Gymnasium 0.29、CleanRL）或 `next-step`（Gymnasium 1.x）",
+    ),
+    (
+        "cartpole:autoreset=same-step",
+        "结束的那一步就返回下一回合的第一个观测，真正的最后观测放在 final_obs 里",
+    ),
+    (
+        "cartpole:autoreset=next-step",
+        "结束的那一步返回真正的最后观测；下一步才重置该环境",
+    ),
+    (
+        "cartpole:actions_file",
+        "配合 --envs N：一个 JSON 文件，由步组成的数组，每步是 N 个 0 或 1 的动作，例如 [[0, 1], [1, 1]]",
     ),
     (
         "cartpole:json",
@@ -463,6 +483,8 @@ pub const VALUE_NAMES_ZH: &[(&str, &str)] = &[
     ("LS_MAX_STEP", "α"),
     ("MAX_GRAD_NORM", "范数"),
     ("MAX_STEPS", "步数"),
+    ("MODE", "方式"),
+    ("N", "个数"),
     ("OBJECTIVE", "目标"),
     ("PATH", "路径"),
     ("POLICY", "策略"),

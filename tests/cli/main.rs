@@ -13,4 +13,5 @@ mod pendulum_train;
 mod ppo;
 mod screenshots;
 mod trust_region;
+mod vector;
 mod zh_output;
