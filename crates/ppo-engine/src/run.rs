@@ -361,7 +361,7 @@ impl RunConfig {
         self.visit(FirstSnapshot(seed))
     }
 
-    /// The ids of this run's knobs ([`AgentConfig::KNOBS`]), in display order.
+    /// The ids of this run's knobs ([`Tunable::KNOBS`]), in display order.
     #[must_use]
     pub fn knob_ids(&self) -> Vec<&'static str> {
         self.visit(KnobIds)

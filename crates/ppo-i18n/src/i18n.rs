@@ -6,7 +6,7 @@
 //!
 //! - lesson prose comes from `lesson.md` or its twin `lesson.zh.md` (and likewise
 //!   `quiz.zh.toml`, `exercise.zh.toml`, `exercise.zh.rs`): structure is shared, only the
-//!   prose is per language ([`crate::lesson::Course::embedded_in`]);
+//!   prose is per language (the course's `lesson::Course::embedded_in`);
 //! - interface text is written at its call site in both languages, `t("quit", "退出")`, or
 //!   with arguments, `tr!("{n} episodes", "{n} 个回合")`, so no string can exist in one
 //!   language only.

@@ -7,7 +7,7 @@ use crate::lesson::live::Snapshot;
 use crate::ppo::trust_region::{ProbeSettings, TrustRegionProbe, probe};
 use crate::ppo::{PpoConfig, PpoError};
 
-/// [`probe`](crate::ppo::trust_region::probe) from a live CartPole snapshot: `θ_old` is the actor that played the latest
+/// [`crate::ppo::trust_region::probe`] from a live CartPole snapshot: `θ_old` is the actor that played the latest
 /// batch ([`Snapshot::played_with`]), the direction that batch's surrogate gradient
 /// ([`Snapshot::gradients`]), the critic the snapshot's weights after the update.
 /// `config` must be the run's: its γ, λ, environment and done switch are checked against

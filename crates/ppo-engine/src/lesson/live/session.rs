@@ -29,7 +29,7 @@ pub const MOVING_AVERAGE_WINDOW: usize = 9;
 
 /// An agent the live session can show: what it keeps of the policy before an episode,
 /// and how the episode's report fills the snapshot. Its settings carry the sandbox's
-/// knobs ([`Tunable`](crate::ppo::knobs::Tunable)).
+/// knobs ([`crate::ppo::knobs::Tunable`]).
 pub trait LiveAgent: OnPolicyAgent<Config: crate::ppo::knobs::Tunable> {
     /// What is kept of the policy that plays the episode, before its update changes it.
     type Before: Send;

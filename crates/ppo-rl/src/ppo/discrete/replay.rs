@@ -22,8 +22,8 @@
 //!
 //! The continuous agent's fixture (`ppo_continuous_update_pytorch.json`, the book's
 //! `PPOContinuous` on Pendulum) has the same layout with a Gaussian actor
-//! (`actor.fc_mu`, `actor.fc_std`); [`replay_file::replay_any`](crate::ppo::replay_file::replay_any)
-//! tells the two apart by those keys and [`continuous::replay`](crate::ppo::continuous::replay) runs it.
+//! (`actor.fc_mu`, `actor.fc_std`); each agent's `OnPolicyAgent::replays` tells the two
+//! apart by those keys (the course's `run::replay_any` asks every agent) and [`continuous::replay`](crate::ppo::continuous::replay) runs it.
 
 use crate::i18n::t;
 use serde::Serialize;

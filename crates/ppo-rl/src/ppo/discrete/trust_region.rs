@@ -30,7 +30,7 @@
 //! ```
 //!
 //! each with its standard error over the `E` episodes. `Â` uses the critic the caller gives
-//! ([`probe_snapshot`]: the snapshot's critic *after* the update, which has just been fitted
+//! (the course's `probe_snapshot`: the snapshot's critic *after* the update, which has just been fitted
 //! to `π_old`'s latest batch) and the config's done mask (the seed's: terminated or
 //! truncated); it is not normalised even when the config normalises it, since the
 //! prediction is in units of return. The truth uses common random numbers: episode `e` of
