@@ -214,14 +214,7 @@ impl<E: Environment> SyncVectorEnv<E> {
             envs,
             autoreset,
             pending: vec![false; n],
-            out: VecStep {
-                obs: Vec::new(),
-                rewards: vec![0.0; n],
-                terminated: vec![false; n],
-                truncated: vec![false; n],
-                final_obs: vec![None; n],
-                reset: vec![false; n],
-            },
+            out: VecStep::before_reset(n),
         })
     }
 
@@ -251,13 +244,8 @@ impl<E: Environment> VectorEnv for SyncVectorEnv<E> {
             .enumerate()
             .map(|(i, env)| env.reset(seed.map(|s| s.wrapping_add(i as u64))))
             .collect();
-        let n = self.envs.len();
-        self.pending = vec![false; n];
-        self.out.rewards = vec![0.0; n];
-        self.out.terminated = vec![false; n];
-        self.out.truncated = vec![false; n];
-        self.out.final_obs = vec![None; n];
-        self.out.reset = vec![false; n];
+        self.pending.fill(false);
+        self.out.clear_step();
         &self.out.obs
     }
 

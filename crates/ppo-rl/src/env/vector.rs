@@ -48,6 +48,38 @@ pub struct VecStep<O = [f32; 4]> {
     pub reset: Vec<bool>,
 }
 
+impl<O: Clone> VecStep<O> {
+    /// The outputs of `n` environments before their first reset: no observations yet, no
+    /// rewards, no ends.
+    pub(crate) fn before_reset(n: usize) -> Self {
+        Self {
+            obs: Vec::new(),
+            rewards: vec![0.0; n],
+            terminated: vec![false; n],
+            truncated: vec![false; n],
+            final_obs: vec![None; n],
+            reset: vec![false; n],
+        }
+    }
+
+    /// Forgets the last step's rewards, flags and final observations, as a reset does.
+    pub(crate) fn clear_step(&mut self) {
+        self.rewards.fill(0.0);
+        self.terminated.fill(false);
+        self.truncated.fill(false);
+        self.final_obs.fill(None);
+        self.reset.fill(false);
+    }
+}
+
+/// The generators of `n` environments as Gymnasium seeds a vector env: environment `i`
+/// with `seed + i` (wrapping).
+fn seeded_rngs(n: usize, seed: u64) -> Vec<NumpyRng> {
+    (0..n as u64)
+        .map(|i| NumpyRng::from_seed(seed.wrapping_add(i)))
+        .collect()
+}
+
 /// N CartPoles with automatic reset, stored as a struct of arrays.
 #[derive(Debug, Clone)]
 pub struct CartPoleVec {
@@ -74,18 +106,12 @@ impl CartPoleVec {
             theta: vec![0.0; n],
             theta_dot: vec![0.0; n],
             elapsed: vec![0; n],
-            rngs: (0..n as u64)
-                .map(|i| NumpyRng::from_seed(seed.wrapping_add(i)))
-                .collect(),
+            rngs: seeded_rngs(n, seed),
             sin: vec![0.0; n],
             cos: vec![0.0; n],
             out: VecStep {
                 obs: vec![[0.0; 4]; n],
-                rewards: vec![0.0; n],
-                terminated: vec![false; n],
-                truncated: vec![false; n],
-                final_obs: vec![None; n],
-                reset: vec![false; n],
+                ..VecStep::before_reset(n)
             },
         };
         for i in 0..n {
@@ -127,17 +153,12 @@ impl CartPoleVec {
     /// environment `i` with `s + i` (wrapping), `None` continues each generator.
     pub fn reset_all(&mut self, seed: Option<u64>) {
         if let Some(s) = seed {
-            for (i, rng) in self.rngs.iter_mut().enumerate() {
-                *rng = NumpyRng::from_seed(s.wrapping_add(i as u64));
-            }
+            self.rngs = seeded_rngs(self.len(), s);
         }
         for i in 0..self.len() {
             self.reset_one(i);
         }
-        self.out.rewards.fill(0.0);
-        self.out.terminated.fill(false);
-        self.out.truncated.fill(false);
-        self.out.final_obs.fill(None);
+        self.out.clear_step();
     }
 
     fn reset_one(&mut self, i: usize) {
@@ -289,18 +310,12 @@ impl PendulumVec {
             theta: vec![0.0; n],
             theta_dot: vec![0.0; n],
             elapsed: vec![0; n],
-            rngs: (0..n as u64)
-                .map(|i| NumpyRng::from_seed(seed.wrapping_add(i)))
-                .collect(),
+            rngs: seeded_rngs(n, seed),
             sin: vec![0.0; n],
             cos: vec![1.0; n],
             out: VecStep {
                 obs: vec![[0.0; 3]; n],
-                rewards: vec![0.0; n],
-                terminated: vec![false; n],
-                truncated: vec![false; n],
-                final_obs: vec![None; n],
-                reset: vec![false; n],
+                ..VecStep::before_reset(n)
             },
         };
         for i in 0..n {
@@ -337,17 +352,12 @@ impl PendulumVec {
     /// environment `i` with `s + i` (wrapping), `None` continues each generator.
     pub fn reset_all(&mut self, seed: Option<u64>) {
         if let Some(s) = seed {
-            for (i, rng) in self.rngs.iter_mut().enumerate() {
-                *rng = NumpyRng::from_seed(s.wrapping_add(i as u64));
-            }
+            self.rngs = seeded_rngs(self.len(), s);
         }
         for i in 0..self.len() {
             self.reset_one(i);
         }
-        self.out.rewards.fill(0.0);
-        self.out.terminated.fill(false);
-        self.out.truncated.fill(false);
-        self.out.final_obs.fill(None);
+        self.out.clear_step();
     }
 
     fn reset_one(&mut self, i: usize) {
