@@ -4,7 +4,7 @@
 use std::collections::BTreeSet;
 use std::process::Command;
 
-use ppo_tutor::lesson::{Course, Environment, VIEWS, anchor, live};
+use ppo_tutor::lesson::{AgentKind, Course, VIEWS, anchor, live};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -43,7 +43,7 @@ fn the_course_is_complete_and_consistent() -> TestResult {
     // The last two lessons run the book's PPOContinuous on Pendulum, the rest CartPole.
     for l in &course.lessons {
         let pendulum = ["continuous-actions", "pendulum"].contains(&l.id.as_str());
-        assert_eq!(l.env == Environment::Pendulum, pendulum, "{}: env", l.id);
+        assert_eq!(l.env == AgentKind::Pendulum, pendulum, "{}: env", l.id);
     }
     let unique: BTreeSet<&str> = ids.iter().copied().collect();
     assert_eq!(unique.len(), course.lessons.len(), "ids are unique");
@@ -489,7 +489,7 @@ fn every_lesson_has_a_quiz_and_predictions_follow_from_the_lesson() -> TestResul
     use ppo_tutor::lesson::quiz::{Answer, Basis, QuestionKind, template};
     let course = Course::embedded()?;
     let mut runs = std::collections::BTreeMap::new();
-    for env in Environment::ALL {
+    for env in AgentKind::ALL {
         let mut snapshots = Vec::new();
         for seed in [0, 1, 2] {
             for episodes in [3, 12] {
@@ -660,7 +660,7 @@ fn run_measures_differ_between_runs() -> TestResult {
     use ppo_tutor::lesson::quiz::all_measures;
     use ppo_tutor::lesson::{RunConfig, Session};
     let mut snapshots = Vec::new();
-    for env in Environment::ALL {
+    for env in AgentKind::ALL {
         for seed in [0, 1] {
             for episodes in [3, 12] {
                 snapshots.push(Session::run(RunConfig::default_for(env), seed, episodes)?);
@@ -669,10 +669,10 @@ fn run_measures_differ_between_runs() -> TestResult {
     }
     let mut checked = 0;
     for m in all_measures().filter(|m| m.depends_on_run()) {
-        for env in Environment::ALL {
+        for env in AgentKind::ALL {
             let values: Vec<f64> = snapshots
                 .iter()
-                .filter(|s| s.env == env)
+                .filter(|s| s.agent == env)
                 .filter_map(|s| (m.value)(s))
                 .collect();
             if values.len() < 2 {

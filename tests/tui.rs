@@ -8,7 +8,7 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use ppo_tutor::i18n::Lang;
-use ppo_tutor::lesson::{Course, Environment, Progress, RunConfig, Session};
+use ppo_tutor::lesson::{AgentKind, Course, Progress, RunConfig, Session};
 use ppo_tutor::ppo::{PpoConfig, PpoContinuousConfig};
 use ppo_tutor::tui::app::{App, Overlay, TrainState};
 use ppo_tutor::tui::keys::Action;
@@ -34,7 +34,7 @@ fn screen(app: &App, width: u16, height: u16) -> Result<String, Box<dyn std::err
 /// A Pendulum lesson starts a fresh Pendulum run: the screens show a real 3-episode one
 /// (seed 0), as CartPole lessons show a 3-episode CartPole run.
 fn show_pendulum_run(app: &mut App) -> TestResult {
-    if app.run.env == Environment::Pendulum && app.run.snapshot.episodes == 0 {
+    if app.run.agent == AgentKind::Pendulum && app.run.snapshot.episodes == 0 {
         app.show(Session::run(PpoContinuousConfig::default(), 0, 3)?);
     }
     Ok(())
@@ -46,7 +46,7 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
     // A CartPole run of 3 episodes, then a Pendulum lesson.
     app.show(Session::run(PpoConfig::default(), 0, 3)?);
     open(&mut app, "continuous-actions")?;
-    assert_eq!(app.run.env, Environment::Pendulum);
+    assert_eq!(app.run.agent, AgentKind::Pendulum);
     let sent: Vec<Command> = app.run.outbox.drain(..).collect();
     assert!(
         sent.iter()
@@ -78,7 +78,7 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
         "the same environment keeps the run"
     );
     open(&mut app, "beyond-the-seed")?;
-    assert_eq!(app.run.env, Environment::CartPole);
+    assert_eq!(app.run.agent, AgentKind::CartPole);
     assert!(matches!(
         app.run.outbox.pop(),
         Some(Command::Switch { config, .. }) if matches!(config.as_ref(), RunConfig::CartPole(_))
@@ -95,8 +95,8 @@ fn a_pendulum_lesson_runs_pendulum_and_a_cartpole_lesson_cartpole() -> TestResul
     );
     open(&mut app, "pendulum")?;
     assert_eq!(
-        (app.run.env, app.run.snapshot.episodes),
-        (Environment::Pendulum, 2)
+        (app.run.agent, app.run.snapshot.episodes),
+        (AgentKind::Pendulum, 2)
     );
     Ok(())
 }
@@ -110,10 +110,10 @@ fn the_sandbox_switches_the_environment_to_pendulum() -> TestResult {
     }
     app.update(Action::Increase); // CartPole-v1 -> CartPole-v0
     app.update(Action::Increase); // -> Pendulum-v1, the book's defaults
-    assert_eq!(app.sandbox.env(), Environment::Pendulum);
+    assert_eq!(app.sandbox.env(), AgentKind::Pendulum);
     insta::assert_snapshot!("sandbox_pendulum", screen(&app, 140, 45)?);
     app.update(Action::Enter);
-    assert_eq!(app.run.env, Environment::Pendulum);
+    assert_eq!(app.run.agent, AgentKind::Pendulum);
     let sent: Vec<Command> = app.run.outbox.drain(..).collect();
     assert!(
         matches!(sent.first(), Some(Command::Reset { config, .. })
@@ -292,7 +292,7 @@ fn the_worker_keeps_one_session_per_environment() -> TestResult {
     assert!(matches!(wait()?, WorkerEvent::Reset { seed: 0 }));
     cmd_tx.send(Command::OneEpisode)?;
     let s = episode(wait()?)?;
-    assert_eq!((s.env, s.episodes), (Environment::Pendulum, 1));
+    assert_eq!((s.agent, s.episodes), (AgentKind::Pendulum, 1));
     cmd_tx.send(Command::Switch {
         config: Box::new(RunConfig::CartPole(config.clone())),
         seed: 9,

@@ -19,6 +19,7 @@ use super::train::{TrainEnv, parse_train_env};
 use crate::env::{CartPole, EnvId, Pendulum};
 use crate::i18n::t;
 use crate::ppo::{Agent, CheckpointKind, PpoConfig, PpoContinuous, PpoContinuousConfig};
+use crate::run::AgentKind;
 use crate::tr;
 use crate::tui::widgets::pendulum::PendulumView;
 
@@ -62,8 +63,8 @@ pub struct PlayArgs {
 /// shape), `--env` names another environment than the checkpoint's, or writing to the
 /// terminal failed.
 pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
-    let kind = CheckpointKind::of_file(&args.load);
-    let pendulum_file = kind == Some(CheckpointKind::PendulumPpoContinuous);
+    let kind = CheckpointKind::of_file(&args.load, &AgentKind::ALL.map(AgentKind::checkpoint));
+    let pendulum_file = kind == Some(AgentKind::Pendulum.checkpoint());
     let env = match args.env_id {
         None if pendulum_file => TrainEnv::Pendulum,
         None => TrainEnv::CartPole(EnvId::CartPoleV1),

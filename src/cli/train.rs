@@ -434,7 +434,7 @@ pub(super) fn run_json(
         "config": setup,
     });
     // book_ppo_continuous.py's figure, beside the seed's.
-    let window = setup.env().spec().summary_window;
+    let window = setup.agent().spec().summary_window;
     if window != 50 {
         value[format!("mean_last_{window}")] = json!(summary.mean_last(window));
     }
@@ -465,7 +465,7 @@ fn print_summary(
         .copied()
         .fold(f64::NEG_INFINITY, f64::max);
     // CartPole's returns are whole numbers; Pendulum's are not.
-    let best = setup.env().format_return(best);
+    let best = setup.agent().format_return(best);
     let title = labels::return_title(labels::algorithm(setup), setup.env_id());
     let (episodes, steps) = (summary.returns.len(), summary.env_steps);
     let (wall, rate) = (summary.wall_s, summary.steps_per_s());
@@ -477,7 +477,7 @@ fn print_summary(
             "{title}，随机种子 {seed}：{episodes} 个回合，环境共 {steps} 步，用时 {wall:.2} 秒（每秒 {rate:.0} 步）"
         )
     )?;
-    let last = setup.env().spec().summary_window;
+    let last = setup.agent().spec().summary_window;
     let (n, mean, mean10) = (
         summary.returns.len().min(last),
         summary.mean_last(last),

@@ -973,7 +973,7 @@ mod tests {
             steps,
             exercise: None,
             quiz: Vec::new(),
-            env: crate::lesson::Environment::CartPole,
+            env: crate::lesson::AgentKind::CartPole,
         }
     }
 

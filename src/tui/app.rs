@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use crate::i18n::{Lang, LangGuard, t};
-use crate::lesson::{Course, Environment, Lesson, Progress, RunConfig, Snapshot, Step};
+use crate::lesson::{AgentKind, Course, Lesson, Progress, RunConfig, Snapshot, Step};
 use crate::ppo::PpoConfig;
 use crate::ppo::lab::Experiment;
 
@@ -149,7 +149,7 @@ impl App {
         let env = course
             .lessons
             .get(lesson)
-            .map_or_else(Environment::default, |l| l.env);
+            .map_or_else(AgentKind::default, |l| l.env);
         let run = Run::new(env);
         Self {
             course,
@@ -379,7 +379,7 @@ impl App {
             Action::Sandbox => {
                 self.sandbox = Sandbox::for_run(
                     self.run.config(),
-                    self.run.config_for(Environment::default()),
+                    self.run.config_for(AgentKind::default()),
                     self.run.seed,
                 );
                 self.open(Overlay::Sandbox);
@@ -592,7 +592,7 @@ impl App {
             .current_step()
             .is_some_and(|s| s.show.iter().any(|v| v == "trust_region"));
         let s = &self.run.snapshot;
-        if !shows || s.played_with.is_none() || s.env != crate::lesson::Environment::CartPole {
+        if !shows || s.played_with.is_none() || s.agent != crate::lesson::AgentKind::CartPole {
             return None;
         }
         let episodes = s.episodes;

@@ -4,9 +4,9 @@
 //! app knows of them, and the commands it sends ([`Run::outbox`]).
 
 use crate::i18n::t;
-use crate::lesson::{Environment, RunConfig, Snapshot};
+use crate::lesson::{AgentKind, RunConfig, Snapshot};
 use crate::ppo::PpoConfig;
-use crate::run::RunConfigs;
+use crate::run::{PerAgent, RunConfigs};
 use crate::tr;
 
 use super::worker::{Command, WorkerEvent};
@@ -81,14 +81,14 @@ pub struct Run {
     pub frame: usize,
     /// The previous run's curve, overlaid on the plot after a sandbox retrain.
     pub previous: Option<PreviousCurve>,
-    /// The other environment's run while its lessons are not open (the worker keeps its
-    /// session): browsing back continues it.
-    pub parked: Option<ParkedRun>,
+    /// Each other agent's run while its lessons are not open (the worker keeps its
+    /// session), one slot per agent: browsing back continues it.
+    pub parked: PerAgent<Option<ParkedRun>>,
     /// Hyper-parameters of each environment's run: the current one's, and the next one's
     /// on every other environment.
     pub configs: RunConfigs,
     /// The environment of the current run: the open lesson's.
-    pub env: Environment,
+    pub agent: AgentKind,
     /// Seed of the current run.
     pub seed: u64,
     /// Commands for the worker, taken and sent by the event loop.
@@ -101,7 +101,7 @@ pub struct Run {
 impl Run {
     /// A fresh, paused run on `env` with the defaults (seed 0).
     #[must_use]
-    pub fn new(env: Environment) -> Self {
+    pub fn new(env: AgentKind) -> Self {
         let configs = RunConfigs::defaults();
         let snapshot = configs[env].first_snapshot(0);
         Self {
@@ -109,9 +109,9 @@ impl Run {
             snapshot,
             frame: 0,
             previous: None,
-            parked: None,
+            parked: PerAgent::from_fn(|_| None),
             configs,
-            env,
+            agent: env,
             seed: 0,
             outbox: Vec::new(),
             id: 0,
@@ -121,12 +121,12 @@ impl Run {
     /// The current run's environment and settings, as the worker's session was started.
     #[must_use]
     pub fn config(&self) -> RunConfig {
-        self.config_for(self.env)
+        self.config_for(self.agent)
     }
 
     /// A run on `env` with that environment's settings in force.
     #[must_use]
-    pub fn config_for(&self, env: Environment) -> RunConfig {
+    pub fn config_for(&self, env: AgentKind) -> RunConfig {
         self.configs[env].clone()
     }
 
@@ -144,7 +144,7 @@ impl Run {
     pub fn changed_settings(&self) -> Vec<String> {
         use crate::ppo::knobs::KnobValue;
         let run = self.config();
-        let defaults = RunConfig::default_for(run.env());
+        let defaults = RunConfig::default_for(run.agent());
         let mut changed = Vec::new();
         if run.env_id() != defaults.env_id() {
             changed.push(format!("env {} ({})", run.env_id(), defaults.env_id()));
@@ -202,7 +202,7 @@ impl Run {
             run: self.id,
         });
         self.show(config.first_snapshot(seed));
-        self.env = config.env();
+        self.agent = config.agent();
         self.configs.set(config);
         self.seed = seed;
         self.train = TrainState::Paused;
@@ -296,12 +296,12 @@ impl Run {
         }
     }
 
-    /// A lesson on `env` opened: if it is the other environment, that environment's run
-    /// continues if one was set aside, else a fresh one starts there (paused), with that
-    /// environment's settings in force; the run left behind is set aside, not thrown away.
-    /// Says which, when the environment changed.
-    pub fn follow(&mut self, env: Environment) -> Option<String> {
-        if env == self.env {
+    /// A lesson on `env` opened: if it is another agent's, that agent's run continues if
+    /// one was set aside, else a fresh one starts there (paused), with that agent's settings
+    /// in force; the run left behind is set aside in its agent's slot, not thrown away. Says
+    /// which, when the agent changed.
+    pub fn follow(&mut self, env: AgentKind) -> Option<String> {
+        if env == self.agent {
             return None;
         }
         let config = self.config_for(env);
@@ -321,10 +321,11 @@ impl Run {
             },
             previous: self.previous.take(),
         };
+        self.parked[self.agent] = Some(left);
         self.frame = 0;
-        self.env = env;
+        self.agent = env;
         self.train = TrainState::Paused;
-        let said = match self.parked.take().filter(|p| p.snapshot.env == env) {
+        let said = match self.parked[env].take() {
             Some(back) => {
                 let episodes = back.snapshot.episodes;
                 self.show(back.snapshot);
@@ -345,7 +346,6 @@ impl Run {
                 self.seed
             ),
         };
-        self.parked = Some(left);
         Some(said)
     }
 }

@@ -216,14 +216,14 @@ fn scroll_code(
 /// learner's own file for each exercise of the step's lesson (`order`) it shows.
 fn code_lines(
     step: &crate::lesson::Step,
-    (env, order): (crate::lesson::Environment, u32),
+    (env, order): (crate::lesson::AgentKind, u32),
     passed: &dyn Fn(&str) -> bool,
     theme: Theme,
     columns: usize,
 ) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
     if !step.python.is_empty() {
-        // Whose PyTorch program the lines quote (`Environment::python_source`).
+        // Whose PyTorch program the lines quote (`AgentKind::python_source`).
         let source = env.source_name();
         lines.push(Line::styled(
             tr!("# {source} (PyTorch)", "# {source}（PyTorch）"),
@@ -459,7 +459,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
                     .as_ref()
                     .map(|(label, values)| (label.as_str(), *values)),
                 max_return: app.run.config().max_return(),
-                min_return: app.run.env.spec().plot_floor,
+                min_return: app.run.agent.spec().plot_floor,
                 block: panel(
                     &tr!(
                         "{} on {}",

@@ -15,6 +15,7 @@ use std::sync::mpsc::{Receiver, Sender, TryRecvError};
 use std::thread::JoinHandle;
 
 use crate::lesson::{RunConfig, Session, Snapshot};
+use crate::run::PerAgent;
 
 /// What the UI asks of the worker.
 #[derive(Debug, Clone, PartialEq)]
@@ -101,8 +102,8 @@ fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Send
     // The app's number of the run being trained (0 until its first reset or switch).
     let mut id = 0;
     let mut session = start(config, seed, id, events);
-    // The other environment's session, kept while its lessons are not open.
-    let mut parked: Option<Session> = None;
+    // Each other agent's session, kept while its lessons are not open: one slot per agent.
+    let mut parked: PerAgent<Option<Session>> = PerAgent::from_fn(|_| None);
     let mut running = false;
     let mut one_more = false;
     loop {
@@ -136,14 +137,12 @@ fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Send
                 running = false;
                 one_more = false;
                 id = run;
-                let env = config.env();
-                let kept = parked.take();
-                let (back, other) = match kept {
-                    Some(s) if s.snapshot().env == env => (Some(s), None),
-                    other => (None, other),
-                };
-                let left = session.take();
-                session = if let Some(s) = back {
+                let agent = config.agent();
+                if let Some(left) = session.take() {
+                    let left_agent = left.snapshot().agent;
+                    parked[left_agent] = Some(left);
+                }
+                session = if let Some(s) = parked[agent].take() {
                     let episodes = s.snapshot().episodes;
                     let _ = events.send(WorkerEvent::Resumed { episodes });
                     Some(s)
@@ -154,7 +153,6 @@ fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Send
                     }
                     fresh
                 };
-                parked = left.filter(|s| s.snapshot().env != env).or(other);
             }
             None => {}
         }

@@ -174,11 +174,8 @@ fn allowed(files: &[&str]) -> Result<BTreeSet<String>, Box<dyn std::error::Error
             .iter()
             .map(|e| e.name().to_string()),
     );
-    for kind in [
-        ppo_tutor::ppo::CheckpointKind::CartPolePpo,
-        ppo_tutor::ppo::CheckpointKind::PendulumPpoContinuous,
-    ] {
-        allowed.insert(kind.algorithm().to_string());
+    for agent in ppo_tutor::run::AgentKind::ALL {
+        allowed.insert(agent.checkpoint().algorithm().to_string());
     }
     allowed.extend(files.iter().map(ToString::to_string));
     // Mathematical variables: one letter, alone or as a norm.

@@ -28,7 +28,7 @@ pub mod progress;
 pub mod quiz;
 pub mod reveal;
 
-pub use crate::run::{Environment, RunConfig};
+pub use crate::run::{AgentKind, RunConfig};
 pub use live::{Index, Mark, PolicyMap, Session, Snapshot, TensorView};
 pub use loader::{Course, LessonError};
 pub use progress::Progress;
@@ -53,7 +53,7 @@ pub struct Lesson {
     pub quiz: Vec<quiz::Question>,
     /// The environment whose live run the lesson shows (front matter `env`, by default
     /// CartPole-v1).
-    pub env: Environment,
+    pub env: AgentKind,
 }
 
 /// One step of a lesson: an explanation, the code that runs, and live values.

@@ -1,12 +1,15 @@
-//! The configuration of a run: which environment, which agent, which settings. This is the
-//! one place that matches on the environment; everything else is generic over
-//! [`AgentConfig`] and reaches the right agent through [`RunConfig::visit`], or reads what
-//! differs between environments from [`Environment::spec`].
+//! The registry of agents, and the configuration of a run: which agent (and so which
+//! environment), which settings. The `agents!` list below is the one list of agents: every
+//! per-agent list elsewhere ([`AgentKind::ALL`], [`PerAgent`], the checkpoint kinds
+//! [`AgentKind::checkpoint`], the command line's environments [`RunConfig::choices`]) is
+//! derived from it, and everything else is generic over [`AgentConfig`] and reaches the right
+//! agent through [`RunConfig::visit`], or reads what differs between agents from
+//! [`AgentKind::spec`].
 //!
 //! ```
 //! use ppo_engine::ppo::knobs::Tunable;
 //! use ppo_engine::ppo::{OnPolicyAgent, Training};
-//! use ppo_engine::run::{Environment, RunConfig, RunVisitor};
+//! use ppo_engine::run::{AgentKind, RunConfig, RunVisitor};
 //!
 //! /// The first return of a run, for any agent.
 //! struct FirstReturn;
@@ -20,9 +23,9 @@
 //!         Ok(run.next_episode()?.map_or(0.0, |r| r.episode_return))
 //!     }
 //! }
-//! for env in Environment::ALL {
+//! for env in AgentKind::ALL {
 //!     let first = RunConfig::default_for(env).visit(FirstReturn)?;
-//!     assert_eq!(first > 0.0, env == Environment::CartPole); // Pendulum's rewards are ≤ 0
+//!     assert_eq!(first > 0.0, env == AgentKind::CartPole); // Pendulum's rewards are ≤ 0
 //! }
 //! # Ok::<(), ppo_engine::ppo::PpoError>(())
 //! ```
@@ -37,46 +40,58 @@ use crate::ppo::knobs::Tunable;
 use crate::ppo::knobs::{self, KnobValue};
 use crate::ppo::on_policy::Replayed;
 use crate::ppo::replay_file::first_weights;
-use crate::ppo::{AgentConfig, OnPolicyAgent, PpoConfig, PpoContinuousConfig, PpoError};
+use crate::ppo::{
+    AgentConfig, CheckpointKind, OnPolicyAgent, PpoConfig, PpoContinuousConfig, PpoError,
+};
 
-/// Declares the agents a run can train: the [`Environment`] enum, the [`RunConfig`] enum
+/// Declares the agents a run can train: the [`AgentKind`] enum, the [`RunConfig`] enum
 /// and the dispatch between them. One line per agent: `Variant(ConfigType) = SPEC`; the
 /// first is the default.
 macro_rules! agents {
     ($( $(#[doc = $doc:expr])* $env:ident($config:ty) = $spec:expr ),+ $(,)?) => {
-        /// The environment a run (and a lesson's live view) trains on, one per agent.
+        /// The agent a run (and a lesson's live view) trains, each on its environment: one
+        /// variant per line of `agents!`.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-        pub enum Environment {
+        pub enum AgentKind {
             $( $(#[doc = $doc])* $env, )+
         }
 
         const COUNT: usize = [$(stringify!($env)),+].len();
 
         /// The first agent's: CartPole-v1 with the seed's PPO.
-        impl Default for Environment {
+        impl Default for AgentKind {
             fn default() -> Self {
                 Self::ALL[0]
             }
         }
 
-        impl Environment {
-            /// Every environment, in course order.
-            pub const ALL: [Environment; COUNT] = [$(Environment::$env),+];
+        impl AgentKind {
+            /// Every agent, in course order.
+            pub const ALL: [AgentKind; COUNT] = [$(AgentKind::$env),+];
 
-            /// The number of environments.
+            /// The number of agents.
             pub const COUNT: usize = COUNT;
 
-            /// The position in [`Environment::ALL`].
+            /// The position in [`AgentKind::ALL`].
             #[must_use]
             pub const fn index(self) -> usize {
                 self as usize
             }
 
-            /// What differs between the environments.
+            /// What differs between the agents' runs outside the agents themselves.
             #[must_use]
             pub const fn spec(self) -> &'static EnvSpec {
                 match self {
-                    $( Environment::$env => &$spec, )+
+                    $( AgentKind::$env => &$spec, )+
+                }
+            }
+
+            /// How this agent's checkpoint file is marked (its own declaration,
+            /// [`OnPolicyAgent::CHECKPOINT`]).
+            #[must_use]
+            pub const fn checkpoint(self) -> CheckpointKind {
+                match self {
+                    $( AgentKind::$env => <<$config as AgentConfig>::Agent as OnPolicyAgent>::CHECKPOINT, )+
                 }
             }
         }
@@ -92,7 +107,7 @@ macro_rules! agents {
         /// The first agent's defaults: CartPole-v1 with the seed's PPO.
         impl Default for RunConfig {
             fn default() -> Self {
-                Self::default_for(Environment::default())
+                Self::default_for(AgentKind::default())
             }
         }
 
@@ -133,17 +148,17 @@ macro_rules! agents {
             /// The defaults of `env`'s run: the reference hyper-parameters of its agent
             /// (the seed's, or the book's for Pendulum).
             #[must_use]
-            pub fn default_for(env: Environment) -> Self {
+            pub fn default_for(env: AgentKind) -> Self {
                 match env {
-                    $( Environment::$env => Self::$env(<$config>::default()), )+
+                    $( AgentKind::$env => Self::$env(<$config>::default()), )+
                 }
             }
 
-            /// The environment the run trains on.
+            /// The agent the run trains.
             #[must_use]
-            pub fn env(&self) -> Environment {
+            pub fn agent(&self) -> AgentKind {
                 match self {
-                    $( Self::$env(_) => Environment::$env, )+
+                    $( Self::$env(_) => AgentKind::$env, )+
                 }
             }
         }
@@ -206,7 +221,7 @@ pub struct EnvSpec {
     pub plot_floor: f64,
 }
 
-impl Environment {
+impl AgentKind {
     /// Whose PyTorch program a step's `python` lines quote: the seed's (`seed_ppo.py`) on
     /// CartPole, the book's `PPOContinuous` on Pendulum.
     #[must_use]
@@ -267,35 +282,35 @@ pub trait RunVisitorMut {
     fn visit_mut<C: Tunable>(self, config: &mut C) -> Self::Output;
 }
 
-/// One value per [`Environment`] (the settings of each environment's run, say), indexed by
-/// the environment.
+/// One value per [`AgentKind`] (the settings of each agent's run, say), indexed by the
+/// agent: adding an agent adds its slot, so no per-agent state is kept for "the other one".
 #[derive(Debug, Clone, PartialEq)]
-pub struct PerEnvironment<T>([T; Environment::COUNT]);
+pub struct PerAgent<T>([T; AgentKind::COUNT]);
 
-impl<T> PerEnvironment<T> {
-    /// `f(env)` for every environment.
+impl<T> PerAgent<T> {
+    /// `f(agent)` for every agent.
     #[must_use]
-    pub fn from_fn(f: impl FnMut(Environment) -> T) -> Self {
-        Self(Environment::ALL.map(f))
+    pub fn from_fn(f: impl FnMut(AgentKind) -> T) -> Self {
+        Self(AgentKind::ALL.map(f))
     }
 }
 
-impl<T> Index<Environment> for PerEnvironment<T> {
+impl<T> Index<AgentKind> for PerAgent<T> {
     type Output = T;
 
-    fn index(&self, env: Environment) -> &T {
+    fn index(&self, env: AgentKind) -> &T {
         &self.0[env.index()]
     }
 }
 
-impl<T> IndexMut<Environment> for PerEnvironment<T> {
-    fn index_mut(&mut self, env: Environment) -> &mut T {
+impl<T> IndexMut<AgentKind> for PerAgent<T> {
+    fn index_mut(&mut self, env: AgentKind) -> &mut T {
         &mut self.0[env.index()]
     }
 }
 
 /// The settings of every environment's run.
-pub type RunConfigs = PerEnvironment<RunConfig>;
+pub type RunConfigs = PerAgent<RunConfig>;
 
 impl RunConfigs {
     /// Every environment's defaults ([`RunConfig::default_for`]).
@@ -306,7 +321,7 @@ impl RunConfigs {
 
     /// Keeps `config` as its environment's settings.
     pub fn set(&mut self, config: RunConfig) {
-        let env = config.env();
+        let env = config.agent();
         self[env] = config;
     }
 
@@ -321,8 +336,8 @@ impl RunConfigs {
 /// Gymnasium ids.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Choice {
-    /// The agent's environment.
-    pub env: Environment,
+    /// The agent that plays it.
+    pub agent: AgentKind,
     /// The Gymnasium id (`CartPole-v0`).
     pub id: &'static str,
 }
@@ -372,7 +387,7 @@ impl RunConfig {
     #[must_use]
     pub fn all_knob_ids() -> Vec<&'static str> {
         let mut ids: Vec<&'static str> = Vec::new();
-        for env in Environment::ALL {
+        for env in AgentKind::ALL {
             for id in Self::default_for(env).knob_ids() {
                 if !ids.contains(&id) {
                     ids.push(id);
@@ -384,8 +399,8 @@ impl RunConfig {
 
     /// The environments whose agents have the knob `id`.
     #[must_use]
-    pub fn environments_with(id: &str) -> Vec<Environment> {
-        Environment::ALL
+    pub fn environments_with(id: &str) -> Vec<AgentKind> {
+        AgentKind::ALL
             .into_iter()
             .filter(|&env| Self::default_for(env).knob(id).is_some())
             .collect()
@@ -408,13 +423,13 @@ impl RunConfig {
     /// CartPole-v0, Pendulum-v1).
     #[must_use]
     pub fn choices() -> Vec<Choice> {
-        Environment::ALL
+        AgentKind::ALL
             .into_iter()
-            .flat_map(|env| {
-                Self::default_for(env)
+            .flat_map(|agent| {
+                Self::default_for(agent)
                     .visit(EnvIds)
                     .iter()
-                    .map(move |&id| Choice { env, id })
+                    .map(move |&id| Choice { agent, id })
             })
             .collect()
     }
@@ -423,7 +438,7 @@ impl RunConfig {
     #[must_use]
     pub fn choice(&self) -> Choice {
         Choice {
-            env: self.env(),
+            agent: self.agent(),
             id: self.env_id(),
         }
     }
@@ -553,7 +568,7 @@ impl RunVisitor for FirstSnapshot {
 #[allow(clippy::type_complexity)]
 pub fn replay_any(text: &str, file: &str) -> Result<Vec<Result<Replayed, PpoError>>, PpoError> {
     let weights = first_weights(text, file)?;
-    let env = Environment::ALL
+    let env = AgentKind::ALL
         .into_iter()
         .find(|env| RunConfig::default_for(*env).visit(Claims(&weights)))
         .unwrap_or_default();
@@ -597,18 +612,18 @@ mod tests {
 
     #[test]
     fn names_round_trip_and_specs_differ() {
-        for env in Environment::ALL {
-            assert_eq!(Environment::from_name(env.as_str()), Some(env));
-            assert_eq!(RunConfig::default_for(env).env(), env);
+        for env in AgentKind::ALL {
+            assert_eq!(AgentKind::from_name(env.as_str()), Some(env));
+            assert_eq!(RunConfig::default_for(env).agent(), env);
         }
-        assert_eq!(Environment::from_name("Acrobot-v1"), None);
-        assert_eq!(Environment::CartPole.format_return(500.0), "500");
-        assert_eq!(Environment::Pendulum.format_return(-123.456), "-123.5");
+        assert_eq!(AgentKind::from_name("Acrobot-v1"), None);
+        assert_eq!(AgentKind::CartPole.format_return(500.0), "500");
+        assert_eq!(AgentKind::Pendulum.format_return(-123.456), "-123.5");
     }
 
     #[test]
     fn the_config_serialises_as_its_agent_s() -> Result<(), serde_json::Error> {
-        let config = RunConfig::default_for(Environment::Pendulum);
+        let config = RunConfig::default_for(AgentKind::Pendulum);
         assert_eq!(
             serde_json::to_value(&config)?,
             serde_json::to_value(PpoContinuousConfig::default())?
@@ -630,18 +645,15 @@ mod tests {
         let ids: Vec<&str> = RunConfig::choices().iter().map(|c| c.id).collect();
         assert_eq!(ids, ["CartPole-v1", "CartPole-v0", "Pendulum-v1"]);
         for choice in RunConfig::choices() {
-            let mut config = RunConfig::default_for(choice.env);
+            let mut config = RunConfig::default_for(choice.agent);
             assert!(config.set_env_id(choice.id));
             assert_eq!(config.choice(), choice);
         }
         assert_eq!(RunConfig::all_knob_ids().len(), 16);
-        for env in Environment::ALL {
+        for env in AgentKind::ALL {
             assert_eq!(
                 env.index(),
-                Environment::ALL
-                    .iter()
-                    .position(|&e| e == env)
-                    .unwrap_or(99)
+                AgentKind::ALL.iter().position(|&e| e == env).unwrap_or(99)
             );
             let config = RunConfig::default_for(env);
             let ids = config.knob_ids();
@@ -653,9 +665,9 @@ mod tests {
         }
         assert_eq!(
             RunConfig::environments_with("no_clip"),
-            [Environment::CartPole]
+            [AgentKind::CartPole]
         );
-        let mut pendulum = RunConfig::default_for(Environment::Pendulum);
+        let mut pendulum = RunConfig::default_for(AgentKind::Pendulum);
         assert!(!pendulum.nudge("no_clip", true) && !pendulum.nudge("seed", true));
         assert!(pendulum.nudge("gamma", true));
         assert_eq!(
@@ -664,7 +676,7 @@ mod tests {
         );
         let mut configs = RunConfigs::defaults();
         configs.set(pendulum.clone());
-        assert_eq!(configs[Environment::Pendulum], pendulum);
+        assert_eq!(configs[AgentKind::Pendulum], pendulum);
         assert_eq!(configs.get::<PpoConfig>(), Some(&PpoConfig::default()));
     }
 }

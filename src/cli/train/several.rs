@@ -85,7 +85,7 @@ pub(super) fn run(
         .map(|r| crate::plot::window::smoothed(&r.summary.returns).1)
         .collect();
     let band = Band::of(&smoothed);
-    let last = setup.env().spec().summary_window;
+    let last = setup.agent().spec().summary_window;
     let finals: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(last)).collect();
 
     let mut out = std::io::stdout().lock();
@@ -176,9 +176,9 @@ fn seeds_json(
     (mean, std): (f64, f64),
     wall_s: f64,
 ) -> serde_json::Value {
-    let key = format!("mean_last_{}", setup.env().spec().summary_window);
+    let key = format!("mean_last_{}", setup.agent().spec().summary_window);
     let over_seeds = |k: usize| {
-        if k == setup.env().spec().summary_window {
+        if k == setup.agent().spec().summary_window {
             (mean, std)
         } else {
             let means: Vec<f64> = runs.iter().map(|r| r.summary.mean_last(k)).collect();
@@ -201,7 +201,7 @@ fn seeds_json(
                 "returns": r.summary.returns,
                 "moving_average": s,
             });
-            run[&key] = json!(r.summary.mean_last(setup.env().spec().summary_window));
+            run[&key] = json!(r.summary.mean_last(setup.agent().spec().summary_window));
             run
         }).collect::<Vec<_>>(),
         "moving_average_window": window,

@@ -8,7 +8,7 @@ use ratatui::widgets::{Paragraph, Widget};
 
 use super::{Component, Ctx, Reply, centered, clear, panel};
 use crate::i18n::t;
-use crate::lesson::{Environment, RunConfig};
+use crate::lesson::{AgentKind, RunConfig};
 use crate::ppo::knobs::KnobValue;
 use crate::tr;
 use crate::tui::keys::Action;
@@ -67,7 +67,7 @@ impl Sandbox {
     /// it is on that environment), first row highlighted.
     #[must_use]
     pub fn for_run(run: RunConfig, main: RunConfig, seed: u64) -> Self {
-        let main = if run.env() == main.env() {
+        let main = if run.agent() == main.agent() {
             run.clone()
         } else {
             main
@@ -88,8 +88,8 @@ impl Sandbox {
 
     /// The environment of the next run.
     #[must_use]
-    pub fn env(&self) -> Environment {
-        self.config.env()
+    pub fn env(&self) -> AgentKind {
+        self.config.agent()
     }
 
     /// Whether the knob `id` applies to the chosen environment (the discrete PPO's
@@ -153,14 +153,14 @@ impl Sandbox {
         let Some(&to) = choices.get(if up { at + 1 } else { at + n - 1 } % n.max(1)) else {
             return;
         };
-        if to.env != self.env() {
-            let next = if to.env == self.main.env() {
+        if to.agent != self.env() {
+            let next = if to.agent == self.main.agent() {
                 self.main.clone()
             } else {
-                RunConfig::default_for(to.env)
+                RunConfig::default_for(to.agent)
             };
             let left = std::mem::replace(&mut self.config, next);
-            if left.env() == self.main.env() {
+            if left.agent() == self.main.agent() {
                 self.main = left;
             }
         }
@@ -290,7 +290,7 @@ mod tests {
                 s.update(Action::Decrease);
             }
         }
-        assert_eq!(s.env(), Environment::CartPole);
+        assert_eq!(s.env(), AgentKind::CartPole);
         let c = cartpole(&s).cloned().unwrap_or_default();
         assert_eq!((c.eps, c.gamma, c.lmbda, s.seed), (0.05, 0.5, 0.0, 0));
         assert_eq!((c.actor_lr, c.critic_lr), (1e-6, 1e-6));
@@ -308,14 +308,14 @@ mod tests {
         for _ in 0..3 {
             s.update(Action::Increase);
             seen.push(s.value("env"));
-            if s.env() == Environment::Pendulum {
+            if s.env() == AgentKind::Pendulum {
                 // Edited, then left: choosing Pendulum again starts from the book's.
                 assert!(s.config.nudge("eps", true));
             }
         }
         assert_eq!(seen, ["CartPole-v0", "Pendulum-v1", "CartPole-v1"]);
         s.update(Action::Decrease);
-        assert_eq!(s.env(), Environment::Pendulum);
+        assert_eq!(s.env(), AgentKind::Pendulum);
         assert_eq!(
             s.config,
             RunConfig::from(PpoContinuousConfig::default()),

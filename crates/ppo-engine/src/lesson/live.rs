@@ -20,7 +20,7 @@ pub use values::{
     IN_BOTH, LIVE, LiveValue, NAMES, PENALTY_ONLY, PENDULUM_ONLY, is_known, lookup, why_missing,
 };
 
-use super::Environment;
+use super::AgentKind;
 use crate::ppo::model::ActorSnapshot;
 use crate::ppo::{
     ContinuousUpdateTrace, NamedWeights, PpoConfig, PpoContinuousConfig, SurrogateGradients,
@@ -243,7 +243,7 @@ pub struct Snapshot {
     /// ([`crate::ppo::trust_region::probe_snapshot`]) steps from.
     pub played_with: Option<ActorSnapshot>,
     /// The environment of the run (CartPole: [`Self::trace`]; Pendulum: [`Self::continuous`]).
-    pub env: Environment,
+    pub agent: AgentKind,
     /// Pendulum runs: the latest update's batch and intermediates.
     pub continuous: Option<ContinuousUpdateTrace>,
     /// Pendulum runs: the Gaussian policy's `(μ, σ)` over a grid of states, after the latest
@@ -320,7 +320,7 @@ impl Snapshot {
             hyper: hyper_table_continuous(config, seed),
             eps: config.eps as f32,
             gamma: config.gamma,
-            env: Environment::Pendulum,
+            agent: AgentKind::Pendulum,
             ..Self::default()
         }
     }
@@ -410,7 +410,7 @@ fn hyper_table_continuous(c: &PpoContinuousConfig, seed: u64) -> Vec<(String, St
         ("lmbda".into(), c.lmbda.to_string()),
         ("epochs".into(), c.epochs.to_string()),
         ("eps".into(), c.eps.to_string()),
-        ("env_name".into(), Environment::Pendulum.as_str().into()),
+        ("env_name".into(), AgentKind::Pendulum.as_str().into()),
         ("seed".into(), seed.to_string()),
     ]
 }

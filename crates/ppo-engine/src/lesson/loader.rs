@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::Deserialize;
 
-use super::{Environment, Exercise, Lesson, Step, VIEWS, anchor};
+use super::{AgentKind, Exercise, Lesson, Step, VIEWS, anchor};
 use crate::i18n::Lang;
 
 /// A lesson file that cannot be used, with where and how to fix it.
@@ -551,8 +551,8 @@ pub fn parse_lesson(dir: &str, text: &str) -> Result<Lesson, LessonError> {
         });
     }
     let env = match meta.env.as_deref() {
-        None => Environment::default(),
-        Some(name) => Environment::from_name(name).ok_or_else(|| LessonError::FrontMatter {
+        None => AgentKind::default(),
+        Some(name) => AgentKind::from_name(name).ok_or_else(|| LessonError::FrontMatter {
             dir: dir.into(),
             reason: format!(
                 "env = '{name}' is not an environment; write \"CartPole-v1\" or \"Pendulum-v1\""
@@ -593,7 +593,7 @@ pub fn parse_lesson(dir: &str, text: &str) -> Result<Lesson, LessonError> {
 fn check_step(
     dir: &str,
     index: usize,
-    env: Environment,
+    env: AgentKind,
     meta: StepMeta,
     heading: &str,
     body: String,
@@ -636,8 +636,8 @@ fn check_step(
         });
     }
     let view_env = |view: &str| match view {
-        "cartpole" | "clip_chart" | "lab" | "trust_region" => Some(Environment::CartPole),
-        "pendulum" => Some(Environment::Pendulum),
+        "cartpole" | "clip_chart" | "lab" | "trust_region" => Some(AgentKind::CartPole),
+        "pendulum" => Some(AgentKind::Pendulum),
         _ => None,
     };
     if let Some(bad) = meta.show.iter().find(|n| {

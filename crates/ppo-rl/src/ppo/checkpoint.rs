@@ -16,8 +16,8 @@
 //! `{"env": "CartPole-v1", "algorithm": "ppo"}` (or `Pendulum-v1` / `ppo-continuous` for
 //! [`PpoContinuous`](super::PpoContinuous)), and, for files without it (older ones, or
 //! written by PyTorch), the parameter names: `actor.fc2` is the CartPole policy,
-//! `actor.fc_mu` / `actor.fc_std` the Pendulum one. Loading one agent's checkpoint as the
-//! other is refused with a message naming both.
+//! `actor.fc_mu` / `actor.fc_std` the Pendulum one. Loading one agent's checkpoint as
+//! another is refused with a message naming what the file holds and what was asked for.
 
 use crate::i18n::t;
 use std::collections::HashMap;
@@ -29,95 +29,81 @@ use super::PpoError;
 use super::model::{NamedWeights, WeightTensor};
 
 /// Which agent a checkpoint holds: the environment and the algorithm it was trained for.
+///
+/// Each agent declares its own, beside its code, as [`OnPolicyAgent::CHECKPOINT`](super::OnPolicyAgent::CHECKPOINT)
+/// ([`Agent`](crate::ppo::Agent)'s is `CartPole-v1` / `ppo`, [`PpoContinuous`](super::PpoContinuous)'s
+/// `Pendulum-v1` / `ppo-continuous`); the core keeps no list of them. Telling which of several
+/// agents a file holds takes the list of candidates ([`CheckpointKind::of_file`]), which the
+/// course's registry of agents supplies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CheckpointKind {
-    /// The seed's PPO on `CartPole-v1`: a softmax policy over two actions ([`Agent`](crate::ppo::Agent)).
-    CartPolePpo,
-    /// The book's `PPOContinuous` on `Pendulum-v1`: a Gaussian policy
-    /// ([`PpoContinuous`](super::PpoContinuous)).
-    PendulumPpoContinuous,
+pub struct CheckpointKind {
+    /// Gymnasium's id of the environment (`CartPole-v1`, `Pendulum-v1`).
+    pub env: &'static str,
+    /// The algorithm's name in the metadata (`ppo`, `ppo-continuous`).
+    pub algorithm: &'static str,
+    /// A parameter name only this kind has, by which files without metadata (older ones, or
+    /// written by PyTorch) are recognised (`actor.fc2.weight`, `actor.fc_mu.weight`).
+    pub telltale: &'static str,
+    /// The flags `ppo-tutor train` needs, before `--save`, to write one (`""`, or
+    /// `"--env Pendulum-v1 "`), for error messages.
+    pub train_flags: &'static str,
 }
 
 impl CheckpointKind {
     /// Gymnasium's id of the environment (`CartPole-v1`, `Pendulum-v1`).
     #[must_use]
     pub fn env(self) -> &'static str {
-        match self {
-            Self::CartPolePpo => "CartPole-v1",
-            Self::PendulumPpoContinuous => "Pendulum-v1",
-        }
+        self.env
     }
 
     /// The algorithm's name in the metadata (`ppo`, `ppo-continuous`).
     #[must_use]
     pub fn algorithm(self) -> &'static str {
-        match self {
-            Self::CartPolePpo => "ppo",
-            Self::PendulumPpoContinuous => "ppo-continuous",
-        }
-    }
-
-    /// A parameter name only this kind has, by which files without metadata are recognised.
-    fn telltale(self) -> &'static str {
-        match self {
-            Self::CartPolePpo => "actor.fc2.weight",
-            Self::PendulumPpoContinuous => "actor.fc_mu.weight",
-        }
+        self.algorithm
     }
 
     /// How to write a checkpoint of this kind, for error messages.
-    fn how_to_save(self) -> &'static str {
-        match self {
-            Self::CartPolePpo => t(
-                "write one with `ppo-tutor train --save FILE.safetensors`",
-                "可用 `ppo-tutor train --save FILE.safetensors` 生成一个",
-            ),
-            Self::PendulumPpoContinuous => t(
-                "write one with `ppo-tutor train --env Pendulum-v1 --save FILE.safetensors`",
-                "可用 `ppo-tutor train --env Pendulum-v1 --save FILE.safetensors` 生成一个",
-            ),
-        }
+    fn how_to_save(self) -> String {
+        let flags = self.train_flags;
+        crate::tr!(
+            "write one with `ppo-tutor train {flags}--save FILE.safetensors`",
+            "可用 `ppo-tutor train {flags}--save FILE.safetensors` 生成一个"
+        )
     }
 
     /// The safetensors metadata written with a checkpoint of this kind.
     #[must_use]
     pub fn metadata(self) -> HashMap<String, String> {
         HashMap::from([
-            ("env".to_string(), self.env().to_string()),
-            ("algorithm".to_string(), self.algorithm().to_string()),
+            ("env".to_string(), self.env.to_string()),
+            ("algorithm".to_string(), self.algorithm.to_string()),
         ])
     }
 
-    const ALL: [Self; 2] = [Self::CartPolePpo, Self::PendulumPpoContinuous];
-
-    /// The kind named by `env` and `algorithm` metadata, if both are present and known.
-    #[must_use]
-    pub fn from_metadata(metadata: &HashMap<String, String>) -> Option<Self> {
-        let (env, algorithm) = (metadata.get("env")?, metadata.get("algorithm")?);
-        Self::ALL
-            .into_iter()
-            .find(|k| k.env() == env && k.algorithm() == algorithm)
+    /// Whether `metadata` names this kind.
+    fn named_by(self, metadata: &HashMap<String, String>) -> bool {
+        metadata.get("env").map(String::as_str) == Some(self.env)
+            && metadata.get("algorithm").map(String::as_str) == Some(self.algorithm)
     }
 
-    /// The kind whose parameter names `names` holds (`actor.fc2.*` or `actor.fc_mu.*`).
+    /// Which of `kinds` the file at `path` holds, by its metadata or else its parameter
+    /// names; `None` when it cannot be told (an unreadable file: loading it reports why).
     #[must_use]
-    pub fn from_names(names: &[String]) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|k| names.iter().any(|n| n == k.telltale()))
-    }
-
-    /// Which agent the file at `path` holds, by its metadata or else its parameter names;
-    /// `None` when it cannot be told (an unreadable file: loading it reports why).
-    #[must_use]
-    pub fn of_file(path: &Path) -> Option<Self> {
+    pub fn of_file(path: &Path, kinds: &[CheckpointKind]) -> Option<Self> {
         let bytes = std::fs::read(path).ok()?;
         let (_, header) = safetensors::SafeTensors::read_metadata(&bytes).ok()?;
-        header
-            .metadata()
-            .as_ref()
-            .and_then(Self::from_metadata)
-            .or_else(|| Self::from_names(&header.offset_keys()))
+        match header.metadata() {
+            Some(metadata) if metadata.contains_key("env") => {
+                kinds.iter().copied().find(|k| k.named_by(metadata))
+            }
+            _ => {
+                let names = header.offset_keys();
+                kinds
+                    .iter()
+                    .copied()
+                    .find(|k| names.iter().any(|n| n == k.telltale))
+            }
+        }
     }
 }
 
@@ -177,35 +163,38 @@ pub fn read_checkpoint(path: &Path, want: CheckpointKind) -> Result<NamedWeights
         .unwrap_or_default();
     let tensors =
         candle_core::safetensors::load_buffer(&bytes, &Device::Cpu).map_err(|e| unreadable(&e))?;
-    let names: Vec<String> = tensors.keys().cloned().collect();
-    let found = match CheckpointKind::from_metadata(&metadata) {
-        Some(kind) => Some((
-            kind,
-            t("its metadata says so", "文件的元数据如此标明").to_string(),
-        )),
-        None => CheckpointKind::from_names(&names).map(|k| {
-            let telltale = k.telltale();
-            (k, crate::tr!("it has {telltale}", "文件中有 {telltale}"))
+    let mismatch = match (metadata.get("env"), metadata.get("algorithm")) {
+        // A file that names its agent (every file `write_checkpoint` wrote) says which.
+        (Some(env), Some(algorithm)) => (!want.named_by(&metadata)).then(|| {
+            crate::tr!(
+                "this checkpoint holds a {algorithm} agent for {env} (its metadata says so), \
+                 not a {} agent for {}: load it as a {env} agent, or {}",
+                "这个检查点保存的是 {env} 上的 {algorithm} 智能体（文件的元数据如此标明），\
+                 不是 {1} 上的 {0} 智能体：请把它当作 {env} 的智能体加载，或者{2}",
+                want.algorithm,
+                want.env,
+                want.how_to_save()
+            )
+        }),
+        // One without (written by PyTorch, say) must have the parameter only `want` has.
+        _ => (!tensors.contains_key(want.telltale)).then(|| {
+            let mut names: Vec<&str> = tensors.keys().map(String::as_str).collect();
+            names.sort_unstable();
+            let names = names.join(", ");
+            crate::tr!(
+                "this checkpoint has no metadata and no {}, so it is not a {} agent for {} \
+                 (it has {names}); {}",
+                "这个检查点没有元数据，也没有 {0}，所以不是 {2} 上的 {1} 智能体\
+                 （文件中有 {names}）；{3}",
+                want.telltale,
+                want.algorithm,
+                want.env,
+                want.how_to_save()
+            )
         }),
     };
-    if let Some((found, evidence)) = found
-        && found != want
-    {
-        return Err(PpoError::File {
-            file,
-            reason: crate::tr!(
-                "this checkpoint holds a {} agent for {} ({evidence}), not a {} agent for {}: \
-                 load it as a {} agent, or {}",
-                "这个检查点保存的是 {1} 上的 {0} 智能体（{evidence}），不是 {3} 上的 {2} 智能体：\
-                 请把它当作 {4} 的智能体加载，或者{5}",
-                found.algorithm(),
-                found.env(),
-                want.algorithm(),
-                want.env(),
-                found.env(),
-                want.how_to_save()
-            ),
-        });
+    if let Some(reason) = mismatch {
+        return Err(PpoError::File { file, reason });
     }
     let mut weights = NamedWeights::new();
     for (name, t) in tensors {
@@ -333,7 +322,11 @@ mod tests {
         let dir = tempfile::tempdir()?;
         let path = dir.path().join("agent.safetensors");
         let weights = Agent::new(&PpoConfig::default(), 0)?.weights()?;
-        write_checkpoint(&path, weights.clone(), CheckpointKind::CartPolePpo)?;
+        write_checkpoint(
+            &path,
+            weights.clone(),
+            <Agent as crate::ppo::OnPolicyAgent>::CHECKPOINT,
+        )?;
         #[cfg(unix)]
         {
             use std::os::unix::fs::PermissionsExt as _;
@@ -345,10 +338,14 @@ mod tests {
         }
         let folder = dir.path().join("a-folder");
         std::fs::create_dir(&folder)?;
-        let err = write_checkpoint(&folder, weights, CheckpointKind::CartPolePpo)
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default();
+        let err = write_checkpoint(
+            &folder,
+            weights,
+            <Agent as crate::ppo::OnPolicyAgent>::CHECKPOINT,
+        )
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
         assert!(
             err.contains("a-folder: cannot write the checkpoint"),
             "{err}"

@@ -142,7 +142,12 @@ impl OnPolicyAgent for PpoContinuous {
     type Batch = ContinuousTransitions;
     type Trace = ContinuousUpdateTrace;
 
-    const CHECKPOINT: CheckpointKind = CheckpointKind::PendulumPpoContinuous;
+    const CHECKPOINT: CheckpointKind = CheckpointKind {
+        env: "Pendulum-v1",
+        algorithm: "ppo-continuous",
+        telltale: "actor.fc_mu.weight",
+        train_flags: "--env Pendulum-v1 ",
+    };
 
     fn create(config: &PpoContinuousConfig, seed: u64) -> Result<Self, PpoError> {
         PpoContinuous::new(config, seed)

@@ -99,7 +99,12 @@ impl OnPolicyAgent for Agent {
     type Batch = Transitions;
     type Trace = UpdateTrace;
 
-    const CHECKPOINT: CheckpointKind = CheckpointKind::CartPolePpo;
+    const CHECKPOINT: CheckpointKind = CheckpointKind {
+        env: "CartPole-v1",
+        algorithm: "ppo",
+        telltale: "actor.fc2.weight",
+        train_flags: "",
+    };
 
     fn create(config: &PpoConfig, seed: u64) -> Result<Self, PpoError> {
         Agent::new(config, seed)

@@ -261,7 +261,7 @@ fn probs_over(policy: &ActorSnapshot, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lesson::Environment;
+    use crate::lesson::AgentKind;
     use crate::lesson::live::{LIVE, PENALTY_ONLY};
     use crate::ppo::{ContinuousTrainer, PpoConfig, PpoContinuousConfig, Trainer};
 
@@ -279,8 +279,8 @@ mod tests {
         let cartpole = Session::run(PpoConfig::default(), 0, 10)?;
         let pendulum = Session::run(PpoContinuousConfig::default(), 0, 10)?;
         for (env, snapshot) in [
-            (Environment::CartPole, cartpole),
-            (Environment::Pendulum, pendulum),
+            (AgentKind::CartPole, cartpole),
+            (AgentKind::Pendulum, pendulum),
         ] {
             check_every_value(env, &snapshot, |name| !PENALTY_ONLY.contains(&name))?;
         }
@@ -290,14 +290,14 @@ mod tests {
             ..PpoConfig::default()
         };
         let penalty = Session::run(penalty, 0, 10)?;
-        check_every_value(Environment::CartPole, &penalty, |name| {
+        check_every_value(AgentKind::CartPole, &penalty, |name| {
             PENALTY_ONLY.contains(&name)
         })?;
         Ok(())
     }
 
     fn check_every_value(
-        env: Environment,
+        env: AgentKind,
         snapshot: &Snapshot,
         checked: impl Fn(&str) -> bool,
     ) -> TestResult {
@@ -375,7 +375,7 @@ mod tests {
         let mut trainer = ContinuousTrainer::new(config, 5)?;
         while let Some(report) = trainer.next_episode()? {
             let s = session.next_episode()?.ok_or("the session ended early")?;
-            assert_eq!(s.env, Environment::Pendulum);
+            assert_eq!(s.agent, AgentKind::Pendulum);
             assert_eq!(s.continuous.as_ref(), Some(&report.trace));
             assert_eq!(s.returns.last(), Some(&report.episode_return));
             assert_eq!(s.observation_count(), 201);

@@ -14,7 +14,7 @@
 //! ```
 
 use super::{Axes, Axis, Index, Mark, Snapshot, TensorView};
-use crate::lesson::Environment;
+use crate::lesson::AgentKind;
 use crate::ppo::{ContinuousEpochTrace, ContinuousUpdateTrace, EpochTrace, UpdateTrace};
 
 /// One live value: its name in lessons and how to view it in a snapshot.
@@ -31,11 +31,11 @@ impl LiveValue {
     /// Pendulum runs, the discrete policy's (probabilities, gradients, diagnostics) only
     /// in CartPole runs, the rest in both.
     #[must_use]
-    pub fn runs_on(&self, env: Environment) -> bool {
+    pub fn runs_on(&self, env: AgentKind) -> bool {
         if PENDULUM_ONLY.contains(&self.name) {
-            env == Environment::Pendulum
+            env == AgentKind::Pendulum
         } else {
-            env == Environment::CartPole || IN_BOTH.contains(&self.name)
+            env == AgentKind::CartPole || IN_BOTH.contains(&self.name)
         }
     }
 

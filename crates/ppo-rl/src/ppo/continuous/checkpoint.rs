@@ -12,7 +12,7 @@
 //!
 //! the book's `state_dict()`s prefixed `actor.` / `critic.`, and the metadata
 //! `{"env": "Pendulum-v1", "algorithm": "ppo-continuous"}`
-//! ([`CheckpointKind::PendulumPpoContinuous`]). A CartPole checkpoint given to
+//! ([`OnPolicyAgent::CHECKPOINT`]). A CartPole checkpoint given to
 //! [`PpoContinuous::load`] is refused with a message saying what it holds, and the other way
 //! round. The names and shapes come from [`super::params`], which the agent and the replay
 //! share.
@@ -21,8 +21,9 @@ use std::path::Path;
 
 use super::agent::PpoContinuous;
 use super::{PpoContinuousConfig, STATE_DIM};
+use crate::ppo::OnPolicyAgent;
 use crate::ppo::PpoError;
-use crate::ppo::checkpoint::{CheckpointKind, read_sized, write_checkpoint};
+use crate::ppo::checkpoint::{read_sized, write_checkpoint};
 
 impl PpoContinuous {
     /// Writes the weights to a safetensors file (f32, PyTorch names), marked as a
@@ -31,7 +32,11 @@ impl PpoContinuous {
     /// # Errors
     /// [`PpoError::File`] when the file cannot be written.
     pub fn save(&self, path: &Path) -> Result<(), PpoError> {
-        write_checkpoint(path, self.weights()?, CheckpointKind::PendulumPpoContinuous)
+        write_checkpoint(
+            path,
+            self.weights()?,
+            <PpoContinuous as OnPolicyAgent>::CHECKPOINT,
+        )
     }
 
     /// Reads a checkpoint written by [`PpoContinuous::save`]; the hidden width comes from the
@@ -43,8 +48,11 @@ impl PpoContinuous {
     /// CartPole agent; [`PpoError::MissingKey`] / [`PpoError::WrongShape`] naming the tensor
     /// and its expected shape.
     pub fn load(path: &Path, config: &PpoContinuousConfig, seed: u64) -> Result<Self, PpoError> {
-        let (weights, hidden_dim, file) =
-            read_sized(path, CheckpointKind::PendulumPpoContinuous, STATE_DIM)?;
+        let (weights, hidden_dim, file) = read_sized(
+            path,
+            <PpoContinuous as OnPolicyAgent>::CHECKPOINT,
+            STATE_DIM,
+        )?;
         let config = PpoContinuousConfig {
             hidden_dim,
             ..config.clone()
@@ -130,7 +138,11 @@ mod tests {
             .err()
             .map(|e| e.to_string())
             .unwrap_or_default();
-        assert!(err.contains("it has actor.fc_mu.weight"), "{err}");
+        assert!(
+            err.contains("no metadata and no actor.fc2.weight")
+                && err.contains("actor.fc_mu.weight"),
+            "{err}"
+        );
         Ok(())
     }
 

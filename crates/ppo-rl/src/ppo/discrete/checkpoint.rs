@@ -1,11 +1,12 @@
 //! The seed's agent as a safetensors checkpoint with PyTorch's names, marked as a
-//! CartPole-v1 agent ([`CheckpointKind::CartPolePpo`]).
+//! CartPole-v1 agent ([`OnPolicyAgent::CHECKPOINT`]: `CartPole-v1` / `ppo`).
 
 use std::path::Path;
 
 use super::{ACTION_DIM, Agent, PpoConfig, STATE_DIM};
+use crate::ppo::OnPolicyAgent;
 use crate::ppo::PpoError;
-use crate::ppo::checkpoint::{CheckpointKind, check_against, read_sized, write_checkpoint};
+use crate::ppo::checkpoint::{check_against, read_sized, write_checkpoint};
 use crate::ppo::model::NamedWeights;
 
 /// Every parameter's name and shape for hidden width `hidden_dim`, in PyTorch's order.
@@ -53,7 +54,7 @@ impl Agent {
     /// # Errors
     /// [`PpoError::File`] when the file cannot be written.
     pub fn save(&self, path: &Path) -> Result<(), PpoError> {
-        write_checkpoint(path, self.weights()?, CheckpointKind::CartPolePpo)
+        write_checkpoint(path, self.weights()?, <Agent as OnPolicyAgent>::CHECKPOINT)
     }
 
     /// Reads a checkpoint written by [`Agent::save`]; the hidden width comes from the file
@@ -64,7 +65,8 @@ impl Agent {
     /// Pendulum agent; [`PpoError::MissingKey`] / [`PpoError::WrongShape`] naming the tensor and its
     /// expected shape.
     pub fn load(path: &Path, config: &PpoConfig, seed: u64) -> Result<Self, PpoError> {
-        let (weights, hidden_dim, file) = read_sized(path, CheckpointKind::CartPolePpo, STATE_DIM)?;
+        let (weights, hidden_dim, file) =
+            read_sized(path, <Agent as OnPolicyAgent>::CHECKPOINT, STATE_DIM)?;
         let config = PpoConfig {
             hidden_dim,
             ..config.clone()

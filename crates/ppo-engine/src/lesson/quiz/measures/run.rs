@@ -4,7 +4,7 @@
 
 use super::{Basis, Measure, at, batch, clipped_objective, extreme_row, from_end, hyper};
 use crate::i18n::Text;
-use crate::lesson::Environment;
+use crate::lesson::AgentKind;
 
 /// The run measures.
 pub(super) static RUN: &[Measure] = &[
@@ -281,7 +281,7 @@ pub(super) static RUN: &[Measure] = &[
             "environment steps of the run so far",
             "本次运行到目前为止的环境时间步数",
         ),
-        value: |s| (s.env == Environment::CartPole).then(|| s.returns.iter().sum()),
+        value: |s| (s.agent == AgentKind::CartPole).then(|| s.returns.iter().sum()),
         choices: 0,
         basis: Basis::Run {
             given: &["episodes", "mean_return"],
