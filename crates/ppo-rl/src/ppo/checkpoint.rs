@@ -80,6 +80,12 @@ impl CheckpointKind {
         ])
     }
 
+    /// Whether `metadata` names an agent at all (every file `write_checkpoint` wrote): then
+    /// it alone says which, and the parameter names are not consulted.
+    fn names_an_agent(metadata: &HashMap<String, String>) -> bool {
+        metadata.contains_key("env") && metadata.contains_key("algorithm")
+    }
+
     /// Whether `metadata` names this kind.
     fn named_by(self, metadata: &HashMap<String, String>) -> bool {
         metadata.get("env").map(String::as_str) == Some(self.env)
@@ -93,7 +99,7 @@ impl CheckpointKind {
         let bytes = std::fs::read(path).ok()?;
         let (_, header) = safetensors::SafeTensors::read_metadata(&bytes).ok()?;
         match header.metadata() {
-            Some(metadata) if metadata.contains_key("env") => {
+            Some(metadata) if Self::names_an_agent(metadata) => {
                 kinds.iter().copied().find(|k| k.named_by(metadata))
             }
             _ => {
