@@ -4,7 +4,7 @@
 //!
 //! - [`config`]: [`PpoConfig`], whose `Default` is the seed's hyper-parameters.
 //! - [`model`]: [`PolicyNet`] `π(a|s)` and [`ValueNet`] `V(s)`, initialised like PyTorch.
-//! - [`ops`]: `relu` and the bias add as candle ops with a lean backward pass.
+//! - [`ops`]: `relu` and the bias add as candle ops with a short backward pass.
 //! - [`adam`]: [`Adam`], `torch.optim.Adam` step for step.
 //! - [`advantage`]: GAE, `compute_advantage` in f32 as numpy runs it.
 //! - [`agent`]: [`Agent`] with `take_action` and `update`, which returns an [`UpdateTrace`].
@@ -28,14 +28,9 @@
 //! show, and what runs as [`UpdatePath::Candle`]. Where the configuration is the seed's
 //! (the book's for Pendulum) and the CPU has AVX2 and FMA, the same IEEE operations in the
 //! same order run on plain `f32` slices instead, [`UpdatePath::Plain`]: same numbers, bit for
-//! bit, about ten to twenty times faster. Precisely, an update runs plain when it uses the
-//! built-in losses (no learner's losses from [`Agent::update_with`]; PPO's clipped surrogate,
-//! not REINFORCE or `no_clip`; no entropy bonus), its batch has 3 to 512 rows, the networks
-//! 2 to 512 hidden units with rows × hidden > 256, the CPU is x86-64 with AVX2 and FMA
-//! (detected at run time), and `PPO_TUTOR_UPDATE` is not `candle`; on candle otherwise.
-//! Each trace says which ran ([`UpdateTrace::path`], [`ContinuousUpdateTrace::path`]), and
-//! `ppo-tutor train` prints it. `PPO_TUTOR_UPDATE=candle` (read once per process; any other
-//! value, or none, is automatic) runs every update of both agents on candle.
+//! bit, about ten to twenty times faster. The rule that picks one, and what the plain path
+//! costs a maintainer, are stated once, in [`update_path`]; each trace says which ran
+//! ([`UpdateTrace::path`], [`ContinuousUpdateTrace::path`]), and `ppo-tutor train` prints it.
 //!
 //! Acting (one observation at a time, 200k times per run) runs the same two matrix products
 //! in plain Rust on a copy of the actor's weights, which is an order of magnitude faster

@@ -1,16 +1,13 @@
-//! The kernels the updates without tensors share (the private `lean` modules of the
+//! The kernels the updates without tensors share (the private `plain` modules of the
 //! discrete agent and the continuous agent): candle's float operations one for one on plain
 //! `f32` slices, for networks of `D` inputs (4 for CartPole, 3 for Pendulum) and one hidden
 //! layer. Which of gemm's summation orders each one reproduces, and why, is in the discrete
-//! `lean` module's doc; its tests and the continuous agent's compare both updates with the
+//! `plain` module's doc; its tests and the continuous agent's compare both updates with the
 //! tensor code, number for number (and print `SKIPPED` where this CPU cannot run them).
 //!
 //! They run as [`UpdatePath::Plain`](super::UpdatePath::Plain) only where they reproduce
-//! candle: the built-in clipped losses without entropy bonus, [`shapes_fit`] (3 to 512
-//! rows, 2 to 512 hidden units, rows × hidden > 256), and [`isa`] (x86-64 with AVX2 and FMA,
-//! detected at run time), unless `PPO_TUTOR_UPDATE=candle` forces candle;
-//! [`choose_path`](super::update_path::choose_path) holds the rule, and each trace's `path`
-//! says which ran.
+//! candle; [`update_path`](super::update_path) states the rule once ([`shapes_fit`] and
+//! [`isa`] are two of its conditions).
 
 use candle_core::{Device, Tensor};
 

@@ -78,8 +78,9 @@ pub(crate) fn check_columns(n: usize, columns: &[(&str, usize)]) -> Result<(), P
         return Err(PpoError::EmptyBatch);
     }
     match columns.iter().find(|(_, len)| *len != n) {
-        Some((name, len)) => Err(PpoError::InvalidBatch(format!(
-            "{name} has {len} entries but actions has {n}: every column needs one per step"
+        Some((name, len)) => Err(PpoError::InvalidBatch(crate::tr!(
+            "{name} has {len} entries but actions has {n}: every column needs one per step",
+            "{name} 有 {len} 项，而 actions 有 {n} 项：每一列在每个时间步都要有一项"
         ))),
         None => Ok(()),
     }
@@ -234,8 +235,9 @@ impl Replayed {
             .map(|case| {
                 let out = replay(case)?;
                 let (transitions, losses) = summary(case, &out);
-                let output = serde_json::to_string(&out)
-                    .map_err(|e| PpoError::NonFinite(format!("the replay's output: {e}")))?;
+                let output = serde_json::to_string(&out).map_err(|e| {
+                    PpoError::NonFinite(crate::tr!("the replay's output: {e}", "重放的输出：{e}"))
+                })?;
                 Ok(Self {
                     transitions,
                     losses,

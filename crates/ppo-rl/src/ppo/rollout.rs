@@ -309,9 +309,10 @@ impl<V: VectorEnv> FixedSteps<V> {
         for _ in 0..self.steps {
             let acted = actor.act_all(&self.obs)?;
             if acted.len() != n {
-                return Err(PpoError::InvalidBatch(format!(
-                    "the actor gave {} actions for {n} environments: one per observation",
-                    acted.len()
+                let got = acted.len();
+                return Err(PpoError::InvalidBatch(crate::tr!(
+                    "the actor gave {got} actions for {n} environments: one per observation",
+                    "策略网络给出了 {got} 个动作，而环境有 {n} 个：每个观测对应一个动作"
                 )));
             }
             let actions: Vec<V::Action> = acted.iter().map(|(a, _)| *a).collect();

@@ -324,11 +324,12 @@ impl<A: OnPolicyAgent> Training<A> {
             return Ok(None);
         };
         let [finished] = report.episodes[..] else {
-            return Err(PpoError::InvalidBatch(format!(
-                "update {} finished {} episodes: next_episode needs a one-episode rollout; \
-                 call next_update for this agent",
-                report.update,
-                report.episodes.len()
+            let (update, finished) = (report.update, report.episodes.len());
+            return Err(PpoError::InvalidBatch(crate::tr!(
+                "update {update} finished {finished} episodes: next_episode needs a one-episode \
+                 rollout; call next_update for this agent",
+                "第 {update} 次更新结束了 {finished} 个回合：next_episode 需要每次一个回合的 \
+                 rollout；这个智能体请调用 next_update"
             )));
         };
         let (iteration, episode_in_iteration, iteration_len) = self.iteration_of(episode);

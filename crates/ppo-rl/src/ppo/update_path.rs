@@ -3,7 +3,7 @@
 //! Both agents' `update` is written on candle tensors with autograd: that is the code the
 //! lessons show, [`UpdatePath::Candle`]. For the configurations the seed and the book run,
 //! the same IEEE operations in the same order also exist on plain `f32` slices,
-//! [`UpdatePath::Plain`] (the private `lean` modules of [`agent`](super::agent) and
+//! [`UpdatePath::Plain`] (the private `plain` modules of [`agent`](super::agent) and
 //! [`continuous::agent`](super::continuous::agent)): bit for bit the same trace and weights,
 //! ten to twenty times faster. [`choose_path`] picks one for each update, and every trace
 //! records the one that ran ([`UpdateTrace::path`](super::UpdateTrace::path),
@@ -24,7 +24,21 @@
 //! ```
 //!
 //! The continuous agent always uses its built-in clipped losses: only the shapes, the CPU
-//! and the switch decide there.
+//! and the switch decide there. This table is the one statement of the rule; the agents'
+//! and the kernels' docs link here.
+//!
+//! ## What the plain path costs a maintainer
+//!
+//! - **Upgrading candle or gemm.** The plain path copies the summation orders of candle 0.11
+//!   and gemm 0.19 on x86-64 (the discrete `plain` module's doc lists them kernel by kernel).
+//!   An upgrade that changes one makes the bit-for-bit tests fail (`cargo test -p ppo-rl
+//!   plain`, which compare both paths on batch sizes either side of every switch of
+//!   gemm's path); the plain kernels must then follow the new order before the upgrade lands.
+//! - **Other CPUs.** Only x86-64 with AVX2 and FMA (x86-64-v3, found at run time) runs it:
+//!   on AArch64, or an x86-64 without FMA, every update runs on candle, with the same numbers
+//!   and ten to twenty times slower; a CPU with AVX-512 runs the AVX2 kernels (candle's own
+//!   kernels there are AVX2 too). On a CPU without AVX2 and FMA the bit-for-bit tests print
+//!   `SKIPPED` instead of comparing candle with candle.
 //!
 //! `PPO_TUTOR_UPDATE` ([`UPDATE_VAR`]) is read once per process ([`UpdatePath::forced`]):
 //!

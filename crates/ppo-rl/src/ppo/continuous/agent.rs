@@ -25,12 +25,10 @@
 //!
 //! The code below, on candle tensors with autograd, is the update the lessons show
 //! ([`UpdatePath::Candle`]). `update` runs the same IEEE operations in the same order on
-//! plain `f32` slices instead ([`UpdatePath::Plain`], the private module `lean`, whose tests
-//! compare both number for number) when the batch has 3 to 512 transitions (Pendulum's are
-//! 200), `hidden_dim` is 2 to 512 with transitions × `hidden_dim` > 256, the CPU is x86-64
-//! with AVX2 and FMA (detected at run time), and `PPO_TUTOR_UPDATE` is not `candle`; on
-//! candle otherwise ([`update_path`](crate::ppo::update_path) has the rule,
-//! [`ContinuousUpdateTrace::path`] the path that ran). The plain path gives the same traces
+//! plain `f32` slices instead ([`UpdatePath::Plain`], the private module `plain`, whose tests
+//! compare both number for number) where [`update_path`](crate::ppo::update_path) says so
+//! (Pendulum's 200-step batches and the book's widths qualify on a CPU with AVX2 and FMA);
+//! [`ContinuousUpdateTrace::path`] records the path that ran. The plain path gives the same traces
 //! and weights, bit for bit, about 20 times faster (measured on a loaded 2-core machine,
 //! release build: 300 episodes in 6.0-6.7 s with the tensors, 0.31 s without; the book's
 //! 2000 in 1.4-1.8 s). `PPO_TUTOR_UPDATE=candle` forces candle for every update.
@@ -59,7 +57,7 @@ use crate::ppo::model::{Linear, NamedWeights, ValueNet, WeightTensor};
 use crate::ppo::on_policy::check_columns;
 use crate::ppo::update_path::{UpdatePath, choose_path};
 
-mod lean;
+mod plain;
 
 // ANCHOR: continuous_transitions
 /// One episode's transitions, the book's `transition_dict`, column by column.
@@ -122,9 +120,10 @@ impl ContinuousTransitions {
         let numbers = [("actions", &self.actions), ("rewards", &self.rewards)];
         for (name, column) in numbers {
             if let Some(t) = column.iter().position(|x| !x.is_finite()) {
-                return Err(PpoError::InvalidBatch(format!(
-                    "{name}[{t}] = {} is not a finite number",
-                    column[t]
+                let value = column[t];
+                return Err(PpoError::InvalidBatch(crate::tr!(
+                    "{name}[{t}] = {value} is not a finite number",
+                    "{name}[{t}] = {value} 不是有限数"
                 )));
             }
         }
@@ -354,12 +353,12 @@ impl PpoContinuous {
         forced: Option<UpdatePath>,
     ) -> Result<ContinuousUpdateTrace, PpoError> {
         batch.check()?;
-        // the same operations on plain f32 slices where they are candle's (see `lean`)
-        let conditions = lean::conditions(&self.config, batch.len());
+        // the same operations on plain f32 slices where they are candle's (see `plain`)
+        let conditions = plain::conditions(&self.config, batch.len());
         if choose_path(&conditions, forced) == UpdatePath::Plain
             && let Some(simd) = isa()
         {
-            return lean::update(simd, self, batch);
+            return plain::update(simd, self, batch);
         }
         self.update_with_tensors(batch)
     }

@@ -22,17 +22,11 @@
 //!
 //! The code below, on candle tensors with autograd, is the update the lessons show
 //! ([`UpdatePath::Candle`]). The same IEEE operations in the same order also run on plain
-//! `f32` slices (the private module `lean`, whose tests compare both number for number):
+//! `f32` slices (the private module `plain`, whose tests compare both number for number):
 //! [`UpdatePath::Plain`], the same trace and weights bit for bit, about ten times faster.
-//! `update` runs plain when the losses are the built-in ones (not [`Agent::update_with`]'s),
-//! the algorithm is PPO with the clip (not REINFORCE, not `no_clip`, not PPO-Penalty, whose
-//! KL term only candle differentiates, nor the KL line search, which steps the actor
-//! without Adam: [`line_search`](super::line_search)), `entropy_coef` is 0,
-//! the batch has 3 to 512 transitions, `hidden_dim` is 2 to 512 with
-//! transitions × `hidden_dim` > 256, the CPU is x86-64 with AVX2 and FMA (detected at run
-//! time), and `PPO_TUTOR_UPDATE` is not `candle`; on candle otherwise
-//! ([`update_path`](crate::ppo::update_path) has the rule, [`UpdateTrace::path`] the path
-//! that ran). `PPO_TUTOR_UPDATE=candle` forces candle for every update.
+//! [`update_path`](crate::ppo::update_path) states when it runs (the seed's clipped
+//! surrogate, its shapes, a CPU with AVX2 and FMA); [`UpdateTrace::path`] records the path
+//! that ran, and `PPO_TUTOR_UPDATE=candle` forces candle for every update.
 //!
 //! ```
 //! use ppo_rl::ppo::{Agent, PpoConfig, Transitions};
@@ -63,7 +57,7 @@ use crate::ppo::model::{ActorSnapshot, Linear, NamedWeights, PolicyNet, ValueNet
 use crate::ppo::on_policy::check_columns;
 use crate::ppo::update_path::{UpdatePath, choose_path};
 
-mod lean;
+mod plain;
 
 // ANCHOR: transition_dict
 /// One episode's transitions, the seed's `transition_dict`, column by column.
@@ -134,8 +128,9 @@ impl Transitions {
             .enumerate()
             .find(|(_, a)| **a >= ACTION_DIM)
         {
-            return Err(PpoError::InvalidBatch(format!(
-                "actions[{t}] = {a}: CartPole's actions are 0 and 1"
+            return Err(PpoError::InvalidBatch(crate::tr!(
+                "actions[{t}] = {a}: CartPole's actions are 0 and 1",
+                "actions[{t}] = {a}：CartPole 的动作只有 0 和 1"
             )));
         }
         Ok(())
@@ -170,8 +165,8 @@ pub struct Agent {
     critic_optimizer: Adam,
     rng: NumpyRng,
     acting: ActorSnapshot,
-    /// Buffers of the update without tensors ([`lean`]), boxed to keep the agent small.
-    lean: Box<lean::Workspace>,
+    /// Buffers of the update without tensors ([`plain`]), boxed to keep the agent small.
+    plain: Box<plain::Workspace>,
     /// PPO-Penalty's β for the next update (`beta_init` at first; unused with the clip).
     beta: f64,
 }
@@ -275,7 +270,7 @@ impl Agent {
             critic_optimizer,
             rng,
             acting,
-            lean: Box::default(),
+            plain: Box::default(),
             beta: config.beta_init,
         })
     }
@@ -436,13 +431,13 @@ impl Agent {
     ) -> Result<UpdateTrace, PpoError> {
         batch.check()?;
         // The seed's configuration runs without tensors, with the same float operations
-        // (bit for bit the numbers of `update_with_tensors`; see `lean`).
-        let conditions = lean::conditions(&self.config, batch.len(), losses.is_some());
+        // (bit for bit the numbers of `update_with_tensors`; see `plain`).
+        let conditions = plain::conditions(&self.config, batch.len(), losses.is_some());
         let before = self.acting.clone(); // π_old, for the KL every objective reports
         let mut trace = if choose_path(&conditions, forced) == UpdatePath::Plain
             && let Some(simd) = isa()
         {
-            lean::update(simd, self, batch)?
+            plain::update(simd, self, batch)?
         } else {
             self.update_with_tensors(batch, losses)?
         };
@@ -650,8 +645,9 @@ impl Agent {
             .mean_all()?
             .to_scalar::<f32>()?;
         if !kl_after.is_finite() {
-            return Err(PpoError::NonFinite(format!(
-                "the KL after the update ({kl_after})"
+            return Err(PpoError::NonFinite(crate::tr!(
+                "the KL after the update ({kl_after})",
+                "更新后的 KL（{kl_after}）"
             )));
         }
         let beta_before = self.beta;

@@ -75,10 +75,10 @@ pub fn surrogate_gradients(
 ) -> Result<SurrogateGradients, PpoError> {
     let n = states.len();
     if n == 0 || actions.len() != n || advantage.len() != n {
-        return Err(PpoError::InvalidBatch(format!(
-            "surrogate_gradients: {n} states, {} actions, {} advantages; they must be equal and > 0",
-            actions.len(),
-            advantage.len()
+        let (a, adv) = (actions.len(), advantage.len());
+        return Err(PpoError::InvalidBatch(crate::tr!(
+            "surrogate_gradients: {n} states, {a} actions, {adv} advantages; they must be equal and > 0",
+            "surrogate_gradients：{n} 个状态、{a} 个动作、{adv} 个优势值；三者必须相等且大于 0"
         )));
     }
     let dev = &Device::Cpu;
@@ -106,9 +106,11 @@ pub fn surrogate_gradients(
         let grads = objective.backward()?;
         let mut out = Vec::new();
         for var in [&actor.fc1, &actor.fc2].into_iter().flat_map(|l| l.vars()) {
-            let g = grads
-                .get(var.as_tensor())
-                .ok_or_else(|| PpoError::InvalidBatch("a parameter has no gradient".into()))?;
+            let g = grads.get(var.as_tensor()).ok_or_else(|| {
+                PpoError::InvalidBatch(
+                    crate::i18n::t("a parameter has no gradient", "某个参数没有梯度").into(),
+                )
+            })?;
             out.extend(g.flatten_all()?.to_vec1::<f32>()?);
         }
         Ok(out)

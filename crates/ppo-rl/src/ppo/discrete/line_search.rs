@@ -134,8 +134,9 @@ pub fn line_search(
     }
     let grad_norm = squares.sqrt();
     if !grad_norm.is_finite() {
-        return Err(PpoError::NonFinite(format!(
-            "the surrogate's gradient (norm {grad_norm}) in the KL line search"
+        return Err(PpoError::NonFinite(crate::tr!(
+            "the surrogate's gradient (norm {grad_norm}) in the KL line search",
+            "KL 线搜索中替代目标的梯度（范数 {grad_norm}）"
         )));
     }
     let mut trace = LineSearchTrace {

@@ -64,9 +64,11 @@ use serde::Serialize;
 use super::PpoConfig;
 use crate::env::CartPole;
 use crate::env::seeding::NumpyRng;
+use crate::i18n::t;
 use crate::ppo::PpoError;
 use crate::ppo::advantage::compute_advantage;
 use crate::ppo::model::{ActorSnapshot, NamedWeights};
+use crate::tr;
 
 /// What [`probe`] measures: the step lengths and how many held-out episodes.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -258,10 +260,13 @@ impl Critic {
     fn from_weights(weights: &NamedWeights) -> Result<Self, PpoError> {
         let get = |name: &str| {
             weights.get(name).ok_or_else(|| PpoError::MissingKey {
-                file: "the critic's weights".into(),
+                file: t("the critic's weights", "价值网络的权重").into(),
                 key: name.into(),
-                expected: "the critic's parameters by PyTorch name; pass the agent's weights()"
-                    .into(),
+                expected: t(
+                    "the critic's parameters by PyTorch name; pass the agent's weights()",
+                    "按 PyTorch 名称排列的价值网络参数；请传入智能体的 weights()",
+                )
+                .into(),
             })
         };
         let (w1, b1, w2, b2) = (
@@ -271,17 +276,23 @@ impl Critic {
             get("critic.fc2.bias")?,
         );
         let h = b1.data.len();
-        for (name, t, want) in [
+        for (name, w, want) in [
             ("critic.fc1.weight", w1, 4 * h),
             ("critic.fc2.weight", w2, h),
             ("critic.fc2.bias", b2, 1),
         ] {
-            if t.data.len() != want || h == 0 {
+            if w.data.len() != want || h == 0 {
                 return Err(PpoError::WrongShape {
-                    file: "the critic's weights".into(),
+                    file: t("the critic's weights", "价值网络的权重").into(),
                     key: name.into(),
-                    expected: format!("{want} values (hidden layer {h}, 4 inputs, 1 output)"),
-                    got: format!("{} values", t.data.len()),
+                    expected: tr!(
+                        "{want} values (hidden layer {h}, 4 inputs, 1 output)",
+                        "{want} 个值（隐藏层 {h}，4 个输入，1 个输出）"
+                    ),
+                    got: {
+                        let got = w.data.len();
+                        tr!("{got} values", "{got} 个值")
+                    },
                 });
             }
         }
@@ -330,8 +341,9 @@ fn play(actor: &Actor, seeds: EpisodeSeeds, config: &PpoConfig) -> Result<Episod
     loop {
         let log_probs = actor.log_probs(&state);
         if !log_probs.iter().all(|l| l.is_finite()) {
-            return Err(PpoError::NonFinite(format!(
-                "the probe's action log-probabilities {log_probs:?}"
+            return Err(PpoError::NonFinite(tr!(
+                "the probe's action log-probabilities {log_probs:?}",
+                "探测中的动作对数概率 {log_probs:?}"
             )));
         }
         let action = usize::from(uniforms.next_f64() >= log_probs[0].exp());
@@ -407,16 +419,17 @@ pub fn probe(
     let theta_old = old.parameters();
     let hidden = old.hidden_dim();
     let actor_old = Actor::from_parameters(&theta_old, hidden).ok_or_else(|| {
-        PpoError::InvalidBatch(format!(
-            "the probe needs CartPole's 4 → {hidden} → 2 actor, got {} parameters",
-            theta_old.len()
+        let got = theta_old.len();
+        PpoError::InvalidBatch(tr!(
+            "the probe needs CartPole's 4 → {hidden} → 2 actor, got {got} parameters",
+            "探测需要 CartPole 的 4 → {hidden} → 2 策略网络，实际得到 {got} 个参数"
         ))
     })?;
     if direction.len() != theta_old.len() {
-        return Err(PpoError::InvalidBatch(format!(
-            "the direction has {} values, the actor {} parameters: pass the surrogate gradient of this actor",
-            direction.len(),
-            theta_old.len()
+        let (len, parameters) = (direction.len(), theta_old.len());
+        return Err(PpoError::InvalidBatch(tr!(
+            "the direction has {len} values, the actor {parameters} parameters: pass the surrogate gradient of this actor",
+            "方向有 {len} 个值，策略网络有 {parameters} 个参数：请传入这个策略网络的替代目标梯度"
         )));
     }
     let norm = direction
@@ -425,8 +438,9 @@ pub fn probe(
         .sum::<f64>()
         .sqrt();
     if !(norm.is_finite() && norm > 0.0) {
-        return Err(PpoError::InvalidBatch(format!(
-            "the direction's norm is {norm}: the batch gives no direction to step along; train on another episode"
+        return Err(PpoError::InvalidBatch(tr!(
+            "the direction's norm is {norm}: the batch gives no direction to step along; train on another episode",
+            "方向的范数是 {norm}：这批数据给不出可迈步的方向；请再训练一个回合"
         )));
     }
     let critic = Critic::from_weights(critic)?;
@@ -454,7 +468,13 @@ pub fn probe(
             .map(|(&w, &g)| w + (scale * f64::from(g)) as f32)
             .collect();
         let actor = Actor::from_parameters(&theta, hidden).ok_or_else(|| {
-            PpoError::InvalidBatch("the stepped actor lost its shape (a bug)".into())
+            PpoError::InvalidBatch(
+                t(
+                    "the stepped actor lost its shape (a bug)",
+                    "迈步后的策略网络形状不对（程序错误）",
+                )
+                .into(),
+            )
         })?;
         let (mut kl_sum, mut kl_max) = (0.0, 0.0_f64);
         let mut predicted = Vec::with_capacity(held_out.len());
@@ -486,8 +506,9 @@ pub fn probe(
         }
         let kl = kl_sum / states as f64;
         if !kl.is_finite() {
-            return Err(PpoError::NonFinite(format!(
-                "the mean KL at step {step} (a probability underflowed)"
+            return Err(PpoError::NonFinite(tr!(
+                "the mean KL at step {step} (a probability underflowed)",
+                "步长 {step} 处的平均 KL（某个概率下溢）"
             )));
         }
         let (predicted, predicted_se) = mean_se(&predicted);

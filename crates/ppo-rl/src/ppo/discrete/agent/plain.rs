@@ -177,9 +177,9 @@ struct ActorPass {
 fn run(kernels: Kernels, agent: &mut Agent, batch: &Transitions) -> Result<UpdateTrace, PpoError> {
     let mut actor = Params::read(&agent.actor.fc1, &agent.actor.fc2)?;
     let mut critic = Params::read(&agent.critic.fc1, &agent.critic.fc2)?;
-    let mut ws = std::mem::take(&mut agent.lean);
+    let mut ws = std::mem::take(&mut agent.plain);
     let result = epochs(kernels, agent, batch, &mut actor, &mut critic, &mut ws);
-    agent.lean = ws;
+    agent.plain = ws;
     actor.write(&agent.actor.fc1, &agent.actor.fc2)?;
     critic.write(&agent.critic.fc1, &agent.critic.fc2)?;
     if result.is_ok() {
@@ -655,35 +655,35 @@ mod tests {
     /// the same traces, weights and acting snapshots, bit for bit. Callers first check that
     /// this CPU runs the plain path ([`plain_runs_here`]).
     fn compare(config: &PpoConfig, n: usize, seed: u64) -> Result<(), PpoError> {
-        let mut lean_agent = Agent::new(config, seed)?;
+        let mut plain_agent = Agent::new(config, seed)?;
         let mut tensor_agent = Agent::new(config, seed)?;
         let mut rng = NumpyRng::from_seed(seed + 1000 * n as u64);
         for update in 0..3 {
             let batch = walk(n, &mut rng);
             let what = format!("n = {n}, update {update}, {config:?}");
             // automatic, whatever PPO_TUTOR_UPDATE says in the environment of the tests
-            let lean = lean_agent.run_update_as(&batch, None, None)?;
+            let plain = plain_agent.run_update_as(&batch, None, None)?;
             let tensors = tensor_agent.run_update_as(&batch, None, Some(UpdatePath::Candle))?;
             assert_eq!(
-                lean.path,
+                plain.path,
                 UpdatePath::Plain,
                 "the plain path should take this batch: {what}"
             );
             assert_eq!(tensors.path, UpdatePath::Candle, "forced candle: {what}");
             // every number, the path aside
-            let lean = UpdateTrace {
+            let plain = UpdateTrace {
                 path: tensors.path,
-                ..lean
+                ..plain
             };
-            assert_eq!(text(&lean), text(&tensors), "trace differs: {what}");
+            assert_eq!(text(&plain), text(&tensors), "trace differs: {what}");
             assert_eq!(
-                text(&lean_agent.weights()?),
+                text(&plain_agent.weights()?),
                 text(&tensor_agent.weights()?),
                 "weights differ: {what}"
             );
             let state = [0.01_f32, -0.3, 0.05, 0.4];
             assert_eq!(
-                lean_agent.acting.probs(&state),
+                plain_agent.acting.probs(&state),
                 tensor_agent.acting.probs(&state),
                 "acting snapshot differs: {what}"
             );
@@ -750,7 +750,7 @@ mod tests {
         Ok(())
     }
 
-    /// The opt-in switches the lean path supports, other widths, and early stopping.
+    /// The opt-in switches the plain path supports, other widths, and early stopping.
     #[test]
     fn bit_for_bit_the_tensor_update_with_switches() -> Result<(), PpoError> {
         if !plain_runs_here("bit_for_bit_the_tensor_update_with_switches") {

@@ -10,7 +10,7 @@
 //! losses, gradients, weights) is bit for bit the tensor version's, only without building
 //! some 200 tensors per epoch. The matrix products and sums are the discrete agent's
 //! kernels ([`kernels`](crate::ppo::kernels), whose summation orders the discrete
-//! `lean` module documents) with 3 inputs instead of 4; what is new here is the Gaussian
+//! `plain` module documents) with 3 inputs instead of 4; what is new here is the Gaussian
 //! head and its backward pass, in the order candle's backward visits the graph:
 //!
 //! ```text
@@ -146,7 +146,7 @@ fn step_actor(
     adam.step_params(&mut grads, &mut tensors, None)
 }
 
-/// The loops over the batch, each compiled for the [`Isa`] (see the discrete `lean`).
+/// The loops over the batch, each compiled for the [`Isa`] (see the discrete `plain`).
 #[derive(Clone, Copy)]
 struct Kernels(Isa);
 
@@ -552,7 +552,7 @@ mod tests {
     /// the same traces (or the same error), weights and acting snapshots, bit for bit.
     /// Callers first check that this CPU runs the plain path ([`plain_runs_here`]).
     fn compare(config: &PpoContinuousConfig, n: usize, seed: u64) -> Result<(), PpoError> {
-        let mut lean_agent = PpoContinuous::new(config, seed)?;
+        let mut plain_agent = PpoContinuous::new(config, seed)?;
         let mut tensor_agent = PpoContinuous::new(config, seed)?;
         let mut rng = NumpyRng::from_seed(seed + 1000 * n as u64);
         for update in 0..3 {
@@ -565,10 +565,10 @@ mod tests {
             );
             // a diverged update is an error in both, after the same steps; automatic, whatever
             // PPO_TUTOR_UPDATE says in the environment of the tests
-            let lean = lean_agent.update_as(&batch, None);
+            let plain = plain_agent.update_as(&batch, None);
             let tensors = tensor_agent.update_as(&batch, Some(UpdatePath::Candle));
-            if let (Ok(lean), Ok(tensors)) = (&lean, &tensors) {
-                assert_eq!(lean.path, UpdatePath::Plain, "{what}");
+            if let (Ok(plain), Ok(tensors)) = (&plain, &tensors) {
+                assert_eq!(plain.path, UpdatePath::Plain, "{what}");
                 assert_eq!(tensors.path, UpdatePath::Candle, "forced candle: {what}");
             }
             // every number, the path aside
@@ -578,24 +578,24 @@ mod tests {
                     ..t
                 })
             };
-            let (lean, tensors) = (lean.map(numbers), tensors.map(numbers));
+            let (plain, tensors) = (plain.map(numbers), tensors.map(numbers));
             assert_eq!(
-                format!("{lean:?}"),
+                format!("{plain:?}"),
                 format!("{tensors:?}"),
                 "trace differs: {what}"
             );
             assert_eq!(
-                text(&lean_agent.weights()?),
+                text(&plain_agent.weights()?),
                 text(&tensor_agent.weights()?),
                 "weights differ: {what}"
             );
             let state = [0.6_f32, -0.8, 1.5];
             assert_eq!(
-                lean_agent.mu_std(&state),
+                plain_agent.mu_std(&state),
                 tensor_agent.mu_std(&state),
                 "acting snapshot differs: {what}"
             );
-            if lean.is_err() {
+            if plain.is_err() {
                 break;
             }
         }
