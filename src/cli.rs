@@ -20,11 +20,16 @@ pub mod help_zh;
 pub mod interrupt;
 pub mod lab;
 pub mod lessons;
+mod one_thread;
 pub mod pendulum;
 pub mod play;
 pub mod replay;
 pub mod train;
 pub mod trust_region;
+mod usage;
+
+use one_thread::rerun_with_one_candle_thread;
+use usage::report_clap_error;
 
 /// Learn Proximal Policy Optimization by running it: a terminal tutor over a native
 /// CartPole-v1 and a candle PPO identical to the seed's PyTorch code.
@@ -219,217 +224,6 @@ fn is_broken_pipe(err: &anyhow::Error) -> bool {
     })
 }
 
-/// Prints help and version as clap does; usage errors as one line, exit code 2.
-fn report_clap_error(err: &clap::Error) -> ExitCode {
-    use clap::error::ErrorKind;
-    match err.kind() {
-        ErrorKind::DisplayHelp
-        | ErrorKind::DisplayVersion
-        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            let _ = err.print();
-            ExitCode::SUCCESS
-        }
-        _ => {
-            let line = match Lang::current() {
-                Lang::En => usage_error_line(&err.render().to_string()),
-                Lang::Zh => usage_error_zh(err),
-            };
-            eprintln!("{line}{}", see_help());
-            ExitCode::from(EXIT_USAGE)
-        }
-    }
-}
-
-/// A clap usage error as one Chinese line, built from its kind and context (what clap
-/// renders is English): `错误：` and one sentence per kind, quoting the argument and value.
-fn usage_error_zh(err: &clap::Error) -> String {
-    use clap::error::{ContextKind, ContextValue, ErrorKind};
-    let get = |kind: ContextKind| -> Option<String> {
-        match err.get(kind)? {
-            ContextValue::String(s) => Some(s.clone()),
-            ContextValue::Strings(v) => Some(v.join("、")),
-            ContextValue::StyledStr(s) => Some(s.to_string()),
-            ContextValue::StyledStrs(v) => Some(
-                v.iter()
-                    .map(ToString::to_string)
-                    .collect::<Vec<_>>()
-                    .join("、"),
-            ),
-            ContextValue::Number(n) => Some(n.to_string()),
-            ContextValue::Bool(b) => Some(b.to_string()),
-            ContextValue::None => None,
-            _ => None,
-        }
-    };
-    let quoted = |list: String| -> String {
-        list.split('、')
-            .map(|item| format!("'{item}'"))
-            .collect::<Vec<_>>()
-            .join("、")
-    };
-    let arg = get(ContextKind::InvalidArg).unwrap_or_default();
-    let value = get(ContextKind::InvalidValue);
-    let suggest = |kind: ContextKind| -> String {
-        get(kind)
-            .map(|s| format!("；你是不是想用 {}？", quoted(s)))
-            .unwrap_or_default()
-    };
-    let sentence = match err.kind() {
-        // A flag clap does not know, or a value no argument takes.
-        ErrorKind::UnknownArgument if arg.starts_with('-') => {
-            format!("不认识的参数 '{arg}'{}", suggest(ContextKind::SuggestedArg))
-        }
-        ErrorKind::UnknownArgument => format!("多余的参数 '{arg}'"),
-        ErrorKind::InvalidSubcommand => format!(
-            "不认识的子命令 '{}'{}",
-            get(ContextKind::InvalidSubcommand).unwrap_or_default(),
-            suggest(ContextKind::SuggestedSubcommand)
-        ),
-        ErrorKind::InvalidValue => match value.as_deref() {
-            None | Some("") => format!("'{arg}' 需要一个值，但没有给出"),
-            Some(value) => {
-                let valid = get(ContextKind::ValidValue)
-                    .map(|v| format!("；可选值：{}", quoted(v)))
-                    .unwrap_or_default();
-                format!(
-                    "'{value}' 不是 '{arg}' 的有效值{valid}{}",
-                    suggest(ContextKind::SuggestedValue)
-                )
-            }
-        },
-        ErrorKind::ValueValidation => {
-            let value = value.unwrap_or_default();
-            // Our own parsers explain in Chinese (or in both languages, then the Chinese
-            // half); a number parser of the standard library in English, which
-            // `errors::parse_reason` says in Chinese; any other reason in English is left out.
-            let source = std::error::Error::source(err);
-            let why = source
-                .and_then(errors::parse_reason)
-                .or_else(|| {
-                    source
-                        .map(ToString::to_string)
-                        .map(|m| match m.split_once(" / ") {
-                            Some((_, zh)) if has_chinese(zh) => zh.to_string(),
-                            _ => m,
-                        })
-                        .filter(|m| has_chinese(m))
-                })
-                .map(|m| format!("：{m}"))
-                .unwrap_or_default();
-            format!("'{arg}' 的值 '{value}' 无效{why}")
-        }
-        ErrorKind::MissingRequiredArgument => format!("缺少必需的参数：{}", quoted(arg)),
-        ErrorKind::MissingSubcommand => {
-            let valid = get(ContextKind::ValidSubcommand)
-                .map(|v| format!("：{}", quoted(v)))
-                .unwrap_or_default();
-            format!(
-                "'{}' 需要一个子命令{valid}",
-                get(ContextKind::InvalidSubcommand).unwrap_or_default()
-            )
-        }
-        ErrorKind::ArgumentConflict => match get(ContextKind::PriorArg) {
-            Some(prior) if prior != arg => {
-                format!("'{arg}' 不能与 {} 同时使用", quoted(prior))
-            }
-            _ => format!("'{arg}' 不能重复使用"),
-        },
-        ErrorKind::TooManyValues => format!(
-            "'{arg}' 不需要更多的值，却多给了 '{}'",
-            value.unwrap_or_default()
-        ),
-        ErrorKind::TooFewValues => format!(
-            "'{arg}' 至少需要 {} 个值，只给了 {} 个",
-            get(ContextKind::MinValues).unwrap_or_default(),
-            get(ContextKind::ActualNumValues).unwrap_or_default()
-        ),
-        ErrorKind::WrongNumberOfValues => format!(
-            "'{arg}' 需要 {} 个值，给了 {} 个",
-            get(ContextKind::ExpectedNumValues).unwrap_or_default(),
-            get(ContextKind::ActualNumValues).unwrap_or_default()
-        ),
-        ErrorKind::NoEquals => format!("'{arg}' 的值要用等号连着写，如 '{arg}=…'"),
-        ErrorKind::InvalidUtf8 => "参数不是有效的 UTF-8 文本".to_string(),
-        _ if arg.is_empty() => "命令行参数有误".to_string(),
-        _ => format!("命令行参数 '{arg}' 有误"),
-    };
-    format!("{}{sentence}", error_prefix())
-}
-
-/// Whether `text` holds a Chinese character.
-fn has_chinese(text: &str) -> bool {
-    text.chars().any(|c| ('\u{4e00}'..='\u{9fff}').contains(&c))
-}
-
-/// A clap error as one line: its first line, and for a missing argument the arguments it
-/// lists on the lines below (`error: the following required arguments were not provided:
-/// <EXERCISE>`), which the first line alone would leave out.
-fn usage_error_line(rendered: &str) -> String {
-    let mut lines = rendered.lines().skip_while(|l| l.trim().is_empty());
-    let Some(first) = lines.next() else {
-        return "error: invalid arguments".to_string();
-    };
-    let listed: Vec<&str> = lines
-        .take_while(|l| l.starts_with(' ') && !l.trim().is_empty())
-        .map(str::trim)
-        .collect();
-    if listed.is_empty() {
-        first.to_string()
-    } else {
-        format!("{first} {}", listed.join(", "))
-    }
-}
-
-/// Re-runs this `ppo-tutor` process with `RAYON_NUM_THREADS=1` when it is unset.
-///
-/// Without the variable, candle asks the OS for the number of physical cores (by reading
-/// `/proc/cpuinfo`) on every matrix product: ~30 µs each, ~50% of the time of the seed's
-/// default run with 4x128 networks (measured 7.2 s vs 3.4 s for 500 episodes). Setting the
-/// variable in-process needs `unsafe` (`std::env::set_var`, edition 2024), which this crate
-/// forbids; re-running the binary costs a millisecond. A value set by the user is kept.
-/// Returns `None` to go on in this process (variable set, or not the `ppo-tutor` binary,
-/// as when a test calls [`run`] in-process).
-fn rerun_with_one_candle_thread() -> Option<anyhow::Result<ExitCode>> {
-    if std::env::var_os("RAYON_NUM_THREADS").is_some() {
-        return None;
-    }
-    let exe = std::env::current_exe().ok()?;
-    if exe.file_stem().and_then(|s| s.to_str()) != Some("ppo-tutor") {
-        return None;
-    }
-    let mut command = std::process::Command::new(&exe);
-    command
-        .args(std::env::args_os().skip(1))
-        .env("RAYON_NUM_THREADS", "1");
-    Some(rerun(command, &exe))
-}
-
-/// Runs `command`, this program again with one candle thread. On Unix it replaces this
-/// process (the same PID, so a signal meant for `ppo-tutor` reaches it, and nothing is left
-/// running when it is killed: a child used to outlive a SIGTERM); `exec` returns only when
-/// it fails.
-#[cfg(unix)]
-fn rerun(mut command: std::process::Command, exe: &std::path::Path) -> anyhow::Result<ExitCode> {
-    use std::os::unix::process::CommandExt as _;
-    let e = command.exec();
-    Err(anyhow::Error::new(e).context(format!("re-running {}", exe.display())))
-}
-
-/// Runs `command`, this program again with one candle thread, and exits with its code.
-/// Ctrl-C reaches both processes: this one ignores it, so that the child's answer
-/// ([`interrupt`]) and exit code are what the user sees.
-#[cfg(not(unix))]
-fn rerun(mut command: std::process::Command, exe: &std::path::Path) -> anyhow::Result<ExitCode> {
-    interrupt::ignore_in_parent();
-    match command.status() {
-        Ok(status) => Ok(status
-            .code()
-            .and_then(|c| u8::try_from(c).ok())
-            .map_or(ExitCode::FAILURE, ExitCode::from)),
-        Err(e) => Err(anyhow::Error::new(e).context(format!("re-running {}", exe.display()))),
-    }
-}
-
 /// Runs a parsed command line.
 ///
 /// # Errors
@@ -605,7 +399,7 @@ mod tests {
                 panic!("{line:?} parsed");
             };
             assert_eq!(format!("{:?}", err.kind()), kind, "{line:?}");
-            let text = usage_error_zh(&err);
+            let text = usage::usage_error_zh(&err);
             assert!(
                 text.starts_with("错误：") && text.contains(says) && !text.contains('\n'),
                 "{line:?}: {text}"

@@ -1062,7 +1062,7 @@ fn the_surrogate_gradient_is_the_policy_gradient_at_theta_old() -> TestResult {
     let mut session = ppo_tutor::lesson::Session::new(PpoConfig::default(), 0)?;
     for _ in 0..20 {
         let snap = session.next_episode()?.ok_or("the run ended")?;
-        let g = snap.gradients.as_ref().ok_or("no gradients")?;
+        let g = &snap.cartpole_update().ok_or("no gradients")?.gradients;
         assert_eq!(g.surrogate.len(), 898);
         assert!(g.max_abs() > 0.0);
         assert!(
@@ -1130,7 +1130,7 @@ fn the_continuous_lesson_states_what_the_first_episodes_show() -> TestResult {
         let mut session = pendulum_session(seed)?;
         for episode in 0..30 {
             let s = session.next_episode()?.ok_or("the run has 2000 episodes")?;
-            let c = s.continuous.as_ref().ok_or("a Pendulum snapshot")?;
+            let c = &s.pendulum_update().ok_or("a Pendulum snapshot")?.trace;
             if episode == 0 {
                 let (lo, hi) = min_max(&c.mu);
                 mu = (mu.0.min(lo), mu.1.max(hi));
@@ -1264,9 +1264,14 @@ fn the_pendulum_lesson_states_what_a_trained_map_shows() -> TestResult {
     for seed in [0, 1] {
         let mut session = pendulum_session(seed)?;
         let first = session.next_episode()?.ok_or("2000 episodes")?;
-        let first_map = first.policy_map.clone().ok_or("a map")?;
+        let first_map = first.pendulum_update().ok_or("a map")?.policy_map.clone();
         while session.next_episode()?.is_some() {}
-        let m = session.snapshot().policy_map.clone().ok_or("a map")?;
+        let m = session
+            .snapshot()
+            .pendulum_update()
+            .ok_or("a map")?
+            .policy_map
+            .clone();
         // Rows: θ̇ = 8, 6, ..., −8; columns: θ = −π, −3π/4, ..., π (4 is upright).
         let at = |row: usize, col: usize| m.mu[row * 9 + col];
         let mean_std = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;

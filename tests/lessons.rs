@@ -672,7 +672,7 @@ fn run_measures_differ_between_runs() -> TestResult {
         for env in AgentKind::ALL {
             let values: Vec<f64> = snapshots
                 .iter()
-                .filter(|s| s.agent == env)
+                .filter(|s| s.agent() == env)
                 .filter_map(|s| (m.value)(s))
                 .collect();
             if values.len() < 2 {

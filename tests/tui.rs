@@ -292,7 +292,7 @@ fn the_worker_keeps_one_session_per_environment() -> TestResult {
     assert!(matches!(wait()?, WorkerEvent::Reset { seed: 0 }));
     cmd_tx.send(Command::OneEpisode)?;
     let s = episode(wait()?)?;
-    assert_eq!((s.agent, s.episodes), (AgentKind::Pendulum, 1));
+    assert_eq!((s.agent(), s.episodes), (AgentKind::Pendulum, 1));
     cmd_tx.send(Command::Switch {
         config: Box::new(RunConfig::CartPole(config.clone())),
         seed: 9,

@@ -16,9 +16,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 use ppo_tutor::i18n::{ALLOWED_WORDS, Lang, english_words};
-use ppo_tutor::lesson::live::NAMES;
+use ppo_tutor::lesson::live::names;
 use ppo_tutor::lesson::reveal::{Row, listing};
-use ppo_tutor::lesson::{Course, Session, Snapshot};
+use ppo_tutor::lesson::{AgentKind, Course, RunConfig, Session, Snapshot};
 use ppo_tutor::ppo::knobs::{KnobKind, Tunable};
 use ppo_tutor::ppo::lab::Experiment;
 use ppo_tutor::ppo::{PpoConfig, PpoContinuousConfig};
@@ -158,13 +158,10 @@ impl Known {
             .collect();
 
         let mut hyper = BTreeSet::new();
-        for table in [
-            Snapshot::new(&PpoConfig::default(), 0).hyper,
-            Snapshot::new_pendulum(&PpoContinuousConfig::default(), 0).hyper,
-        ] {
-            hyper.extend(table);
+        for agent in AgentKind::ALL {
+            hyper.extend(Snapshot::new(RunConfig::default_for(agent), 0).hyper);
         }
-        let mut global: BTreeSet<String> = NAMES.iter().map(|s| (*s).to_string()).collect();
+        let mut global: BTreeSet<String> = names().iter().map(|s| (*s).to_string()).collect();
         global.extend(hyper.iter().map(|(k, _)| k.clone()));
         global.extend(Experiment::ALL.iter().map(|e| e.name().to_string()));
         global.extend(Lang::ALL.iter().map(|l| l.name().to_string()));
@@ -181,7 +178,7 @@ impl Known {
             Session::run(PpoConfig::default(), 0, 1)?,
             Session::run(PpoContinuousConfig::default(), 0, 1)?,
         ] {
-            for name in NAMES {
+            for name in names() {
                 if let Some(view) = snapshot.tensor(name) {
                     global.insert(view.dtype.to_string());
                 }

@@ -9,7 +9,7 @@ use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 // The seed's settings and seed 0; 100 episodes of training (about a second).
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
-let trace: UpdateTrace = snap.trace.clone().expect("100 episodes were trained");
+let trace: UpdateTrace = snap.cartpole_update().expect("100 episodes were trained").trace.clone();
 println!("episode {} lasted {} steps", snap.episodes, trace.rewards.len());
 
 // %% step: A policy that learns from its own play
@@ -33,7 +33,7 @@ println!("PPO's last five returns after {} episodes: {:?}", snap.episodes, &snap
 
 // %% step: The policy gradient
 // π(·|s_t) for the first steps of the latest episode, and the action that was sampled.
-for (t, p) in snap.probs.iter().take(5).enumerate() {
+for (t, p) in snap.cartpole_update().expect("a trained CartPole run").probs.iter().take(5).enumerate() {
     println!("s_{t}: π(left) = {:.4}  π(right) = {:.4}  sampled: {}", p[0], p[1], trace.actions[t]);
 }
 

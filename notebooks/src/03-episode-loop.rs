@@ -6,7 +6,7 @@ use ppo_engine::notebook::snapshot;
 use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
 
 // %% step: Ten iterations of fifty episodes
 println!(
@@ -21,7 +21,7 @@ println!(
 let against = trace
     .actions
     .iter()
-    .zip(&snap.probs)
+    .zip(&snap.cartpole_update().expect("a trained CartPole run").probs)
     .filter(|(a, p)| p[**a] < 0.5)
     .count();
 println!("{against} of {} actions were the less likely one: sampling explores", trace.actions.len());

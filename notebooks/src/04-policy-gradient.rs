@@ -8,7 +8,7 @@ use ppo_engine::ppo::{PpoConfig, SurrogateGradients, UpdateTrace};
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
 
 // %% step: What we want: J(θ)
 // log P_θ(τ) keeps only the policy's factors that θ controls: Σ_t log π(a_t|s_t).
@@ -47,7 +47,7 @@ println!(
 // %% step: The bridge to PPO: one gradient at θ_old
 // check: grad_surrogate after 30 episodes
 // The session differentiated both objectives at the actor that played episode 30.
-let grads: SurrogateGradients = snap.gradients.clone().expect("computed after every episode");
+let grads: SurrogateGradients = snap.cartpole_update().expect("computed after every episode").gradients.clone();
 println!("{:<18} {:>14} {:>14}", "parameter", "∇ mean(r·Â)", "∇ mean(log π·Â)");
 for i in [640, 641, 642, 896, 897] {
     let name = grads.label(i).unwrap_or_default();

@@ -6,7 +6,7 @@ use ppo_engine::notebook::snapshot;
 use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
 
 // %% step: From one-step errors to an advantage
 // The weight (γλ)^l of the TD error l steps later in Â_t.

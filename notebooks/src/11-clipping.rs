@@ -6,7 +6,7 @@ use ppo_engine::notebook::snapshot;
 use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
 let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();
 
 // %% step: Two surrogates

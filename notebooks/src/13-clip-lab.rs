@@ -8,7 +8,7 @@ use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
-let trace: UpdateTrace = snap.trace.clone().expect("100 episodes were trained");
+let trace: UpdateTrace = snap.cartpole_update().expect("100 episodes were trained").trace.clone();
 
 // %% step: What to watch in every update
 // The latest update, epoch by epoch: what the diagnostics are made of.

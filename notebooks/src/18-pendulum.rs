@@ -47,16 +47,16 @@ println!("mean return of episodes 1-20: {:.1}; of 281-300: {:.1}", mean(&snap.re
 // %% step: The mean torque across the state space
 // μ at the centre of the grid (upright, at rest) and the largest |μ| on the grid, as training goes on:
 for (episode, s) in &maps {
-    let map = s.policy_map.as_ref().expect("a Pendulum snapshot has a map");
+    let map = &s.pendulum_update().expect("a Pendulum snapshot has a map").policy_map;
     let biggest = map.mu.iter().fold(0.0_f32, |m, v| m.max(v.abs()));
     println!("after episode {episode:>3}: μ(upright, at rest) = {:+.4}, max |μ| on the grid = {biggest:.4}", map.mu[40]);
 }
 // The map after episode 300 as a picture (the table below holds the same numbers):
-ppo_engine::notebook::policy_map_svg(snap.policy_map.as_ref().expect("a Pendulum snapshot has a map"))
+ppo_engine::notebook::policy_map_svg(&snap.pendulum_update().expect("a Pendulum snapshot has a map").policy_map)
 
 // %% step: The spread σ as training goes on
 for (episode, s) in &maps {
-    let map = s.policy_map.as_ref().expect("a Pendulum snapshot has a map");
+    let map = &s.pendulum_update().expect("a Pendulum snapshot has a map").policy_map;
     let mean_std = map.std.iter().sum::<f32>() / map.std.len() as f32;
     println!("after episode {episode:>3}: mean σ over the grid = {mean_std:.4}");
 }

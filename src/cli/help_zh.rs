@@ -197,6 +197,15 @@ pub const HELP_ZH: &[(&str, &str)] = &[
         "train:plot",
         "把回报曲线及其移动平均画到 <文件>（.png 或 .svg）",
     ),
+    (
+        "train:x_axis",
+        "--plot 的横轴：回合的序号，或每个回合结束时累计的环境时间步（回合长度或 rollout 不同的运行，在这个横轴上才能比较）",
+    ),
+    ("train:x_axis=episodes", "第 0、1、2……个回合"),
+    (
+        "train:x_axis=steps",
+        "从训练开始累计的环境时间步，取在每个回合结束时",
+    ),
     ("train:quiet", "不显示进度条和终端里的图：只打印汇总"),
     (
         "train:actor_lr",
@@ -495,6 +504,7 @@ pub const VALUE_NAMES_ZH: &[(&str, &str)] = &[
     ("TARGET_KL", "KL"),
     ("TORQUES", "力矩"),
     ("TRAIN_EPISODES", "回合数"),
+    ("X_AXIS", "横轴"),
 ];
 
 /// Looks up `key` in `table`.

@@ -15,11 +15,11 @@ use ratatui::widgets::{Block, Widget};
 
 use super::args::parse_seed;
 use super::cartpole::ascii_frame;
-use super::train::{TrainEnv, parse_train_env};
+use super::train::parse_train_env;
 use crate::env::{CartPole, EnvId, Pendulum};
 use crate::i18n::t;
 use crate::ppo::{Agent, CheckpointKind, PpoConfig, PpoContinuous, PpoContinuousConfig};
-use crate::run::AgentKind;
+use crate::run::{AgentKind, Choice, RunConfig};
 use crate::tr;
 use crate::tui::widgets::pendulum::PendulumView;
 
@@ -42,7 +42,7 @@ pub struct PlayArgs {
     /// Gymnasium environment id, in any case [default: the checkpoint's, CartPole-v1 or
     /// Pendulum-v1]; CartPole-v0 plays a CartPole agent with a 200-step limit.
     #[arg(long = "env", value_parser = parse_train_env)]
-    pub env_id: Option<TrainEnv>,
+    pub env_id: Option<Choice>,
     /// Take the most probable action instead of sampling as in training (a Pendulum-v1
     /// agent always plays its mean torque μ).
     #[arg(long)]
@@ -63,16 +63,21 @@ pub struct PlayArgs {
 /// shape), `--env` names another environment than the checkpoint's, or writing to the
 /// terminal failed.
 pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
-    let kind = CheckpointKind::of_file(&args.load, &AgentKind::ALL.map(AgentKind::checkpoint));
-    let pendulum_file = kind == Some(AgentKind::Pendulum.checkpoint());
-    let env = match args.env_id {
-        None if pendulum_file => TrainEnv::Pendulum,
-        None => TrainEnv::CartPole(EnvId::CartPoleV1),
+    let kinds = AgentKind::ALL.map(AgentKind::checkpoint);
+    let kind = CheckpointKind::of_file(&args.load, &kinds);
+    let file_agent = AgentKind::ALL
+        .into_iter()
+        .find(|a| Some(a.checkpoint()) == kind);
+    let choice = match (args.env_id, file_agent) {
+        // The file's own agent on its default environment; an unreadable file goes to the
+        // first agent's loader, which says why.
+        (None, agent) => RunConfig::default_for(agent.unwrap_or_default()).choice(),
         // An unreadable file goes to the loader of the environment asked, which says why.
-        Some(asked) if kind.is_none() || (asked == TrainEnv::Pendulum) == pendulum_file => asked,
-        Some(asked) => {
+        (Some(asked), None) => asked,
+        (Some(asked), Some(agent)) if asked.agent == agent => asked,
+        (Some(asked), Some(_)) => {
             let holds = kind.map_or(t("another agent", "别的智能体").to_string(), |k| {
-                let (algorithm, env) = (k.algorithm(), k.env());
+                let (algorithm, env) = (k.algorithm, k.env);
                 tr!(
                     "a {algorithm} agent for {env}",
                     "{env} 上的 {algorithm} 智能体"
@@ -92,9 +97,9 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(super::EXIT_USAGE));
         }
     };
-    match env {
-        TrainEnv::CartPole(env_id) => play_cartpole(args, env_id),
-        TrainEnv::Pendulum => play_pendulum(args),
+    match choice.agent {
+        AgentKind::CartPole => play_cartpole(args, choice.id.parse()?),
+        AgentKind::Pendulum => play_pendulum(args),
     }
 }
 

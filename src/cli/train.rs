@@ -17,7 +17,7 @@ use super::interrupt::Interrupt;
 use crate::env::EnvId;
 use crate::i18n::t;
 use crate::lesson::RunConfig;
-use crate::plot::{ascii_return_plot, labels, save_return_plot};
+use crate::plot::{XAxis, ascii_return_plot, labels, save_return_plot_over};
 use crate::ppo::knobs::Tunable;
 use crate::ppo::train::mean_last;
 use crate::ppo::{
@@ -30,7 +30,7 @@ use crate::tr;
 pub mod setup;
 mod several;
 
-pub use setup::{TrainEnv, parse_train_env, run_config};
+pub use setup::{parse_train_env, run_config};
 
 /// Arguments of `ppo-tutor train`; defaults are the seed's on CartPole, the book's on
 /// Pendulum-v1.
@@ -54,7 +54,7 @@ pub struct TrainArgs {
     /// Gymnasium environment id, in any case: CartPole-v1 and CartPole-v0 (the seed's PPO) or
     /// Pendulum-v1 (the book's PPOContinuous, a Gaussian policy).
     #[arg(long = "env", default_value = "CartPole-v1", value_parser = parse_train_env)]
-    pub env_id: TrainEnv,
+    pub env_id: crate::run::Choice,
     /// Write returns, env steps and timing as JSON to FILE.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -64,6 +64,11 @@ pub struct TrainArgs {
     /// Draw the return curve and its moving average to FILE.png or FILE.svg.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// What --plot draws the returns against: each episode's number, or the environment
+    /// steps taken when it ended (the axis on which runs of different episode lengths or
+    /// rollouts compare).
+    #[arg(long, value_enum, default_value_t = XAxisArg::Episodes, requires = "plot", conflicts_with = "seeds")]
+    pub x_axis: XAxisArg,
     /// No progress bars and no terminal plot: only the summary.
     #[arg(long, short)]
     pub quiet: bool,
@@ -161,6 +166,15 @@ impl From<ObjectiveArg> for Objective {
             ObjectiveArg::LineSearch => Self::LineSearch,
         }
     }
+}
+
+/// `--x-axis` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum XAxisArg {
+    /// Episode 0, 1, 2, ...
+    Episodes,
+    /// The environment steps since training began, at each episode's end.
+    Steps,
 }
 
 /// `--algorithm` values.
@@ -289,7 +303,11 @@ pub fn run(args: &TrainArgs) -> anyhow::Result<ExitCode> {
             return Ok(code);
         }
         let title = labels::return_title(labels::algorithm(&setup), setup.env_id());
-        save_return_plot(path, &title, &summary.returns, (&smoothed, window))?;
+        let x = match args.x_axis {
+            XAxisArg::Episodes => XAxis::Episodes,
+            XAxisArg::Steps => XAxis::Steps(&summary.episode_end_steps),
+        };
+        save_return_plot_over(path, &title, &summary.returns, (&smoothed, window), x)?;
         written.done("--plot", path);
         let shown = path.display();
         writeln!(
@@ -424,6 +442,7 @@ pub(super) fn run_json(
         "seed": seed,
         "env": setup.env_id(),
         "env_steps": summary.env_steps,
+        "episode_end_steps": summary.episode_end_steps,
         "wall_s": summary.wall_s,
         "steps_per_s": summary.steps_per_s(),
         "mean_last_50": summary.mean_last(50),

@@ -100,7 +100,7 @@ pub fn run(args: &TrustRegionArgs) -> anyhow::Result<ExitCode> {
         writeln!(out, "{text}")?;
         return Ok(ExitCode::SUCCESS);
     }
-    let batch = snapshot.trace.as_ref().map_or(0, |t| t.states.len());
+    let batch = snapshot.batch().map_or(0, |b| b.states.len());
     let last = snapshot.returns.last().copied().unwrap_or(0.0);
     let (seed, trained) = (args.seed, snapshot.episodes);
     writeln!(

@@ -588,11 +588,13 @@ impl App {
     /// on, when it is not measured or being measured yet (`None` otherwise).
     #[must_use]
     pub fn wants_probe(&self) -> Option<usize> {
-        let shows = self
-            .current_step()
-            .is_some_and(|s| s.show.iter().any(|v| v == "trust_region"));
+        let shows = self.current_step().is_some_and(|s| {
+            s.show
+                .iter()
+                .any(|v| v == crate::lesson::View::TrustRegion.name())
+        });
         let s = &self.run.snapshot;
-        if !shows || s.played_with.is_none() || s.agent != crate::lesson::AgentKind::CartPole {
+        if !shows || s.cartpole_update().is_none() {
             return None;
         }
         let episodes = s.episodes;

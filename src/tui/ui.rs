@@ -15,7 +15,7 @@ use super::widgets::{
     text,
 };
 use crate::i18n::t;
-use crate::lesson::{TensorView, VIEWS};
+use crate::lesson::{TensorView, View as StepView};
 use crate::tr;
 
 /// The smallest terminal the layout fits.
@@ -336,17 +336,16 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
         Paragraph::new(text::wrap([line], inner.width)).render(inner, buf);
         return;
     }
-    let views: Vec<&str> = step
+    let views: Vec<StepView> = step
         .show
         .iter()
-        .map(String::as_str)
-        .filter(|s| VIEWS.contains(s))
+        .filter_map(|s| StepView::from_name(s))
         .collect();
     let names: Vec<&str> = step
         .show
         .iter()
         .map(String::as_str)
-        .filter(|s| !VIEWS.contains(s))
+        .filter(|s| StepView::from_name(s).is_none())
         .collect();
     let (view_area, tensor_area) = match (views.is_empty(), names.is_empty()) {
         (true, _) => (Rect::default(), area),
@@ -361,7 +360,7 @@ fn draw_live(app: &App, theme: Theme, step: &crate::lesson::Step, area: Rect, bu
         let areas = Layout::horizontal(vec![Constraint::Ratio(1, views.len() as u32); views.len()])
             .split(view_area);
         for (view, a) in views.iter().zip(areas.iter()) {
-            draw_view(app, theme, view, *a, buf);
+            draw_view(app, theme, *view, *a, buf);
         }
     }
     if tensor_area.height > 0 {
@@ -417,7 +416,7 @@ fn missing_notes(app: &App, names: &[&str], theme: Theme) -> Vec<Line<'static>> 
         .copied()
         .filter(|n| crate::lesson::live::PENALTY_ONLY.contains(n) && s.tensor(n).is_none())
         .collect();
-    if missing.is_empty() || s.trace.is_none() {
+    if missing.is_empty() || s.cartpole_update().is_none() {
         return Vec::new();
     }
     vec![Line::styled(
@@ -430,7 +429,7 @@ fn missing_notes(app: &App, names: &[&str], theme: Theme) -> Vec<Line<'static>> 
     )]
 }
 
-fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) {
+fn draw_view(app: &App, theme: Theme, view: StepView, area: Rect, buf: &mut Buffer) {
     let s = &app.run.snapshot;
     let previous = app
         .run
@@ -438,7 +437,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
         .as_ref()
         .map(|p| (p.label(), p.values.as_slice()));
     match view {
-        "plot" => {
+        StepView::Plot => {
             // The seed's window (9) up to 549 episodes; a longer run (Pendulum's 2000) is
             // smoothed over more, or its average is as noisy as its returns.
             let window = crate::plot::window::window(app.run.config().num_episodes());
@@ -473,8 +472,11 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             }
             .render(area, buf);
         }
-        "cartpole" => {
-            let obs = s.observation(app.run.frame).unwrap_or([0.0; 4]);
+        StepView::CartPole => {
+            let obs = s
+                .observation(app.run.frame)
+                .and_then(|o| <[f32; 4]>::try_from(o).ok())
+                .unwrap_or([0.0; 4]);
             let title = tr!(
                 "the latest episode, step {}/{}",
                 "最近一个回合，时间步 {}/{}",
@@ -488,7 +490,7 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             }
             .render(area, buf);
         }
-        "pendulum" => {
+        StepView::Pendulum => {
             let (theta, torque) = s
                 .pendulum_frame(app.run.frame)
                 .unwrap_or((std::f64::consts::PI, 0.0));
@@ -506,16 +508,16 @@ fn draw_view(app: &App, theme: Theme, view: &str, area: Rect, buf: &mut Buffer) 
             }
             .render(area, buf);
         }
-        "trust_region" => draw_probe(app, theme, area, buf),
-        "lab" => {
+        StepView::TrustRegion => draw_probe(app, theme, area, buf),
+        StepView::Lab => {
             let Some(experiment) = app.current_step().and_then(|s| s.lab) else {
                 return;
             };
             app.lab
                 .render(experiment, &app.lab_base(), theme, area, buf);
         }
-        _ => {
-            let trace = s.trace.as_ref();
+        StepView::ClipChart => {
+            let trace = s.cartpole_update().map(|c| &c.trace);
             ClipChart {
                 eps: app.run.cartpole().eps,
                 epoch: trace.and_then(|t| t.epochs.last()),

@@ -139,7 +139,7 @@ fn run(config: RunConfig, seed: u64, commands: &Receiver<Command>, events: &Send
                 id = run;
                 let agent = config.agent();
                 if let Some(left) = session.take() {
-                    let left_agent = left.snapshot().agent;
+                    let left_agent = left.snapshot().agent();
                     parked[left_agent] = Some(left);
                 }
                 session = if let Some(s) = parked[agent].take() {

@@ -736,3 +736,61 @@ fn a_longer_run_smooths_over_more_episodes() -> TestResult {
     assert_eq!(average, ppo_tutor::ppo::moving_average(&returns, 11)?);
     Ok(())
 }
+
+/// `--x-axis steps` draws the returns against the environment steps at each episode's end,
+/// the steps the JSON lists (one per episode, ending at the run's total); it needs `--plot`
+/// and is refused with `--seeds`, whose runs end their episodes at different steps.
+#[test]
+fn the_return_plot_can_be_drawn_against_environment_steps() -> TestResult {
+    let dir = tempfile::tempdir()?;
+    let (json, plot) = (dir.path().join("run.json"), dir.path().join("run.svg"));
+    let out = ppo_tutor(&[
+        "train",
+        "--quiet",
+        "--episodes",
+        "5",
+        "--json",
+        path(&json)?,
+        "--plot",
+        path(&plot)?,
+        "--x-axis",
+        "steps",
+    ])?;
+    assert!(out.status.success(), "{}", stderr(&out));
+    let run: Value = serde_json::from_str(&std::fs::read_to_string(&json)?)?;
+    let ends: Vec<u64> = run["episode_end_steps"]
+        .as_array()
+        .ok_or("no episode_end_steps")?
+        .iter()
+        .filter_map(Value::as_u64)
+        .collect();
+    let returns = common::numbers(&run["returns"]);
+    assert_eq!(ends.len(), returns.len());
+    // CartPole pays 1 per step, so each episode's steps are its return.
+    let mut total = 0;
+    for (end, r) in ends.iter().zip(&returns) {
+        total += *r as u64;
+        assert_eq!(*end, total);
+    }
+    assert_eq!(run["env_steps"].as_u64(), Some(total));
+    let svg = std::fs::read_to_string(&plot)?;
+    assert!(
+        svg.contains("Environment steps") && !svg.contains(">Episodes<"),
+        "x label"
+    );
+
+    for (args, named) in [
+        (vec!["train", "--x-axis", "steps"], "--plot"),
+        (
+            vec![
+                "train", "--seeds", "0-1", "--plot", "x.svg", "--x-axis", "steps",
+            ],
+            "--x-axis",
+        ),
+    ] {
+        let out = ppo_tutor(&args)?;
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&out).contains(named), "{}", stderr(&out));
+    }
+    Ok(())
+}

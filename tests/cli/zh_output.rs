@@ -175,7 +175,7 @@ fn allowed(files: &[&str]) -> Result<BTreeSet<String>, Box<dyn std::error::Error
             .map(|e| e.name().to_string()),
     );
     for agent in ppo_tutor::run::AgentKind::ALL {
-        allowed.insert(agent.checkpoint().algorithm().to_string());
+        allowed.insert(agent.checkpoint().algorithm.to_string());
     }
     allowed.extend(files.iter().map(ToString::to_string));
     // Mathematical variables: one letter, alone or as a norm.

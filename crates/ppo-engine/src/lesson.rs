@@ -108,14 +108,74 @@ impl Exercise {
     }
 }
 
-/// Views a step can show instead of a tensor.
-/// `trust_region` is the trust-region probe of the latest batch
-/// ([`crate::ppo::trust_region::probe_snapshot`]), measured when the step opens.
-pub const VIEWS: [&str; 6] = [
-    "plot",
-    "cartpole",
-    "clip_chart",
-    "lab",
-    "pendulum",
-    "trust_region",
-];
+/// A view a step can show instead of a tensor, by the name a lesson's `show` list gives it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum View {
+    /// `plot`: the return curve and its moving average.
+    Plot,
+    /// `cartpole`: the cart and pole through the latest episode.
+    CartPole,
+    /// `clip_chart`: `L^CLIP` against the ratio over the latest update's last epoch.
+    ClipChart,
+    /// `lab`: the step's experiment over seeds.
+    Lab,
+    /// `pendulum`: the pendulum through the latest episode.
+    Pendulum,
+    /// `trust_region`: the trust-region probe of the latest batch
+    /// ([`crate::lesson::live::probe::probe_snapshot`]), measured when the step opens.
+    TrustRegion,
+}
+
+impl View {
+    /// Every view, in the order [`VIEWS`] names them.
+    pub const ALL: [View; 6] = [
+        View::Plot,
+        View::CartPole,
+        View::ClipChart,
+        View::Lab,
+        View::Pendulum,
+        View::TrustRegion,
+    ];
+
+    /// The name a lesson's `show` list gives the view.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            View::Plot => "plot",
+            View::CartPole => "cartpole",
+            View::ClipChart => "clip_chart",
+            View::Lab => "lab",
+            View::Pendulum => "pendulum",
+            View::TrustRegion => "trust_region",
+        }
+    }
+
+    /// The view called `name`, if there is one.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|v| v.name() == name)
+    }
+
+    /// The agent whose runs the view draws, `None` for a view of every run (the plot).
+    #[must_use]
+    pub const fn agent(self) -> Option<AgentKind> {
+        match self {
+            View::Plot => None,
+            View::CartPole | View::ClipChart | View::Lab | View::TrustRegion => {
+                Some(AgentKind::CartPole)
+            }
+            View::Pendulum => Some(AgentKind::Pendulum),
+        }
+    }
+}
+
+/// The names of the views ([`View::name`]), for checking a `show` list.
+pub const VIEWS: [&str; View::ALL.len()] = {
+    let mut names = [""; View::ALL.len()];
+    let mut i = 0;
+    while i < View::ALL.len() {
+        names[i] = View::ALL[i].name();
+        i += 1;
+    }
+    names
+};

@@ -21,8 +21,8 @@ pub mod window;
 
 pub use crate::ppo::moving_average::{SMOOTHING_WINDOW, smoothed_returns};
 pub use file::{
-    PlotError, clip_chart_svg, lab_plot_svg, return_plot_svg, save_band_plot, save_lab_plot,
-    save_return_plot,
+    PlotError, XAxis, clip_chart_svg, lab_plot_svg, return_plot_svg, save_band_plot, save_lab_plot,
+    save_return_plot, save_return_plot_over,
 };
 pub use terminal::{ascii_band_plot, ascii_return_plot, ascii_versus_plot, display_width};
 

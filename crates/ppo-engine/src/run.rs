@@ -35,6 +35,7 @@ use std::ops::{Index, IndexMut};
 
 use crate::i18n::t;
 use crate::lesson::Snapshot;
+use crate::lesson::live::LatestView;
 use crate::lesson::live::session::LiveAgent;
 use crate::ppo::knobs::Tunable;
 use crate::ppo::knobs::{self, KnobValue};
@@ -86,12 +87,62 @@ macro_rules! agents {
                 }
             }
 
+            /// The live values only this agent's runs have
+            /// ([`LiveAgent::LIVE_VALUES`]).
+            #[must_use]
+            pub const fn live_values(self) -> &'static [&'static str] {
+                match self {
+                    $( AgentKind::$env => <<$config as AgentConfig>::Agent as LiveAgent>::LIVE_VALUES, )+
+                }
+            }
+
             /// How this agent's checkpoint file is marked (its own declaration,
             /// [`OnPolicyAgent::CHECKPOINT`]).
             #[must_use]
             pub const fn checkpoint(self) -> CheckpointKind {
                 match self {
                     $( AgentKind::$env => <<$config as AgentConfig>::Agent as OnPolicyAgent>::CHECKPOINT, )+
+                }
+            }
+        }
+
+        /// What the tutor shows of a run's latest episode and update, in the run's agent's
+        /// own type ([`LiveAgent::Latest`]); `None` before the first episode.
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum Latest {
+            $( $(#[doc = $doc])* $env(Option<Box<<<$config as AgentConfig>::Agent as LiveAgent>::Latest>>), )+
+        }
+
+        /// Nothing shown yet, of the first agent.
+        impl Default for Latest {
+            fn default() -> Self {
+                Self::empty(AgentKind::default())
+            }
+        }
+
+
+        impl Latest {
+            /// Nothing shown yet of a run of `agent`.
+            #[must_use]
+            pub fn empty(agent: AgentKind) -> Self {
+                match agent {
+                    $( AgentKind::$env => Self::$env(None), )+
+                }
+            }
+
+            /// The agent whose run this is.
+            #[must_use]
+            pub fn agent(&self) -> AgentKind {
+                match self {
+                    $( Self::$env(_) => AgentKind::$env, )+
+                }
+            }
+
+            /// The agent's view of what it shows, `None` before the first episode.
+            #[must_use]
+            pub fn view(&self) -> Option<&dyn LatestView> {
+                match self {
+                    $( Self::$env(latest) => latest.as_deref().map(|l| l as &dyn LatestView), )+
                 }
             }
         }
@@ -260,6 +311,13 @@ impl AgentKind {
     }
 }
 
+/// An agent's [`LiveAgent::Latest`] in its slot of [`Latest`] (each agent's live file
+/// writes its one line).
+pub trait IntoLatest {
+    /// `self` in its agent's variant.
+    fn into_latest(self) -> Latest;
+}
+
 /// Code generic over the agents, called with the run's configuration, typed: see
 /// [`RunConfig::visit`].
 pub trait RunVisitor {
@@ -342,6 +400,13 @@ pub struct Choice {
     pub id: &'static str,
 }
 
+/// The Gymnasium id, as a command line writes it.
+impl std::fmt::Display for Choice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.id)
+    }
+}
+
 impl RunConfig {
     /// The Gymnasium id of the run's environment (`CartPole-v0` where the config says so).
     #[must_use]
@@ -373,7 +438,10 @@ impl RunConfig {
     /// What the tutor shows before the run's first episode.
     #[must_use]
     pub fn first_snapshot(&self, seed: u64) -> Snapshot {
-        self.visit(FirstSnapshot(seed))
+        self.visit(FirstSnapshot {
+            seed,
+            agent: self.agent(),
+        })
     }
 
     /// The ids of this run's knobs ([`Tunable::KNOBS`]), in display order.
@@ -545,7 +613,10 @@ impl RunVisitor for MaxReturn {
     }
 }
 
-struct FirstSnapshot(u64);
+struct FirstSnapshot {
+    seed: u64,
+    agent: AgentKind,
+}
 
 impl RunVisitor for FirstSnapshot {
     type Output = Snapshot;
@@ -554,7 +625,14 @@ impl RunVisitor for FirstSnapshot {
     where
         C::Agent: LiveAgent,
     {
-        C::Agent::first_snapshot(config, self.0)
+        let (eps, gamma) = C::Agent::eps_gamma(config);
+        Snapshot {
+            hyper: C::Agent::hyper(config, self.seed),
+            eps: eps as f32,
+            gamma,
+            latest: Latest::empty(self.agent),
+            ..Snapshot::default()
+        }
     }
 }
 

@@ -6,7 +6,7 @@ use ppo_engine::notebook::snapshot;
 use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
+let trace: UpdateTrace = snap.cartpole_update().expect("已训练 30 个回合").trace.clone();
 
 // %% step: Ten iterations of fifty episodes
 println!(
@@ -21,7 +21,7 @@ println!(
 let against = trace
     .actions
     .iter()
-    .zip(&snap.probs)
+    .zip(&snap.cartpole_update().expect("一次训练过的 CartPole 运行").probs)
     .filter(|(a, p)| p[**a] < 0.5)
     .count();
 println!("{against} 个动作（共 {} 个）选的是概率较小的那个：采样带来了探索", trace.actions.len());

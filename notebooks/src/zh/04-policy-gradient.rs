@@ -8,7 +8,7 @@ use ppo_engine::ppo::{PpoConfig, SurrogateGradients, UpdateTrace};
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
+let trace: UpdateTrace = snap.cartpole_update().expect("已训练 30 个回合").trace.clone();
 
 // %% step: What we want: J(θ)
 // log P_θ(τ) 只保留策略中受 θ 控制的因子：Σ_t log π(a_t|s_t)。
@@ -47,7 +47,7 @@ println!(
 // %% step: The bridge to PPO: one gradient at θ_old
 // check: grad_surrogate after 30 episodes
 // 会话在采样第 30 个回合的那个策略网络处，对两个目标分别求了梯度。
-let grads: SurrogateGradients = snap.gradients.clone().expect("每个回合之后都会计算");
+let grads: SurrogateGradients = snap.cartpole_update().expect("每个回合之后都会计算").gradients.clone();
 println!("{:<16} {:>14} {:>14}", "参数", "∇ mean(r·Â)", "∇ mean(log π·Â)");
 for i in [640, 641, 642, 896, 897] {
     let name = grads.label(i).unwrap_or_default();

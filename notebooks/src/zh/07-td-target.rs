@@ -6,7 +6,7 @@ use ppo_engine::notebook::snapshot;
 use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
+let trace: UpdateTrace = snap.cartpole_update().expect("已训练 30 个回合").trace.clone();
 println!("第 {} 个回合持续了 {} 步", snap.episodes, trace.rewards.len());
 
 // %% step: What the critic is for

@@ -6,7 +6,7 @@ use ppo_engine::notebook::snapshot;
 use ppo_engine::ppo::{PpoConfig, UpdateTrace};
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
+let trace: UpdateTrace = snap.cartpole_update().expect("已训练 30 个回合").trace.clone();
 
 // %% step: From one-step errors to an advantage
 // Â_t 中 l 步之后那个 TD 误差的权重 (γλ)^l。

@@ -8,7 +8,7 @@ use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
 const LAB_EPISODES: usize = 500;
 let config: PpoConfig = PpoConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
-let trace: UpdateTrace = snap.trace.clone().expect("已训练 100 个回合");
+let trace: UpdateTrace = snap.cartpole_update().expect("已训练 100 个回合").trace.clone();
 
 // %% step: What to watch in every update
 // 最近一次更新，逐轮列出：诊断指标就是由这些数算出来的。

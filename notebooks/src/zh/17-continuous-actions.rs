@@ -10,7 +10,7 @@ fn range(r: &[f32]) -> (f32, f32) {
 // 书中的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0：20 个回合，每个 200 步。
 let config: PpoContinuousConfig = PpoContinuousConfig::default();
 let snap: Snapshot = snapshot(config.clone(), 0, 20)?;
-let trace: ContinuousUpdateTrace = snap.continuous.clone().expect("已训练 20 个回合");
+let trace: ContinuousUpdateTrace = snap.pendulum_update().expect("已训练 20 个回合").trace.clone();
 println!("第 {} 个回合：{} 步，回报 {:.1}", snap.episodes, trace.actions.len(), snap.returns[19]);
 
 // %% step: From two actions to a torque

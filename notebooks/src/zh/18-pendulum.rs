@@ -47,16 +47,16 @@ println!("第 1-20 个回合的平均回报：{:.1}；第 281-300 个回合：{:
 // %% step: The mean torque across the state space
 // 随着训练进行，网格中心（竖直、静止）处的 μ，以及网格上最大的 |μ|：
 for (episode, s) in &maps {
-    let map = s.policy_map.as_ref().expect("倒立摆的快照带有策略图");
+    let map = &s.pendulum_update().expect("倒立摆的快照带有策略图").policy_map;
     let biggest = map.mu.iter().fold(0.0_f32, |m, v| m.max(v.abs()));
     println!("第 {episode:>3} 个回合之后：竖直静止时 μ = {:+.4}，网格上最大的 |μ| = {biggest:.4}", map.mu[40]);
 }
 // 第 300 个回合之后的策略图，画成图片（下面的表格里是同样的数）：
-ppo_engine::notebook::policy_map_svg(snap.policy_map.as_ref().expect("倒立摆的快照带有策略图"))
+ppo_engine::notebook::policy_map_svg(&snap.pendulum_update().expect("倒立摆的快照带有策略图").policy_map)
 
 // %% step: The spread σ as training goes on
 for (episode, s) in &maps {
-    let map = s.policy_map.as_ref().expect("倒立摆的快照带有策略图");
+    let map = &s.pendulum_update().expect("倒立摆的快照带有策略图").policy_map;
     let mean_std = map.std.iter().sum::<f32>() / map.std.len() as f32;
     println!("第 {episode:>3} 个回合之后：网格上 σ 的均值 = {mean_std:.4}");
 }

@@ -12,60 +12,28 @@
 //! `--ls-backtracks`) need `--objective line-search`, `--kl-delta` needs one of the two, and
 //! both objectives need PPO with its clip left alone.
 
-use std::fmt;
-
 use super::{AlgorithmArg, ObjectiveArg, TrainArgs};
 use crate::env::EnvId;
-use crate::env::pendulum::ENV_ID as PENDULUM_V1;
 use crate::i18n::t;
 use crate::lesson::RunConfig;
 use crate::ppo::{PpoConfig, PpoContinuousConfig, PpoError, RuleSetting};
+use crate::run::{AgentKind, Choice};
 use crate::tr;
 
-/// A Gymnasium id `ppo-tutor train` and `play` accept.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TrainEnv {
-    /// `CartPole-v1` or `CartPole-v0`: the seed's PPO.
-    CartPole(EnvId),
-    /// `Pendulum-v1`: the book's `PPOContinuous`.
-    Pendulum,
-}
-
-impl TrainEnv {
-    /// Every id, in the order help and errors list them.
-    pub const ALL: [TrainEnv; 3] = [
-        TrainEnv::CartPole(EnvId::CartPoleV1),
-        TrainEnv::CartPole(EnvId::CartPoleV0),
-        TrainEnv::Pendulum,
-    ];
-
-    /// The id as Gymnasium spells it.
-    #[must_use]
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Self::CartPole(id) => id.as_str(),
-            Self::Pendulum => PENDULUM_V1,
-        }
-    }
-}
-
-impl fmt::Display for TrainEnv {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-/// Parses a Gymnasium id in any case (`CartPole-v1`, `pendulum-v1`).
+/// Parses a Gymnasium id in any case (`CartPole-v1`, `pendulum-v1`): one of the registry's
+/// environments ([`RunConfig::choices`]), so a new agent's ids are accepted here by itself.
 ///
 /// # Errors
 /// A message listing the supported ids.
-pub fn parse_train_env(s: &str) -> Result<TrainEnv, String> {
+pub fn parse_train_env(s: &str) -> Result<Choice, String> {
     let wanted = s.trim();
-    TrainEnv::ALL
-        .into_iter()
-        .find(|id| id.as_str().eq_ignore_ascii_case(wanted))
+    let choices = RunConfig::choices();
+    choices
+        .iter()
+        .copied()
+        .find(|c| c.id.eq_ignore_ascii_case(wanted))
         .ok_or_else(|| {
-            let ids: Vec<_> = TrainEnv::ALL.iter().map(|id| id.as_str()).collect();
+            let ids: Vec<_> = choices.iter().map(|c| c.id).collect();
             let ids = ids.join(", ");
             tr!(
                 "unknown environment '{s}': expected one of {ids} (any case)",
@@ -81,15 +49,20 @@ pub fn parse_train_env(s: &str) -> Result<TrainEnv, String> {
 /// A message naming the flag (`invalid --gamma 2: expected ...`), or a CartPole-only
 /// switch given with Pendulum-v1, with its reason.
 pub fn run_config(args: &TrainArgs) -> Result<RunConfig, String> {
-    let setup = match args.env_id {
-        TrainEnv::CartPole(env_id) => {
+    let choice = args.env_id;
+    let setup = match choice.agent {
+        AgentKind::CartPole => {
             refuse_lone_penalty_flags(args)?;
             refuse_lone_line_search_flags(args)?;
+            let env_id: EnvId = choice
+                .id
+                .parse()
+                .map_err(|e: crate::env::EnvError| e.to_string())?;
             let config = args.config_for(env_id);
             refuse_rule_clash(&config)?;
             RunConfig::CartPole(config)
         }
-        TrainEnv::Pendulum => {
+        AgentKind::Pendulum => {
             refuse_cartpole_switches(args)?;
             let book = PpoContinuousConfig::default();
             RunConfig::Pendulum(PpoContinuousConfig {
@@ -201,10 +174,13 @@ fn refuse_cartpole_switches(args: &TrainArgs) -> Result<(), String> {
         ),
     ];
     match given.into_iter().find(|(on, _, _)| *on) {
-        Some((_, flag, why)) => Err(tr!(
-            "{flag} works only with CartPole: {why}; drop {flag} to train {PENDULUM_V1}",
-            "{flag} 只适用于 CartPole：{why}。要训练 {PENDULUM_V1}，请去掉 {flag}"
-        )),
+        Some((_, flag, why)) => {
+            let env = args.env_id;
+            Err(tr!(
+                "{flag} works only with CartPole: {why}; drop {flag} to train {env}",
+                "{flag} 只适用于 CartPole：{why}。要训练 {env}，请去掉 {flag}"
+            ))
+        }
         None => Ok(()),
     }
 }
@@ -280,10 +256,15 @@ mod tests {
 
     #[test]
     fn ids_parse_in_any_case_and_unknown_ones_list_the_choices() {
-        assert_eq!(parse_train_env("pendulum-V1"), Ok(TrainEnv::Pendulum));
+        let pendulum = parse_train_env("pendulum-V1");
         assert_eq!(
-            parse_train_env("CARTPOLE-v0"),
-            Ok(TrainEnv::CartPole(EnvId::CartPoleV0))
+            pendulum.map(|c| (c.agent, c.id)),
+            Ok((AgentKind::Pendulum, "Pendulum-v1"))
+        );
+        let v0 = parse_train_env("CARTPOLE-v0");
+        assert_eq!(
+            v0.map(|c| (c.agent, c.id)),
+            Ok((AgentKind::CartPole, "CartPole-v0"))
         );
         let err = parse_train_env("Acrobot-v1").err().unwrap_or_default();
         assert!(

@@ -16,7 +16,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The seed's settings and seed 0; 100 episodes of training (about a second).
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("100 episodes were trained");
+    let trace: UpdateTrace = snap.cartpole_update().expect("100 episodes were trained").trace.clone();
     println!("episode {} lasted {} steps", snap.episodes, trace.rewards.len());
     nb.cell(4);
     // For comparison, a policy written by hand on the native CartPole-v1:
@@ -40,7 +40,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(snap.cartpole()))).outputs());
     nb.cell(7);
     // π(·|s_t) for the first steps of the latest episode, and the action that was sampled.
-    nb.show((&Shown(&(for (t, p) in snap.probs.iter().take(5).enumerate() {
+    nb.show((&Shown(&(for (t, p) in snap.cartpole_update().expect("a trained CartPole run").probs.iter().take(5).enumerate() {
     println!("s_{t}: π(left) = {:.4}  π(right) = {:.4}  sampled: {}", p[0], p[1], trace.actions[t]);
 }))).outputs());
     nb.cell(8);

@@ -15,7 +15,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+    let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
     nb.cell(4);
     println!(
         "{} episodes = 10 progress bars of {} episodes; trained so far: {}",
@@ -31,7 +31,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let against = trace
         .actions
         .iter()
-        .zip(&snap.probs)
+        .zip(&snap.cartpole_update().expect("a trained CartPole run").probs)
         .filter(|(a, p)| p[**a] < 0.5)
         .count();
     println!("{against} of {} actions were the less likely one: sampling explores", trace.actions.len());

@@ -15,7 +15,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+    let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
     nb.cell(4);
     // The weight (γλ)^l of the TD error l steps later in Â_t.
     let gl = config.gamma * config.lmbda;

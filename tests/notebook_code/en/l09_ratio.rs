@@ -15,13 +15,13 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+    let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
     nb.cell(4);
     // Row 0: the action picks a column of probs; old_log_probs is the log of that entry, so its
     // exponential gives the entry back.
     println!(
         "probs {:?}, action {}: old_log_prob {:.6}, exp(old_log_prob) = {:.6}",
-        snap.probs[0],
+        snap.cartpole_update().expect("a trained CartPole run").probs[0],
         trace.actions[0],
         trace.old_log_probs[0],
         trace.old_log_probs[0].exp()

@@ -17,7 +17,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The seed's settings and seed 0; 40 episodes of training, as `ppo-tutor trust-region` does.
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 40)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("40 episodes were trained");
+    let trace: UpdateTrace = snap.cartpole_update().expect("40 episodes were trained").trace.clone();
     // Trains a fresh agent with `config` on seed 0 for `episodes` episodes, and keeps each
     // episode's return and the trace of the update that followed it.
     fn run_updates(config: &PpoConfig, episodes: usize) -> Result<Vec<(f64, UpdateTrace)>, PpoError> {
@@ -78,7 +78,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // penalty run on seed 0, epoch by epoch (each before that epoch's step).
     let penalty: PpoConfig = PpoConfig { objective: Objective::Penalty, ..config.clone() };
     let pen: Snapshot = snapshot(penalty.clone(), 0, 40)?;
-    let pen_trace: UpdateTrace = pen.trace.clone().expect("40 episodes were trained");
+    let pen_trace: UpdateTrace = pen.cartpole_update().expect("40 episodes were trained").trace.clone();
     println!("epoch  exact mean KL  approx_kl  largest row KL");
     nb.show((&Shown(&(for (k, e) in pen_trace.epochs.iter().enumerate() {
     let largest = e.kl.iter().copied().fold(0.0_f32, f32::max);

@@ -15,7 +15,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+    let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
     let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();
     nb.cell(4);
     // In the first epoch every ratio is exactly 1, so surr1 and surr2 both equal the advantage;

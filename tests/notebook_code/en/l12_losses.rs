@@ -15,7 +15,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("30 episodes were trained");
+    let trace: UpdateTrace = snap.cartpole_update().expect("30 episodes were trained").trace.clone();
     let first: EpochTrace = trace.epochs[0].clone();
     nb.cell(4);
     // In the first epoch every ratio is 1, so the actor loss is minus the mean advantage.
@@ -45,7 +45,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The same 30 episodes with a critic_lr ten times smaller (a different run, so a different
     // last episode): fewer rises.
     let slow_config = PpoConfig { critic_lr: 1e-3, ..PpoConfig::default() };
-    let slow: UpdateTrace = snapshot(slow_config, 0, 30)?.trace.expect("30 episodes were trained");
+    let slow: UpdateTrace = snapshot(slow_config, 0, 30)?.cartpole_update().expect("30 episodes were trained").trace.clone();
     println!("critic_loss rose in {} of {} epoch steps at critic_lr 1e-2, in {} at 1e-3", rises(&trace), trace.epochs.len() - 1, rises(&slow));
     // The clip does not bound the ratio: after the tenth epoch some ratios are outside the band.
     let eps = config.eps as f32;

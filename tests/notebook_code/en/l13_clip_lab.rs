@@ -16,7 +16,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     const LAB_EPISODES: usize = 500;
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("100 episodes were trained");
+    let trace: UpdateTrace = snap.cartpole_update().expect("100 episodes were trained").trace.clone();
     nb.cell(4);
     // The latest update, epoch by epoch: what the diagnostics are made of.
     println!("epoch  approx_kl  clip_frac  ratio min  ratio max  entropy");

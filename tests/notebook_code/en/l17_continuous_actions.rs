@@ -19,7 +19,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The book's PPOContinuous on Pendulum-v1 with its defaults, seed 0: 20 episodes of 200 steps.
     let config: PpoContinuousConfig = PpoContinuousConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 20)?;
-    let trace: ContinuousUpdateTrace = snap.continuous.clone().expect("20 episodes were trained");
+    let trace: ContinuousUpdateTrace = snap.pendulum_update().expect("20 episodes were trained").trace.clone();
     println!("episode {}: {} steps, return {:.1}", snap.episodes, trace.actions.len(), snap.returns[19]);
     nb.cell(4);
     // The two squashing functions: 2·tanh keeps μ inside (−2, 2), softplus keeps σ above 0.

@@ -65,18 +65,18 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(15);
     // μ at the centre of the grid (upright, at rest) and the largest |μ| on the grid, as training goes on:
     for (episode, s) in &maps {
-        let map = s.policy_map.as_ref().expect("a Pendulum snapshot has a map");
+        let map = &s.pendulum_update().expect("a Pendulum snapshot has a map").policy_map;
         let biggest = map.mu.iter().fold(0.0_f32, |m, v| m.max(v.abs()));
         println!("after episode {episode:>3}: μ(upright, at rest) = {:+.4}, max |μ| on the grid = {biggest:.4}", map.mu[40]);
     }
     // The map after episode 300 as a picture (the table below holds the same numbers):
-    nb.show((&Shown(&(ppo_engine::notebook::policy_map_svg(snap.policy_map.as_ref().expect("a Pendulum snapshot has a map"))))).outputs());
+    nb.show((&Shown(&(ppo_engine::notebook::policy_map_svg(&snap.pendulum_update().expect("a Pendulum snapshot has a map").policy_map)))).outputs());
     nb.cell(16);
     // This step's live values, from the training run `snap`:
     nb.show((&Shown(&(snap.show(&["mu_map"])))).outputs());
     nb.cell(18);
     for (episode, s) in &maps {
-        let map = s.policy_map.as_ref().expect("a Pendulum snapshot has a map");
+        let map = &s.pendulum_update().expect("a Pendulum snapshot has a map").policy_map;
         let mean_std = map.std.iter().sum::<f32>() / map.std.len() as f32;
         println!("after episode {episode:>3}: mean σ over the grid = {mean_std:.4}");
     }

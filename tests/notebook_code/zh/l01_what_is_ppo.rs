@@ -16,7 +16,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 原教程代码的设置，随机种子 0；训练 100 个回合（大约一秒）。
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("已训练 100 个回合");
+    let trace: UpdateTrace = snap.cartpole_update().expect("已训练 100 个回合").trace.clone();
     println!("第 {} 个回合持续了 {} 步", snap.episodes, trace.rewards.len());
     nb.cell(4);
     // 作为对照，在原生的 CartPole-v1 上手写一个策略：
@@ -40,7 +40,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(snap.cartpole()))).outputs());
     nb.cell(7);
     // 最近一个回合前几步的 π(·|s_t)，以及采样到的动作。
-    nb.show((&Shown(&(for (t, p) in snap.probs.iter().take(5).enumerate() {
+    nb.show((&Shown(&(for (t, p) in snap.cartpole_update().expect("一次训练过的 CartPole 运行").probs.iter().take(5).enumerate() {
     println!("s_{t}: π(left) = {:.4}  π(right) = {:.4}  采样到的动作：{}", p[0], p[1], trace.actions[t]);
 }))).outputs());
     nb.cell(8);

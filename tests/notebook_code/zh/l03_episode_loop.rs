@@ -15,7 +15,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
+    let trace: UpdateTrace = snap.cartpole_update().expect("已训练 30 个回合").trace.clone();
     nb.cell(4);
     println!(
         "{} 个回合 = 10 个进度条，每个 {} 个回合；目前已训练：{}",
@@ -31,7 +31,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     let against = trace
         .actions
         .iter()
-        .zip(&snap.probs)
+        .zip(&snap.cartpole_update().expect("一次训练过的 CartPole 运行").probs)
         .filter(|(a, p)| p[**a] < 0.5)
         .count();
     println!("{against} 个动作（共 {} 个）选的是概率较小的那个：采样带来了探索", trace.actions.len());

@@ -15,13 +15,13 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
+    let trace: UpdateTrace = snap.cartpole_update().expect("已训练 30 个回合").trace.clone();
     nb.cell(4);
     // 第 0 行：动作从 probs 中选出一列；old_log_probs 是这一项的对数，
     // 所以对它取指数就得回这一项。
     println!(
         "probs {:?}，动作 {}：old_log_prob {:.6}，exp(old_log_prob) = {:.6}",
-        snap.probs[0],
+        snap.cartpole_update().expect("一次训练过的 CartPole 运行").probs[0],
         trace.actions[0],
         trace.old_log_probs[0],
         trace.old_log_probs[0].exp()

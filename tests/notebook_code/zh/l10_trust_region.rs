@@ -17,7 +17,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 原教程代码的设置，随机种子 0；训练 40 个回合，与 `ppo-tutor trust-region` 相同。
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 40)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("已训练 40 个回合");
+    let trace: UpdateTrace = snap.cartpole_update().expect("已训练 40 个回合").trace.clone();
     // 用 `config` 在随机种子 0 上从头训练一个智能体 `episodes` 个回合，
     // 记下每个回合的回报，以及紧随其后那次更新的记录。
     fn run_updates(config: &PpoConfig, episodes: usize) -> Result<Vec<(f64, UpdateTrace)>, PpoError> {
@@ -77,7 +77,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 下面是一次 PPO-惩罚运行（随机种子 0）最近那次更新里的两者，逐轮列出（都是该轮更新一步之前的值）。
     let penalty: PpoConfig = PpoConfig { objective: Objective::Penalty, ..config.clone() };
     let pen: Snapshot = snapshot(penalty.clone(), 0, 40)?;
-    let pen_trace: UpdateTrace = pen.trace.clone().expect("已训练 40 个回合");
+    let pen_trace: UpdateTrace = pen.cartpole_update().expect("已训练 40 个回合").trace.clone();
     println!(" 轮次   精确 KL 均值  approx_kl     单行最大 KL");
     nb.show((&Shown(&(for (k, e) in pen_trace.epochs.iter().enumerate() {
     let largest = e.kl.iter().copied().fold(0.0_f32, f32::max);

@@ -15,7 +15,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
+    let trace: UpdateTrace = snap.cartpole_update().expect("已训练 30 个回合").trace.clone();
     let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();
     nb.cell(4);
     // 第一轮中每个比率都恰好为 1，所以 surr1 和 surr2 都等于优势值；

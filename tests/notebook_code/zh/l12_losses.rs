@@ -15,7 +15,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     use ppo_engine::ppo::{EpochTrace, PpoConfig, UpdateTrace};
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 30)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("已训练 30 个回合");
+    let trace: UpdateTrace = snap.cartpole_update().expect("已训练 30 个回合").trace.clone();
     let first: EpochTrace = trace.epochs[0].clone();
     nb.cell(4);
     // 第一轮中每个比率都是 1，所以策略网络的损失就是优势值均值的相反数。
@@ -45,7 +45,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 同样训练 30 个回合，但 critic_lr 小十倍（这是另一次运行，所以最后一个回合也不同）：
     // 上升的次数更少。
     let slow_config = PpoConfig { critic_lr: 1e-3, ..PpoConfig::default() };
-    let slow: UpdateTrace = snapshot(slow_config, 0, 30)?.trace.expect("已训练 30 个回合");
+    let slow: UpdateTrace = snapshot(slow_config, 0, 30)?.cartpole_update().expect("已训练 30 个回合").trace.clone();
     println!("critic_lr 为 1e-2 时 critic_loss 上升了 {} 次（共 {} 次轮间变化），为 1e-3 时上升了 {} 次", rises(&trace), trace.epochs.len() - 1, rises(&slow));
     // 截断并不限制比率本身：第十轮之后，有些比率落在区间之外。
     let eps = config.eps as f32;

@@ -16,7 +16,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     const LAB_EPISODES: usize = 500;
     let config: PpoConfig = PpoConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 100)?;
-    let trace: UpdateTrace = snap.trace.clone().expect("已训练 100 个回合");
+    let trace: UpdateTrace = snap.cartpole_update().expect("已训练 100 个回合").trace.clone();
     nb.cell(4);
     // 最近一次更新，逐轮列出：诊断指标就是由这些数算出来的。
     println!("轮次   approx_kl  clip_frac   最小比率   最大比率       熵");

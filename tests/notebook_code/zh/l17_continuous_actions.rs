@@ -19,7 +19,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 书中的 PPOContinuous 以默认设置在 Pendulum-v1 上训练，随机种子 0：20 个回合，每个 200 步。
     let config: PpoContinuousConfig = PpoContinuousConfig::default();
     let snap: Snapshot = snapshot(config.clone(), 0, 20)?;
-    let trace: ContinuousUpdateTrace = snap.continuous.clone().expect("已训练 20 个回合");
+    let trace: ContinuousUpdateTrace = snap.pendulum_update().expect("已训练 20 个回合").trace.clone();
     println!("第 {} 个回合：{} 步，回报 {:.1}", snap.episodes, trace.actions.len(), snap.returns[19]);
     nb.cell(4);
     // 两个压缩函数：2·tanh 让 μ 保持在 (−2, 2) 之内，softplus 让 σ 保持大于 0。

@@ -65,18 +65,18 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.cell(15);
     // 随着训练进行，网格中心（竖直、静止）处的 μ，以及网格上最大的 |μ|：
     for (episode, s) in &maps {
-        let map = s.policy_map.as_ref().expect("倒立摆的快照带有策略图");
+        let map = &s.pendulum_update().expect("倒立摆的快照带有策略图").policy_map;
         let biggest = map.mu.iter().fold(0.0_f32, |m, v| m.max(v.abs()));
         println!("第 {episode:>3} 个回合之后：竖直静止时 μ = {:+.4}，网格上最大的 |μ| = {biggest:.4}", map.mu[40]);
     }
     // 第 300 个回合之后的策略图，画成图片（下面的表格里是同样的数）：
-    nb.show((&Shown(&(ppo_engine::notebook::policy_map_svg(snap.policy_map.as_ref().expect("倒立摆的快照带有策略图"))))).outputs());
+    nb.show((&Shown(&(ppo_engine::notebook::policy_map_svg(&snap.pendulum_update().expect("倒立摆的快照带有策略图").policy_map)))).outputs());
     nb.cell(16);
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["mu_map"])))).outputs());
     nb.cell(18);
     for (episode, s) in &maps {
-        let map = s.policy_map.as_ref().expect("倒立摆的快照带有策略图");
+        let map = &s.pendulum_update().expect("倒立摆的快照带有策略图").policy_map;
         let mean_std = map.std.iter().sum::<f32>() / map.std.len() as f32;
         println!("第 {episode:>3} 个回合之后：网格上 σ 的均值 = {mean_std:.4}");
     }

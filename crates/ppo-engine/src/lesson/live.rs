@@ -11,21 +11,40 @@
 //!   terminal app's worker, `ppo-tutor show`, the notebooks and the tests all go through it.
 //! - [`values`]: [`LIVE`], the table of live value names and their views.
 
+pub mod agents;
+pub mod batch;
 pub mod probe;
 pub mod session;
 pub mod values;
 
+pub use agents::cartpole::{CartPoleLatest, PENALTY_ONLY};
+pub use agents::pendulum::PendulumLatest;
+pub use batch::Batch;
 pub use session::Session;
-pub use values::{
-    IN_BOTH, LIVE, LiveValue, NAMES, PENALTY_ONLY, PENDULUM_ONLY, is_known, lookup, why_missing,
-};
+pub use values::{COMMON, LiveValue, is_known, lookup, names, runs_on, why_missing};
 
 use super::AgentKind;
-use crate::ppo::model::ActorSnapshot;
-use crate::ppo::{
-    ContinuousUpdateTrace, NamedWeights, PpoConfig, PpoContinuousConfig, SurrogateGradients,
-    UpdateTrace,
-};
+use crate::ppo::NamedWeights;
+pub use crate::run::Latest;
+use crate::run::RunConfig;
+
+/// An agent's view of what it shows of its latest episode and update (its
+/// [`session::LiveAgent::Latest`]): the columns every run has, and its own live values.
+pub trait LatestView {
+    /// The batch's columns and the update's epochs, as every agent has them.
+    fn batch(&self) -> Batch<'_>;
+
+    /// The agent's own live value `name` ([`session::LiveAgent::LIVE_VALUES`]); `None` for
+    /// another name, or one this run did not compute. `snapshot` holds the settings.
+    fn tensor(&self, name: &'static str, snapshot: &Snapshot) -> Option<TensorView>;
+
+    /// Why the agent's own live value `name` is empty in this run, where it can say
+    /// (a value only one of its objectives computes); `None` otherwise.
+    fn why_missing(&self, name: &str) -> Option<String> {
+        let _ = name;
+        None
+    }
+}
 
 /// How an entry is highlighted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -142,7 +161,7 @@ impl TensorView {
         )
     }
 
-    fn rows<const N: usize>(name: &str, rows: &[[f32; N]]) -> Self {
+    pub(crate) fn rows<const N: usize>(name: &str, rows: &[[f32; N]]) -> Self {
         let values = rows.iter().flatten().map(|&v| f64::from(v)).collect();
         Self::new(name, vec![rows.len(), N], "float32", values)
     }
@@ -216,39 +235,22 @@ pub struct Snapshot {
     pub hyper: Vec<(String, String)>,
     /// Episodes finished so far.
     pub episodes: usize,
+    /// Environment steps taken so far, over every episode.
+    pub env_steps: usize,
     /// Every episode's return, in order.
     pub returns: Vec<f64>,
     /// The seed's `moving_average(returns, 9)`, same length as `returns` (empty while there
     /// are too few returns for the window).
     pub moving_average: Vec<f64>,
-    /// The latest update's batch and intermediates.
-    pub trace: Option<UpdateTrace>,
-    /// `π(·|s_t)` over the latest batch under the policy that played it (before the update).
-    pub probs: Vec<[f32; 2]>,
-    /// Gymnasium's `terminated` for each step of the latest episode.
-    pub terminated: Vec<bool>,
-    /// Gymnasium's `truncated` for each step of the latest episode.
-    pub truncated: Vec<bool>,
     /// The actor's and critic's parameters after the latest update, by PyTorch name.
     pub weights: NamedWeights,
     /// The clip range ε in force (for marking clipped ratios).
     pub eps: f32,
     /// The discount γ in force (for the return-to-go).
     pub gamma: f64,
-    /// The latest batch's two policy gradients at θ_old, PPO's surrogate and REINFORCE's
-    /// `log π · Â` (the policy-gradient lesson shows them side by side).
-    pub gradients: Option<SurrogateGradients>,
-    /// CartPole runs: the actor that played the latest batch, θ_old (before the batch's
-    /// update), as plain weights: where the trust-region probe
-    /// ([`crate::ppo::trust_region::probe_snapshot`]) steps from.
-    pub played_with: Option<ActorSnapshot>,
-    /// The environment of the run (CartPole: [`Self::trace`]; Pendulum: [`Self::continuous`]).
-    pub agent: AgentKind,
-    /// Pendulum runs: the latest update's batch and intermediates.
-    pub continuous: Option<ContinuousUpdateTrace>,
-    /// Pendulum runs: the Gaussian policy's `(μ, σ)` over a grid of states, after the latest
-    /// update.
-    pub policy_map: Option<PolicyMap>,
+    /// The agent's own part: what it shows of the latest episode and update. Its variant
+    /// names the run's agent ([`Snapshot::agent`]).
+    pub latest: Latest,
 }
 
 /// The Gaussian policy's `μ(θ, θ̇)` and `σ(θ, θ̇)` over a grid of Pendulum states.
@@ -303,122 +305,61 @@ impl Snapshot {
     /// What the tutor shows before the first episode of a run with `config` and `seed`:
     /// the hyper-parameters and nothing else.
     #[must_use]
-    pub fn new(config: &PpoConfig, seed: u64) -> Self {
-        Self {
-            hyper: hyper_table(config, seed),
-            eps: config.eps as f32,
-            gamma: config.gamma,
-            ..Self::default()
-        }
+    pub fn new(config: impl Into<RunConfig>, seed: u64) -> Self {
+        config.into().first_snapshot(seed)
     }
 
-    /// What the tutor shows before the first episode of a Pendulum run with `config` and
-    /// `seed`: the hyper-parameters and nothing else.
+    /// The agent whose run this is.
     #[must_use]
-    pub fn new_pendulum(config: &PpoContinuousConfig, seed: u64) -> Self {
-        Self {
-            hyper: hyper_table_continuous(config, seed),
-            eps: config.eps as f32,
-            gamma: config.gamma,
-            agent: AgentKind::Pendulum,
-            ..Self::default()
-        }
+    pub fn agent(&self) -> AgentKind {
+        self.latest.agent()
     }
 
-    /// The view of live value `name`, `None` if it is not a live value (see [`LIVE`]) or
-    /// nothing has been computed for it yet.
+    /// The latest batch and update as every agent has them, `None` before the first episode.
+    #[must_use]
+    pub fn batch(&self) -> Option<Batch<'_>> {
+        Some(self.latest.view()?.batch())
+    }
+
+    /// The view of live value `name`, `None` if it is not a live value of this run's agent
+    /// (see [`values`]) or nothing has been computed for it yet.
     #[must_use]
     pub fn tensor(&self, name: &str) -> Option<TensorView> {
-        lookup(name)?.view(self)
+        if let Some(common) = lookup(name) {
+            return common.view(self);
+        }
+        let own = self.agent().live_values().iter().find(|&&n| n == name)?;
+        self.latest.view()?.tensor(own, self)
     }
 
     /// How many observations the latest episode went through: each state it acted in, then
-    /// the one it ended in (0 before the first episode). The frames of the cart-pole animation.
+    /// the one it ended in (0 before the first episode). The frames of an animation.
     #[must_use]
     pub fn observation_count(&self) -> usize {
-        if let Some(c) = &self.continuous {
-            return c.states.len() + usize::from(!c.next_states.is_empty());
-        }
-        self.trace.as_ref().map_or(0, |t| {
-            t.states.len() + usize::from(!t.next_states.is_empty())
-        })
-    }
-
-    /// A Pendulum run's frame `i` of the latest episode: the angle θ (0 upright) of
-    /// observation `i` and the torque chosen there (0 for the observation the episode ended
-    /// in); `None` past the end or in a CartPole run.
-    #[must_use]
-    pub fn pendulum_frame(&self, i: usize) -> Option<(f64, f64)> {
-        let c = self.continuous.as_ref()?;
-        let state = match c.states.get(i) {
-            Some(state) => *state,
-            None if i == c.states.len() => *c.next_states.last()?,
-            None => return None,
-        };
-        let theta = f64::from(state[1]).atan2(f64::from(state[0]));
-        let torque = c.actions.get(i).map_or(0.0, |&a| f64::from(a));
-        Some((theta, torque))
+        self.batch().map_or(0, |b| b.observation_count())
     }
 
     /// The latest episode's observation `i` (0 is the reset, [`Self::observation_count`]
     /// − 1 where it ended), `None` past the end.
     #[must_use]
-    pub fn observation(&self, i: usize) -> Option<[f32; 4]> {
-        let t = self.trace.as_ref()?;
-        match t.states.get(i) {
-            Some(state) => Some(*state),
-            None if i == t.states.len() => t.next_states.last().copied(),
-            None => None,
-        }
+    pub fn observation(&self, i: usize) -> Option<Vec<f32>> {
+        self.batch()?.observation(i).map(<[f32]>::to_vec)
     }
-}
-
-/// The hyper-parameter table of a run, in the seed's order.
-fn hyper_table(c: &PpoConfig, seed: u64) -> Vec<(String, String)> {
-    vec![
-        ("actor_lr".into(), format!("{}", c.actor_lr)),
-        ("critic_lr".into(), format!("{}", c.critic_lr)),
-        ("num_episodes".into(), c.num_episodes.to_string()),
-        ("hidden_dim".into(), c.hidden_dim.to_string()),
-        ("gamma".into(), c.gamma.to_string()),
-        ("lmbda".into(), c.lmbda.to_string()),
-        ("epochs".into(), c.epochs.to_string()),
-        ("eps".into(), c.eps.to_string()),
-        ("env_name".into(), c.env_id.as_str().into()),
-        ("seed".into(), seed.to_string()),
-        (
-            "bootstrap_on_truncation".into(),
-            c.bootstrap_on_truncation.to_string(),
-        ),
-        (
-            "normalize_advantage".into(),
-            c.normalize_advantage.to_string(),
-        ),
-        ("no_clip".into(), c.no_clip.to_string()),
-        ("algorithm".into(), c.algorithm.as_str().into()),
-    ]
-}
-
-/// The hyper-parameter table of a Pendulum run, in the book's order.
-fn hyper_table_continuous(c: &PpoContinuousConfig, seed: u64) -> Vec<(String, String)> {
-    vec![
-        ("actor_lr".into(), format!("{}", c.actor_lr)),
-        ("critic_lr".into(), format!("{}", c.critic_lr)),
-        ("num_episodes".into(), c.num_episodes.to_string()),
-        ("hidden_dim".into(), c.hidden_dim.to_string()),
-        ("gamma".into(), c.gamma.to_string()),
-        ("lmbda".into(), c.lmbda.to_string()),
-        ("epochs".into(), c.epochs.to_string()),
-        ("eps".into(), c.eps.to_string()),
-        ("env_name".into(), AgentKind::Pendulum.as_str().into()),
-        ("seed".into(), seed.to_string()),
-    ]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ppo::EpochTrace;
+    use crate::ppo::{EpochTrace, PpoConfig, UpdateTrace};
+    use crate::run::IntoLatest;
+
+    fn cartpole(trace: UpdateTrace) -> Latest {
+        CartPoleLatest {
+            trace,
+            ..CartPoleLatest::default()
+        }
+        .into_latest()
+    }
 
     fn snapshot() -> Snapshot {
         let trace = UpdateTrace {
@@ -432,7 +373,7 @@ mod tests {
             ..UpdateTrace::default()
         };
         Snapshot {
-            trace: Some(trace),
+            latest: cartpole(trace),
             eps: 0.2,
             ..Snapshot::default()
         }
@@ -453,16 +394,16 @@ mod tests {
 
     #[test]
     fn observations_are_the_states_then_where_the_episode_ended() {
-        let mut s = Snapshot::new(&PpoConfig::default(), 0);
+        let mut s = Snapshot::new(PpoConfig::default(), 0);
         assert_eq!((s.observation_count(), s.observation(0)), (0, None));
-        s.trace = Some(UpdateTrace {
+        s.latest = cartpole(UpdateTrace {
             states: vec![[0.0; 4], [1.0; 4]],
             next_states: vec![[1.0; 4], [2.0; 4]],
             ..UpdateTrace::default()
         });
         assert_eq!(s.observation_count(), 3);
-        assert_eq!(s.observation(1), Some([1.0; 4]));
-        assert_eq!(s.observation(2), Some([2.0; 4]));
+        assert_eq!(s.observation(1), Some(vec![1.0; 4]));
+        assert_eq!(s.observation(2), Some(vec![2.0; 4]));
         assert_eq!(s.observation(3), None);
     }
 
@@ -472,7 +413,7 @@ mod tests {
             eps: 0.3,
             ..PpoConfig::default()
         };
-        let s = Snapshot::new(&config, 7);
+        let s = Snapshot::new(config, 7);
         let hyper = s.tensor("hyper").ok_or("no hyper")?;
         assert!(hyper.labels.contains(&"seed = 7".to_string()));
         assert!(hyper.labels.contains(&"eps = 0.3".to_string()));

@@ -635,14 +635,11 @@ fn check_step(
             name: bad.clone(),
         });
     }
-    let view_env = |view: &str| match view {
-        "cartpole" | "clip_chart" | "lab" | "trust_region" => Some(AgentKind::CartPole),
-        "pendulum" => Some(AgentKind::Pendulum),
-        _ => None,
-    };
     if let Some(bad) = meta.show.iter().find(|n| {
-        super::live::lookup(n).is_some_and(|v| !v.runs_on(env))
-            || view_env(n).is_some_and(|e| e != env)
+        (super::live::is_known(n) && !super::live::runs_on(n, env))
+            || super::View::from_name(n)
+                .and_then(super::View::agent)
+                .is_some_and(|e| e != env)
     }) {
         return Err(LessonError::StepMismatch {
             dir: dir.into(),

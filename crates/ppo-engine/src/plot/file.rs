@@ -71,6 +71,45 @@ pub fn save_return_plot(
     returns: &[f64],
     (smoothed, window): (&[f64], usize),
 ) -> Result<(), PlotError> {
+    save_return_plot_over(path, title, returns, (smoothed, window), XAxis::Episodes)
+}
+
+/// What a return curve is drawn against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum XAxis<'a> {
+    /// The episode's number, 0 first.
+    Episodes,
+    /// The environment steps taken when each episode ended (a run's
+    /// `TrainSummary::episode_end_steps`, one per return): the axis on which runs with
+    /// different rollouts, or different episode lengths, compare.
+    Steps(&'a [u64]),
+}
+
+/// [`save_return_plot`] against `x`: episodes, or the environment steps at which each
+/// episode ended.
+///
+/// # Errors
+/// As [`save_return_plot`]; [`PlotError::Draw`] when `x` has another length than `returns`.
+pub fn save_return_plot_over(
+    path: &Path,
+    title: &str,
+    returns: &[f64],
+    (smoothed, window): (&[f64], usize),
+    x: XAxis<'_>,
+) -> Result<(), PlotError> {
+    if let XAxis::Steps(steps) = x
+        && steps.len() != returns.len()
+    {
+        return Err(PlotError::Draw {
+            path: path.display().to_string(),
+            reason: crate::tr!(
+                "{} step counts for {} returns: pass one per episode",
+                "{} 个步数对应 {} 个回报：每个回合应有一个步数",
+                steps.len(),
+                returns.len()
+            ),
+        });
+    }
     save(
         path,
         title,
@@ -78,6 +117,7 @@ pub fn save_return_plot(
             returns,
             smoothed,
             window,
+            x,
         },
     )
 }
@@ -132,6 +172,7 @@ enum Figure<'a> {
         returns: &'a [f64],
         smoothed: &'a [f64],
         window: usize,
+        x: XAxis<'a>,
     },
     /// Several seeds: the mean of their curves over the min–max band.
     Band { band: &'a Band, seeds: usize },
@@ -201,6 +242,7 @@ pub fn return_plot_svg(
                 returns,
                 smoothed,
                 window,
+                x: XAxis::Episodes,
             },
         )
     })
@@ -319,7 +361,17 @@ fn draw<DB: DrawingBackend>(
     let highest = finite().fold(1.0, f64::max);
     // Returns below 0 (Pendulum's) extend the axis down; CartPole's start at 0.
     let lowest = finite().fold(0.0, f64::min);
-    let x_max = len.saturating_sub(1).max(1) as f64;
+    let steps = match figure {
+        Figure::Curve {
+            x: XAxis::Steps(steps),
+            ..
+        } => Some(steps),
+        _ => None,
+    };
+    let x_max = match steps {
+        Some(steps) => steps.last().copied().unwrap_or(0).max(1) as f64,
+        None => len.saturating_sub(1).max(1) as f64,
+    };
     let y_max = highest * 1.05;
     let y_min = lowest * 1.05;
     let mut chart = ChartBuilder::on(root)
@@ -330,7 +382,11 @@ fn draw<DB: DrawingBackend>(
         .build_cartesian_2d(0.0..x_max, y_min..y_max)?;
     chart
         .configure_mesh()
-        .x_desc(labels::episodes())
+        .x_desc(if steps.is_some() {
+            labels::env_steps()
+        } else {
+            labels::episodes()
+        })
         .x_label_formatter(&|x| format!("{x:.0}"))
         .y_label_formatter(&|y| format!("{y:.0}"))
         .y_desc(labels::returns_axis())
@@ -342,7 +398,10 @@ fn draw<DB: DrawingBackend>(
     let points = |ys: &[f64]| {
         ys.iter()
             .enumerate()
-            .map(|(i, &y)| (i as f64, y))
+            .map(|(i, &y)| {
+                let x = steps.map_or(i as f64, |s| s.get(i).map_or(f64::NAN, |&s| s as f64));
+                (x, y)
+            })
             .collect::<Vec<_>>()
     };
     match figure {
@@ -350,6 +409,7 @@ fn draw<DB: DrawingBackend>(
             returns,
             smoothed,
             window,
+            ..
         } => {
             // The average is the curve to read: three times the raw returns' width, over
             // them, which are lighter.

@@ -25,6 +25,12 @@ pub fn episodes() -> &'static str {
     t("Episodes", "回合")
 }
 
+/// The x axis over environment steps: `Environment steps`, `环境时间步`.
+#[must_use]
+pub fn env_steps() -> &'static str {
+    t("Environment steps", "环境时间步")
+}
+
 /// The y axis: `Returns`, `回报`.
 #[must_use]
 pub fn returns_axis() -> &'static str {
@@ -180,6 +186,7 @@ pub fn all(lang: Lang) -> Vec<String> {
     let _lang = lang.scoped();
     let mut labels: Vec<String> = [
         episodes(),
+        env_steps(),
         returns_axis(),
         returns(),
         mean_over_seeds(),

@@ -50,18 +50,6 @@ pub struct CheckpointKind {
 }
 
 impl CheckpointKind {
-    /// Gymnasium's id of the environment (`CartPole-v1`, `Pendulum-v1`).
-    #[must_use]
-    pub fn env(self) -> &'static str {
-        self.env
-    }
-
-    /// The algorithm's name in the metadata (`ppo`, `ppo-continuous`).
-    #[must_use]
-    pub fn algorithm(self) -> &'static str {
-        self.algorithm
-    }
-
     /// How to write a checkpoint of this kind, for error messages.
     fn how_to_save(self) -> String {
         let flags = self.train_flags;

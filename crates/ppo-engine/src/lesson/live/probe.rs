@@ -22,7 +22,7 @@ pub fn probe_snapshot(
     config: &PpoConfig,
     settings: &ProbeSettings,
 ) -> Result<TrustRegionProbe, PpoError> {
-    let (Some(old), Some(gradients)) = (&snapshot.played_with, &snapshot.gradients) else {
+    let Some(latest) = snapshot.cartpole_update() else {
         return Err(PpoError::InvalidBatch(
             t(
                 "the snapshot holds no CartPole update yet: train at least one episode before probing the trust region",
@@ -50,9 +50,9 @@ pub fn probe_snapshot(
         }
     }
     probe(
-        old,
+        &latest.played_with,
         &snapshot.weights,
-        &gradients.surrogate,
+        &latest.gradients.surrogate,
         config,
         settings,
     )
@@ -108,7 +108,7 @@ mod tests {
     #[test]
     fn bad_input_is_refused_by_name() -> TestResult {
         let config = PpoConfig::default();
-        let empty = Snapshot::new(&config, 0);
+        let empty = Snapshot::new(config.clone(), 0);
         let err = probe_snapshot(&empty, &config, &ProbeSettings::default())
             .err()
             .map(|e| e.to_string())
@@ -141,7 +141,10 @@ mod tests {
             .map(|e| e.to_string())
             .unwrap_or_default();
         assert!(err.contains("gamma"), "{err}");
-        let old = snapshot.played_with.clone().ok_or("no θ_old")?;
+        let old = snapshot
+            .cartpole_update()
+            .map(|c| c.played_with.clone())
+            .ok_or("no θ_old")?;
         let n = old.parameters().len();
         for (direction, want) in [
             (vec![1.0; n - 1], "direction has"),

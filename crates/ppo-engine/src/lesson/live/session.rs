@@ -15,27 +15,38 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::{PolicyMap, Snapshot};
+use super::{LatestView, Snapshot};
 use crate::ppo::knobs::Tunable;
-use crate::ppo::model::ActorSnapshot;
-use crate::ppo::{
-    Agent, EpisodeReport, OnPolicyAgent, PpoContinuous, PpoError, Training, moving_average,
-    surrogate_gradients,
-};
-use crate::run::{RunConfig, RunVisitor};
+use crate::ppo::{EpisodeReport, OnPolicyAgent, PpoError, Training, moving_average};
+use crate::run::{IntoLatest, RunConfig, RunVisitor};
 
 /// The window of the return curve's moving average, as in the seed's plot.
 pub const MOVING_AVERAGE_WINDOW: usize = 9;
 
 /// An agent the live session can show: what it keeps of the policy before an episode,
-/// and how the episode's report fills the snapshot. Its settings carry the sandbox's
-/// knobs ([`crate::ppo::knobs::Tunable`]).
+/// what it shows of the episode and its update ([`LiveAgent::Latest`], with the live
+/// values only it has), and its settings as the hyper-parameter table. Its settings carry
+/// the sandbox's knobs ([`crate::ppo::knobs::Tunable`]). Each agent's impl sits in its own
+/// file under `lesson/live/agents/`.
 pub trait LiveAgent: OnPolicyAgent<Config: crate::ppo::knobs::Tunable> {
     /// What is kept of the policy that plays the episode, before its update changes it.
     type Before: Send;
 
-    /// What the tutor shows before the run's first episode: the settings, no numbers yet.
-    fn first_snapshot(config: &Self::Config, seed: u64) -> Snapshot;
+    /// What the tutor shows of the latest episode and update: the agent's slot of
+    /// [`crate::run::Latest`].
+    type Latest: LatestView + IntoLatest + Clone + std::fmt::Debug + PartialEq + Send + Sync;
+
+    /// The live values only this agent's runs have, each viewed by
+    /// [`LatestView::tensor`] (the values every run has are [`super::values::COMMON`]).
+    const LIVE_VALUES: &'static [&'static str];
+
+    /// The hyper-parameters of a run with `config` and `seed`, as `(name, value)` in the
+    /// order the agent's Python source lists them.
+    fn hyper(config: &Self::Config, seed: u64) -> Vec<(String, String)>;
+
+    /// The clip range ε and the discount γ of `config` (for marking clipped ratios and for
+    /// the return-to-go).
+    fn eps_gamma(config: &Self::Config) -> (f64, f64);
 
     /// Keeps what [`LiveAgent::show`] needs of the policy before the episode.
     ///
@@ -43,8 +54,8 @@ pub trait LiveAgent: OnPolicyAgent<Config: crate::ppo::knobs::Tunable> {
     /// [`PpoError::Candle`] if the weights cannot be copied (a bug).
     fn before_episode(&self) -> Result<Self::Before, PpoError>;
 
-    /// Fills the agent's own parts of `snapshot` from the episode's report (the return
-    /// curve, the episode count and the weights are filled for every agent).
+    /// What the tutor shows of the episode's report (the return curve, the episode count
+    /// and the weights are filled for every agent).
     ///
     /// # Errors
     /// [`PpoError::Candle`] if a gradient or a map cannot be computed (a bug).
@@ -52,70 +63,7 @@ pub trait LiveAgent: OnPolicyAgent<Config: crate::ppo::knobs::Tunable> {
         &self,
         before: Self::Before,
         report: EpisodeReport<Self::Trace>,
-        snapshot: &mut Snapshot,
-    ) -> Result<(), PpoError>;
-}
-
-impl LiveAgent for Agent {
-    /// The policy the episode is played with, before the episode's update changes it: its
-    /// probabilities are the ones the actions were sampled from (`old_log_probs`); and
-    /// θ_old as candle variables, for the two policy gradients of the batch it played.
-    type Before = (ActorSnapshot, crate::ppo::PolicyNet);
-
-    fn first_snapshot(config: &crate::ppo::PpoConfig, seed: u64) -> Snapshot {
-        Snapshot::new(config, seed)
-    }
-
-    fn before_episode(&self) -> Result<Self::Before, PpoError> {
-        Ok((
-            ActorSnapshot::of(self.actor())?,
-            self.actor().frozen_copy()?,
-        ))
-    }
-
-    fn show(
-        &self,
-        (played_with, theta_old): Self::Before,
-        report: EpisodeReport,
-        s: &mut Snapshot,
-    ) -> Result<(), PpoError> {
-        s.probs = probs_over(&played_with, &report.trace.states);
-        s.terminated = report.terminated;
-        s.truncated = report.truncated;
-        s.gradients = Some(surrogate_gradients(
-            &theta_old,
-            &report.trace.states,
-            &report.trace.actions,
-            &report.trace.advantage,
-        )?);
-        s.trace = Some(report.trace);
-        s.played_with = Some(played_with);
-        Ok(())
-    }
-}
-
-impl LiveAgent for PpoContinuous {
-    type Before = ();
-
-    fn first_snapshot(config: &crate::ppo::PpoContinuousConfig, seed: u64) -> Snapshot {
-        Snapshot::new_pendulum(config, seed)
-    }
-
-    fn before_episode(&self) -> Result<(), PpoError> {
-        Ok(())
-    }
-
-    /// The update's trace and the policy's `(μ, σ)` map after the update.
-    fn show(
-        &self,
-        (): (),
-        report: EpisodeReport<crate::ppo::ContinuousUpdateTrace>,
-        s: &mut Snapshot,
-    ) -> Result<(), PpoError> {
-        s.continuous = Some(report.trace);
-        s.policy_map = Some(PolicyMap::of(|state| self.mu_std(state)));
-        Ok(())
-    }
+    ) -> Result<Self::Latest, PpoError>;
 }
 
 /// A run the session drives, whatever its agent.
@@ -135,9 +83,10 @@ impl<A: LiveAgent> LiveRun for Training<A> {
             return Ok(false);
         };
         s.episodes = report.episode + 1;
+        s.env_steps += report.steps;
         s.returns.push(report.episode_return);
         s.moving_average = moving_average(&s.returns, MOVING_AVERAGE_WINDOW).unwrap_or_default();
-        self.agent().show(before, report, s)?;
+        s.latest = self.agent().show(before, report)?.into_latest();
         s.weights = self.agent().named_weights()?;
         Ok(true)
     }
@@ -244,25 +193,13 @@ impl Session {
     }
 }
 
-/// `π(·|s)` under `policy` for each of `states` (NaN where a probability is missing).
-fn probs_over(policy: &ActorSnapshot, states: &[[f32; 4]]) -> Vec<[f32; 2]> {
-    states
-        .iter()
-        .map(|s| {
-            let p = policy.probs(s);
-            [
-                p.first().copied().unwrap_or(f32::NAN),
-                p.get(1).copied().unwrap_or(f32::NAN),
-            ]
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::lesson::AgentKind;
-    use crate::lesson::live::{LIVE, PENALTY_ONLY};
+    use crate::lesson::live::agents::cartpole::probs_over;
+    use crate::lesson::live::{PENALTY_ONLY, names, runs_on};
+    use crate::ppo::model::ActorSnapshot;
     use crate::ppo::{ContinuousTrainer, PpoConfig, PpoContinuousConfig, Trainer};
 
     type TestResult = Result<(), Box<dyn std::error::Error>>;
@@ -276,12 +213,9 @@ mod tests {
 
     #[test]
     fn every_live_value_resolves_after_a_short_run() -> TestResult {
-        let cartpole = Session::run(PpoConfig::default(), 0, 10)?;
-        let pendulum = Session::run(PpoContinuousConfig::default(), 0, 10)?;
-        for (env, snapshot) in [
-            (AgentKind::CartPole, cartpole),
-            (AgentKind::Pendulum, pendulum),
-        ] {
+        for env in AgentKind::ALL {
+            let snapshot = Session::run(RunConfig::default_for(env), 0, 10)?;
+            assert_eq!(snapshot.agent(), env);
             check_every_value(env, &snapshot, |name| !PENALTY_ONLY.contains(&name))?;
         }
         // PPO-Penalty's own values, in a run of that objective.
@@ -301,13 +235,19 @@ mod tests {
         snapshot: &Snapshot,
         checked: impl Fn(&str) -> bool,
     ) -> TestResult {
-        for v in LIVE.iter().filter(|v| v.runs_on(env) && checked(v.name)) {
+        for name in names()
+            .into_iter()
+            .filter(|&n| runs_on(n, env) && checked(n))
+        {
             let t = snapshot
-                .tensor(v.name)
-                .ok_or_else(|| format!("{} has no view in a {env:?} run", v.name))?;
-            assert_eq!(t.name, v.name);
+                .tensor(name)
+                .ok_or_else(|| format!("{name} has no view in a {env:?} run"))?;
+            assert_eq!(t.name, name);
             let rows = t.values.len().max(t.labels.len());
-            assert!(rows > 0, "{} is empty", v.name);
+            assert!(rows > 0, "{name} is empty");
+        }
+        for name in names().into_iter().filter(|&n| !runs_on(n, env)) {
+            assert!(snapshot.tensor(name).is_none(), "{name} in a {env:?} run");
         }
         Ok(())
     }
@@ -316,16 +256,19 @@ mod tests {
     fn the_snapshot_follows_the_trainer_episode_by_episode() -> TestResult {
         let mut session = Session::new(short(12), 3)?;
         let mut trainer = Trainer::new(short(12), 3)?;
-        let mut returns = Vec::new();
+        let (mut returns, mut steps) = (Vec::new(), 0);
         while let Some(report) = trainer.next_episode()? {
             let s = session.next_episode()?.ok_or("the session ended early")?;
             returns.push(report.episode_return);
             assert_eq!(s.episodes, report.episode + 1);
             assert_eq!(s.returns, returns);
-            assert_eq!(s.trace.as_ref(), Some(&report.trace));
-            assert_eq!(s.terminated, report.terminated);
-            assert_eq!(s.truncated, report.truncated);
-            assert_eq!(s.probs.len(), report.steps);
+            let latest = s.cartpole_update().ok_or("a CartPole update")?;
+            assert_eq!(latest.trace, report.trace);
+            assert_eq!(latest.terminated, report.terminated);
+            assert_eq!(latest.truncated, report.truncated);
+            assert_eq!(latest.probs.len(), report.steps);
+            steps += report.steps;
+            assert_eq!(s.env_steps, steps);
             assert_eq!(s.weights, trainer.agent().weights()?);
             let expected = moving_average(&returns, 9).unwrap_or_default();
             assert_eq!(s.moving_average, expected);
@@ -342,13 +285,19 @@ mod tests {
         let trainer = Trainer::new(PpoConfig::default(), 0)?;
         let before = ActorSnapshot::of(trainer.agent().actor())?;
         let s = session.next_episode()?.ok_or("no episode")?;
-        let trace = s.trace.as_ref().ok_or("no trace")?;
+        let latest = s.cartpole_update().ok_or("no update")?;
+        let trace = &latest.trace;
         // log π_old(a_t|s_t), recorded by the update, is the log of the played probability.
-        for ((p, &a), old) in s.probs.iter().zip(&trace.actions).zip(&trace.old_log_probs) {
+        for ((p, &a), old) in latest
+            .probs
+            .iter()
+            .zip(&trace.actions)
+            .zip(&trace.old_log_probs)
+        {
             assert!((p[a].ln() - old).abs() < 1e-5, "{p:?} {a} {old}");
         }
-        assert_eq!(s.probs, probs_over(&before, &trace.states));
-        assert_eq!(s.played_with.as_ref(), Some(&before), "θ_old is kept");
+        assert_eq!(latest.probs, probs_over(&before, &trace.states));
+        assert_eq!(latest.played_with, before, "θ_old is kept");
         Ok(())
     }
 
@@ -361,7 +310,7 @@ mod tests {
             "3 returns are too few for window 9"
         );
         let s = Session::run(short(3), 0, 0)?;
-        assert_eq!(s, Snapshot::new(&short(3), 0));
+        assert_eq!(s, Snapshot::new(short(3), 0));
         Ok(())
     }
 
@@ -375,11 +324,12 @@ mod tests {
         let mut trainer = ContinuousTrainer::new(config, 5)?;
         while let Some(report) = trainer.next_episode()? {
             let s = session.next_episode()?.ok_or("the session ended early")?;
-            assert_eq!(s.agent, AgentKind::Pendulum);
-            assert_eq!(s.continuous.as_ref(), Some(&report.trace));
+            assert_eq!(s.agent(), AgentKind::Pendulum);
+            let latest = s.pendulum_update().ok_or("a Pendulum update")?;
+            assert_eq!(latest.trace, report.trace);
             assert_eq!(s.returns.last(), Some(&report.episode_return));
             assert_eq!(s.observation_count(), 201);
-            let map = s.policy_map.as_ref().ok_or("no policy map")?;
+            let map = &latest.policy_map;
             let agent = trainer.agent();
             assert_eq!(map.mu.len(), 81);
             let upright = agent.mu_std(&[1.0, 0.0, 0.0]);
@@ -388,7 +338,7 @@ mod tests {
                 upright,
                 "the centre is upright at rest"
             );
-            assert!(s.trace.is_none() && s.tensor("mu").is_some());
+            assert!(s.cartpole_update().is_none() && s.tensor("mu").is_some());
         }
         assert!(session.next_episode()?.is_none() && session.is_done());
         Ok(())

@@ -340,9 +340,12 @@ mod tests {
         );
         let mut snap = Snapshot::default();
         assert!(!qs[1].predict(3.0, &snap).answered, "nothing trained yet");
-        snap.trace = Some(crate::ppo::UpdateTrace {
-            rewards: vec![1.0; 12],
-            ..crate::ppo::UpdateTrace::default()
+        snap.latest = crate::run::IntoLatest::into_latest(crate::lesson::live::CartPoleLatest {
+            trace: crate::ppo::UpdateTrace {
+                rewards: vec![1.0; 12],
+                ..crate::ppo::UpdateTrace::default()
+            },
+            ..Default::default()
         });
         let close = qs[1].predict(12.4, &snap);
         assert!(close.right && close.live == Some(12.0), "{close}");
@@ -355,9 +358,12 @@ mod tests {
         use crate::i18n::Lang;
         let exact = TWO.replace("tolerance = 0.5", "tolerance = 0");
         let snap = Snapshot {
-            trace: Some(crate::ppo::UpdateTrace {
-                rewards: vec![1.0; 12],
-                ..crate::ppo::UpdateTrace::default()
+            latest: crate::run::IntoLatest::into_latest(crate::lesson::live::CartPoleLatest {
+                trace: crate::ppo::UpdateTrace {
+                    rewards: vec![1.0; 12],
+                    ..crate::ppo::UpdateTrace::default()
+                },
+                ..Default::default()
             }),
             ..Snapshot::default()
         };
@@ -397,15 +403,18 @@ mod tests {
     fn run(theta: f32, theta_dot: f32, r: f32, adv: f32) -> Snapshot {
         Snapshot {
             hyper: vec![("eps".into(), "0.2".into())],
-            trace: Some(crate::ppo::UpdateTrace {
-                states: vec![[0.0, 0.0, theta, theta_dot]],
-                next_states: vec![[0.0, 0.0, theta + 0.02 * theta_dot, 0.0]],
-                advantage: vec![adv, 0.5],
-                epochs: vec![crate::ppo::EpochTrace {
-                    ratio: vec![r, 1.0],
-                    ..crate::ppo::EpochTrace::default()
-                }],
-                ..crate::ppo::UpdateTrace::default()
+            latest: crate::run::IntoLatest::into_latest(crate::lesson::live::CartPoleLatest {
+                trace: crate::ppo::UpdateTrace {
+                    states: vec![[0.0, 0.0, theta, theta_dot]],
+                    next_states: vec![[0.0, 0.0, theta + 0.02 * theta_dot, 0.0]],
+                    advantage: vec![adv, 0.5],
+                    epochs: vec![crate::ppo::EpochTrace {
+                        ratio: vec![r, 1.0],
+                        ..crate::ppo::EpochTrace::default()
+                    }],
+                    ..crate::ppo::UpdateTrace::default()
+                },
+                ..Default::default()
             }),
             ..Snapshot::default()
         }

@@ -22,6 +22,7 @@ mod run;
 
 use super::super::Snapshot;
 use crate::i18n::Text;
+use crate::lesson::live::Batch;
 
 /// A number a prediction is graded against, measured on the running agent.
 #[derive(Debug)]
@@ -133,55 +134,8 @@ fn clipped_objective(s: &Snapshot) -> bool {
             .all(|(n, v)| n != "objective" || v.as_str() == "clip")
 }
 
-/// The latest batch's columns and its update's epochs, in either run: what the two traces
-/// have in common.
-struct Batch<'a> {
-    values: &'a [f32],
-    next_values: &'a [f32],
-    td_delta: &'a [f32],
-    advantage: &'a [f32],
-    old_log_probs: &'a [f32],
-    /// Each epoch's `(log_probs, ratio, surr1, surr2)`.
-    epochs: Vec<EpochView<'a>>,
-}
-
-/// One epoch of [`Batch`].
-struct EpochView<'a> {
-    log_probs: &'a [f32],
-    ratio: &'a [f32],
-    surr1: &'a [f32],
-    surr2: &'a [f32],
-}
-
-/// The [`Batch`] view of a trace: the Pendulum and CartPole traces are different types with
-/// the same field names, so one macro builds both.
-macro_rules! batch_of {
-    ($t:expr) => {
-        Batch {
-            values: &$t.values,
-            next_values: &$t.next_values,
-            td_delta: &$t.td_delta,
-            advantage: &$t.advantage,
-            old_log_probs: &$t.old_log_probs,
-            epochs: $t
-                .epochs
-                .iter()
-                .map(|e| EpochView {
-                    log_probs: &e.log_probs,
-                    ratio: &e.ratio,
-                    surr1: &e.surr1,
-                    surr2: &e.surr2,
-                })
-                .collect(),
-        }
-    };
-}
-
 fn batch(s: &Snapshot) -> Option<Batch<'_>> {
-    match &s.continuous {
-        Some(c) => Some(batch_of!(c)),
-        None => Some(batch_of!(s.trace.as_ref()?)),
-    }
+    s.batch()
 }
 
 /// `xs[i]` as f64.

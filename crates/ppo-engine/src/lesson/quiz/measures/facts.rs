@@ -16,10 +16,7 @@ pub(super) static FACTS: &[Measure] = &[
             "transitions in the latest episode's batch",
             "最新回合批次中的状态转移数",
         ),
-        value: |s| match &s.continuous {
-            Some(c) => Some(c.rewards.len() as f64),
-            None => Some(s.trace.as_ref()?.rewards.len() as f64),
-        },
+        value: |s| Some(s.batch()?.rewards.len() as f64),
         choices: 0,
         basis: Basis::Fact("a Pendulum episode, and so its batch, is 200 steps"),
     },
@@ -30,10 +27,7 @@ pub(super) static FACTS: &[Measure] = &[
             "最新批次中 done = 1 的行数",
         ),
         value: |s| {
-            let dones = match &s.continuous {
-                Some(c) => &c.dones,
-                None => &s.trace.as_ref()?.dones,
-            };
+            let dones = s.batch()?.dones;
             Some(dones.iter().filter(|d| **d).count() as f64)
         },
         choices: 0,
@@ -45,7 +39,13 @@ pub(super) static FACTS: &[Measure] = &[
             "numbers in one CartPole observation",
             "一个 CartPole 观测中的数的个数",
         ),
-        value: |s| s.trace.as_ref()?.states.first().map(|o| o.len() as f64),
+        value: |s| {
+            s.cartpole_update()?
+                .trace
+                .states
+                .first()
+                .map(|o| o.len() as f64)
+        },
         choices: 0,
         basis: Basis::Fact("a CartPole observation is four numbers"),
     },
@@ -75,7 +75,12 @@ pub(super) static FACTS: &[Measure] = &[
             "π(left|s_0) + π(right|s_0) for the batch's first row",
             "批次第一行的 π(left|s_0) + π(right|s_0)",
         ),
-        value: |s| s.probs.first().map(|p| f64::from(p[0]) + f64::from(p[1])),
+        value: |s| {
+            s.cartpole_update()?
+                .probs
+                .first()
+                .map(|p| f64::from(p[0]) + f64::from(p[1]))
+        },
         choices: 0,
         basis: Basis::Fact("softmax rows sum to 1"),
     },
@@ -85,7 +90,12 @@ pub(super) static FACTS: &[Measure] = &[
             "the largest entropy of a policy over CartPole's actions, in nats",
             "CartPole 动作上策略熵的最大值（单位 nat）",
         ),
-        value: |s| s.probs.first().map(|p| (p.len() as f64).ln()),
+        value: |s| {
+            s.cartpole_update()?
+                .probs
+                .first()
+                .map(|p| (p.len() as f64).ln())
+        },
         choices: 0,
         basis: Basis::Fact("the entropy of two actions is at most ln 2"),
     },
@@ -95,7 +105,13 @@ pub(super) static FACTS: &[Measure] = &[
             "the TD target of the batch's last row",
             "批次最后一行的 TD 目标",
         ),
-        value: |s| s.trace.as_ref()?.td_target.last().map(|&v| f64::from(v)),
+        value: |s| {
+            s.cartpole_update()?
+                .trace
+                .td_target
+                .last()
+                .map(|&v| f64::from(v))
+        },
         choices: 0,
         basis: Basis::Fact("done masks V(s') on the last row: its TD target is its reward"),
     },
@@ -137,7 +153,7 @@ pub(super) static FACTS: &[Measure] = &[
             "批次最后一行的 Â_T − δ_T",
         ),
         value: |s| {
-            let t = s.trace.as_ref()?;
+            let t = &s.cartpole_update()?.trace;
             Some(f64::from(*t.advantage.last()?) - f64::from(*t.td_delta.last()?))
         },
         choices: 0,
@@ -191,7 +207,7 @@ pub(super) static FACTS: &[Measure] = &[
             "第 1 轮的策略网络损失加上批次的平均优势值",
         ),
         value: |s| {
-            let t = s.trace.as_ref()?;
+            let t = &s.cartpole_update()?.trace;
             let mean =
                 t.advantage.iter().map(|&a| f64::from(a)).sum::<f64>() / t.advantage.len() as f64;
             Some(f64::from(t.epochs.first()?.actor_loss) + mean)
@@ -202,7 +218,7 @@ pub(super) static FACTS: &[Measure] = &[
     Measure {
         name: "epochs_run",
         about: Text::new("epochs the latest update ran", "最新一次更新运行的轮数"),
-        value: |s| Some(s.trace.as_ref()?.epochs_run() as f64),
+        value: |s| Some(s.cartpole_update()?.trace.epochs_run() as f64),
         choices: 0,
         basis: Basis::Fact("without target_kl every update runs its 10 epochs"),
     },
@@ -213,7 +229,7 @@ pub(super) static FACTS: &[Measure] = &[
             "θ_old 处两种策略梯度之间的最大差值",
         ),
         value: |s| {
-            let g = s.gradients.as_ref()?;
+            let g = &s.cartpole_update()?.gradients;
             Some(f64::from(g.max_abs_diff()))
         },
         choices: 0,
@@ -262,15 +278,12 @@ fn parameters(s: &Snapshot, prefix: &str) -> Option<f64> {
 }
 
 fn first_epoch(s: &Snapshot, f: impl Fn(&crate::ppo::EpochTrace) -> f64) -> Option<f64> {
-    s.trace.as_ref()?.epochs.first().map(f)
+    s.cartpole_update()?.trace.epochs.first().map(f)
 }
 
-/// The ratios of the latest update's first epoch, in either run.
+/// The ratios of the latest update's first epoch, of any agent.
 fn first_ratios(s: &Snapshot) -> Option<&[f32]> {
-    match &s.continuous {
-        Some(c) => c.epochs.first().map(|e| e.ratio.as_slice()),
-        None => s.trace.as_ref()?.epochs.first().map(|e| e.ratio.as_slice()),
-    }
+    s.batch()?.epochs.first().map(|e| e.ratio)
 }
 
 fn max(xs: &[f32]) -> f64 {
@@ -287,7 +300,7 @@ fn min(xs: &[f32]) -> f64 {
 
 /// Mean and unbiased std of CleanRL's normalised advantages of the latest batch.
 fn normalised(s: &Snapshot) -> Option<(f64, f64)> {
-    let adv = &s.trace.as_ref()?.advantage;
+    let adv = &s.cartpole_update()?.trace.advantage;
     if adv.len() < 2 {
         return None;
     }

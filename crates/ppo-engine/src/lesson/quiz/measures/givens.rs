@@ -80,34 +80,43 @@ pub(super) static GIVENS: &[Measure] = &[
         "prob_left_first",
         "π(left|s_0) in the batch's first row",
         "批次第一行的 π(left|s_0)",
-        |s| s.probs.first().map(|p| f64::from(p[0])),
+        |s| s.cartpole_update()?.probs.first().map(|p| f64::from(p[0])),
     ),
     given(
         "prob_right_first",
         "π(right|s_0) in the batch's first row",
         "批次第一行的 π(right|s_0)",
-        |s| s.probs.first().map(|p| f64::from(p[1])),
+        |s| s.cartpole_update()?.probs.first().map(|p| f64::from(p[1])),
     ),
     given(
         "action_first",
         "the action of the batch's first row",
         "批次第一行的动作",
-        |s| match &s.continuous {
-            Some(c) => at(&c.actions, 0),
-            None => s.trace.as_ref()?.actions.first().map(|&a| a as f64),
-        },
+        |s| s.batch()?.actions.get(0),
     ),
     given(
         "theta_last",
         "the pole angle θ in the batch's last state",
         "批次最后一个状态中的杆角 θ",
-        |s| s.trace.as_ref()?.states.last().map(|o| f64::from(o[2])),
+        |s| {
+            s.cartpole_update()?
+                .trace
+                .states
+                .last()
+                .map(|o| f64::from(o[2]))
+        },
     ),
     given(
         "theta_dot_last",
         "the pole's angular velocity θ̇ in the batch's last state",
         "批次最后一个状态中杆的角速度 θ̇",
-        |s| s.trace.as_ref()?.states.last().map(|o| f64::from(o[3])),
+        |s| {
+            s.cartpole_update()?
+                .trace
+                .states
+                .last()
+                .map(|o| f64::from(o[3]))
+        },
     ),
     given(
         "value_first",
@@ -209,14 +218,20 @@ pub(super) static GIVENS: &[Measure] = &[
         "prob_old_at_ratio_max_last",
         "π_old(a|s), the old probability of the action of the last epoch's largest-ratio row",
         "最后一轮中比率最大那一行的动作在旧策略下的概率 π_old(a|s)",
-        |s| at(&s.trace.as_ref()?.old_log_probs, extreme_row(s, true)?).map(f64::exp),
+        |s| {
+            at(
+                &s.cartpole_update()?.trace.old_log_probs,
+                extreme_row(s, true)?,
+            )
+            .map(f64::exp)
+        },
     ),
     given(
         "adv_abs_max",
         "the largest |Â| of the latest batch",
         "最近一批数据中最大的 |Â|",
         |s| {
-            let adv = &s.trace.as_ref()?.advantage;
+            let adv = &s.cartpole_update()?.trace.advantage;
             adv.iter().map(|a| f64::from(a.abs())).reduce(f64::max)
         },
     ),
@@ -242,21 +257,21 @@ pub(super) static GIVENS: &[Measure] = &[
         "mu_first",
         "μ(s_0), the Gaussian policy's mean in the first row",
         "μ(s_0)，第一行高斯策略的均值",
-        |s| at(&s.continuous.as_ref()?.mu, 0),
+        |s| at(&s.pendulum_update()?.trace.mu, 0),
     ),
     given(
         "std_first",
         "σ(s_0), the Gaussian policy's standard deviation in the first row",
         "σ(s_0)，第一行高斯策略的标准差",
-        |s| at(&s.continuous.as_ref()?.std, 0),
+        |s| at(&s.pendulum_update()?.trace.std, 0),
     ),
     given(
         "cos_first",
         "cos θ in the batch's first Pendulum state",
         "批次第一个倒立摆状态中的 cos θ",
         |s| {
-            s.continuous
-                .as_ref()?
+            s.pendulum_update()?
+                .trace
                 .states
                 .first()
                 .map(|o| f64::from(o[0]))
@@ -267,8 +282,8 @@ pub(super) static GIVENS: &[Measure] = &[
         "sin θ in the batch's first Pendulum state",
         "批次第一个倒立摆状态中的 sin θ",
         |s| {
-            s.continuous
-                .as_ref()?
+            s.pendulum_update()?
+                .trace
                 .states
                 .first()
                 .map(|o| f64::from(o[1]))
@@ -279,8 +294,8 @@ pub(super) static GIVENS: &[Measure] = &[
         "θ̇ in the batch's first Pendulum state",
         "批次第一个倒立摆状态中的 θ̇",
         |s| {
-            s.continuous
-                .as_ref()?
+            s.pendulum_update()?
+                .trace
                 .states
                 .first()
                 .map(|o| f64::from(o[2]))
@@ -292,7 +307,7 @@ pub(super) static GIVENS: &[Measure] = &[
 /// the loss is −mean(r·Â) (every ratio is 1, inside the band), so it is minus the
 /// surrogate's gradient.
 fn loss_gradient_fc2_bias0(s: &Snapshot) -> Option<f64> {
-    let g = s.gradients.as_ref()?;
+    let g = &s.cartpole_update()?.gradients;
     let mut start = 0;
     for (name, shape) in &g.shapes {
         if *name == "fc2.bias" {

@@ -14,7 +14,7 @@ pub(super) static RUN: &[Measure] = &[
             "log π_θ(a_0|s_0), the log-probability of the first row's action",
             "log π_θ(a_0|s_0)，第一行所取动作的对数概率",
         ),
-        value: |s| at(&s.trace.as_ref()?.old_log_probs, 0),
+        value: |s| at(&s.cartpole_update()?.trace.old_log_probs, 0),
         choices: 0,
         basis: Basis::Run {
             given: &["prob_left_first", "prob_right_first", "action_first"],
@@ -28,8 +28,8 @@ pub(super) static RUN: &[Measure] = &[
             "结束该回合的那个观测中的杆角",
         ),
         value: |s| {
-            s.trace
-                .as_ref()?
+            s.cartpole_update()?
+                .trace
                 .next_states
                 .last()
                 .map(|o| f64::from(o[2]))
@@ -48,7 +48,12 @@ pub(super) static RUN: &[Measure] = &[
             "pushes to the right expected in 100 visits to the first state",
             "在第一个状态上访问 100 次，预期向右推的次数",
         ),
-        value: |s| s.probs.first().map(|p| 100.0 * f64::from(p[1])),
+        value: |s| {
+            s.cartpole_update()?
+                .probs
+                .first()
+                .map(|p| 100.0 * f64::from(p[1]))
+        },
         choices: 0,
         basis: Basis::Run {
             given: &["prob_left_first"],
@@ -62,7 +67,7 @@ pub(super) static RUN: &[Measure] = &[
             "G_0 − V(s_0)，带基线的 REINFORCE 对第一个动作的权重",
         ),
         value: |s| {
-            let t = s.trace.as_ref()?;
+            let t = &s.cartpole_update()?.trace;
             let g = crate::lesson::live::values::return_to_go(&t.rewards, &t.dones, s.gamma);
             Some(g.first()? - at(&t.values, 0)?)
         },
@@ -80,7 +85,7 @@ pub(super) static RUN: &[Measure] = &[
             "z_0 − z_1，策略网络在第一个状态上两个 logit 之差",
         ),
         value: |s| {
-            let p = s.probs.first()?;
+            let p = s.cartpole_update()?.probs.first()?;
             Some((f64::from(p[0]) / f64::from(p[1])).ln())
         },
         choices: 0,
@@ -112,7 +117,7 @@ pub(super) static RUN: &[Measure] = &[
             "δ_0, the TD error of the batch's first row",
             "δ_0，批次第一行的 TD 误差",
         ),
-        value: |s| at(&s.trace.as_ref()?.td_delta, 0),
+        value: |s| at(&s.cartpole_update()?.trace.td_delta, 0),
         choices: 0,
         basis: Basis::Run {
             given: &["gamma", "value_first", "next_value_first"],
@@ -128,7 +133,7 @@ pub(super) static RUN: &[Measure] = &[
         ),
         // The λ-return less the value: the advantage before any normalisation.
         value: |s| {
-            let t = s.trace.as_ref()?;
+            let t = &s.cartpole_update()?.trace;
             Some(from_end(&t.lambda_return, 3)? - from_end(&t.values, 3)?)
         },
         choices: 0,
@@ -164,7 +169,7 @@ pub(super) static RUN: &[Measure] = &[
         ),
         // CartPole only (`trace`): the two-action KL from the taken action's probabilities.
         value: |s| {
-            let t = s.trace.as_ref()?;
+            let t = &s.cartpole_update()?.trace;
             let i = extreme_row(s, true)?;
             let p = at(&t.old_log_probs, i)?.exp();
             let q = at(&t.epochs.last()?.log_probs, i)?.exp();
@@ -184,7 +189,7 @@ pub(super) static RUN: &[Measure] = &[
             "TRPO 的 C = 4·γ·max|A| / (1 − γ)²，用批次中最大的 |Â| 代替 max|A|",
         ),
         value: |s| {
-            let adv = &s.trace.as_ref()?.advantage;
+            let adv = &s.cartpole_update()?.trace.advantage;
             let largest = adv.iter().map(|a| f64::from(a.abs())).reduce(f64::max)?;
             Some(trpo_c(hyper(s, "gamma")?, largest))
         },
@@ -247,7 +252,7 @@ pub(super) static RUN: &[Measure] = &[
             "clip_frac，更新最后一轮的截断比例",
         ),
         value: |s| {
-            let t = s.trace.as_ref()?;
+            let t = &s.cartpole_update()?.trace;
             t.epochs.last().map(|e| f64::from(e.clip_fraction))
         },
         choices: 0,
@@ -281,7 +286,7 @@ pub(super) static RUN: &[Measure] = &[
             "environment steps of the run so far",
             "本次运行到目前为止的环境时间步数",
         ),
-        value: |s| (s.agent == AgentKind::CartPole).then(|| s.returns.iter().sum()),
+        value: |s| (s.agent() == AgentKind::CartPole).then_some(s.env_steps as f64),
         choices: 0,
         basis: Basis::Run {
             given: &["episodes", "mean_return"],
@@ -295,7 +300,7 @@ pub(super) static RUN: &[Measure] = &[
             "经 CleanRL 归一化之后的 Â_0",
         ),
         value: |s| {
-            let adv = &s.trace.as_ref()?.advantage;
+            let adv = &s.cartpole_update()?.trace.advantage;
             if adv.len() < 2 {
                 return None;
             }
@@ -313,7 +318,7 @@ pub(super) static RUN: &[Measure] = &[
             "log N(a_0; μ, σ), the first row's old log-density",
             "log N(a_0; μ, σ)，第一行的旧对数密度",
         ),
-        value: |s| at(&s.continuous.as_ref()?.old_log_probs, 0),
+        value: |s| at(&s.pendulum_update()?.trace.old_log_probs, 0),
         choices: 0,
         basis: Basis::Run {
             given: &["mu_first", "std_first", "action_first"],
@@ -329,7 +334,7 @@ pub(super) static RUN: &[Measure] = &[
             "the reward of the batch's first Pendulum step",
             "批次第一个倒立摆时间步的奖励",
         ),
-        value: |s| at(&s.continuous.as_ref()?.rewards, 0),
+        value: |s| at(&s.pendulum_update()?.trace.rewards, 0),
         choices: 0,
         basis: Basis::Run {
             given: &["cos_first", "sin_first", "theta_dot_first", "action_first"],
