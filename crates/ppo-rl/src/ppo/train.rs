@@ -328,8 +328,8 @@ impl<A: OnPolicyAgent> Training<A> {
             return Err(PpoError::InvalidBatch(crate::tr!(
                 "update {update} finished {finished} episodes: next_episode needs a one-episode \
                  rollout; call next_update for this agent",
-                "第 {update} 次更新结束了 {finished} 个回合：next_episode 需要每次一个回合的 \
-                 rollout；这个智能体请调用 next_update"
+                "第 {update} 次更新结束了 {finished} 个回合：next_episode 要求每次更新只采集一个回合；\
+                 这个智能体请调用 next_update"
             )));
         };
         let (iteration, episode_in_iteration, iteration_len) = self.iteration_of(episode);
