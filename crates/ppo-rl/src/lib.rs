@@ -18,6 +18,7 @@
 pub mod env;
 pub mod files;
 pub mod ppo;
+pub mod stats;
 
 pub(crate) use ppo_i18n::{causes, i18n, tr};
 

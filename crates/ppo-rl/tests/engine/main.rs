@@ -11,6 +11,7 @@ mod parity_pendulum;
 mod parity_ppo;
 mod parity_ppo_continuous;
 mod parity_ppo_penalty;
+mod parity_rliable;
 mod parity_vector;
 mod props_cartpole;
 mod quotient;
