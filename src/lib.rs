@@ -27,5 +27,5 @@ pub mod watch;
 
 #[doc(hidden)]
 pub use ppo_engine::tr;
-pub use ppo_engine::{candle_core, candle_nn, env, i18n, lesson, notebook, plot, ppo, run};
+pub use ppo_engine::{candle_core, candle_nn, env, i18n, lesson, notebook, plot, ppo, run, stats};
 pub use ppo_grade as grade;

@@ -148,6 +148,10 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
     for line in result.table() {
         writeln!(out, "{line}")?;
     }
+    writeln!(out)?;
+    for line in result.comparisons() {
+        writeln!(out, "{line}")?;
+    }
     if experiment == Experiment::Proximal {
         writeln!(out)?;
         for arm in &result.arms {
@@ -172,7 +176,15 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
         }
     }
     if let Some(path) = &args.json {
-        let text = serde_json::to_string(&result).context(t("encoding the results", "编码结果"))?;
+        // the result, and each arm after the first paired with it (null: fewer than 2 seeds)
+        let mut value =
+            serde_json::to_value(&result).context(t("encoding the results", "编码结果"))?;
+        if let serde_json::Value::Object(map) = &mut value {
+            let paired = serde_json::to_value(result.paired())
+                .context(t("encoding the results", "编码结果"))?;
+            map.insert("paired_with_first".into(), paired);
+        }
+        let text = value.to_string();
         super::train::write_output(path, format!("{text}\n").as_bytes())?;
     }
     if let Some(path) = &args.plot {

@@ -85,6 +85,19 @@ fn train_over_seeds_summarises_the_single_seed_runs() -> TestResult {
         stdout.contains(&format!("over 3 seeds: {mean:.1} ± {std:.1}")),
         "{stdout}"
     );
+    // the robust summary beside it: the IQM and the mean's bootstrap interval, the
+    // statistics module's on the same three scores
+    let iqm = ppo_tutor::stats::iqm(&means).ok_or("no IQM")?;
+    let ci = ppo_tutor::stats::Bootstrap::default().mean(&means)?.ci;
+    assert!((summary["iqm"].as_f64().ok_or("no iqm")? - iqm).abs() < 1e-9);
+    assert_eq!(summary["mean_ci95"]["low"].as_f64(), Some(ci.low));
+    assert_eq!(summary["mean_ci95"]["high"].as_f64(), Some(ci.high));
+    assert!(ci.low <= mean && mean <= ci.high, "{ci:?} around {mean}");
+    let line = format!(
+        "interquartile mean {iqm:.1}; 95% bootstrap interval of the mean [{:.1}, {:.1}]",
+        ci.low, ci.high
+    );
+    assert!(stdout.contains(&line), "{line:?} in {stdout}");
     let band = &all["band"];
     for key in ["mean", "low", "high"] {
         assert_eq!(band[key].as_array().map(Vec::len), Some(6), "{key}");
@@ -545,6 +558,30 @@ fn lab_runs_an_experiment_over_seeds_and_refuses_an_unknown_one() -> TestResult 
     let arms = lab["arms"].as_array().ok_or("no arms")?;
     assert_eq!(arms.len(), 2);
     assert_eq!(arms[1]["config"]["algorithm"], "reinforce");
+    // The arms are compared seed by seed: each seed's difference of final scores, with the
+    // statistics module's interval and a verdict only where the interval excludes zero.
+    let finals = |arm: &Value| -> Result<Vec<f64>, &'static str> {
+        arm["finals"]
+            .as_array()
+            .ok_or("no finals")?
+            .iter()
+            .map(|v| v.as_f64().ok_or("a final that is not a number"))
+            .collect()
+    };
+    let paired =
+        ppo_tutor::stats::Bootstrap::default().paired(&finals(&arms[1])?, &finals(&arms[0])?)?;
+    let recorded = &lab["paired_with_first"][0];
+    assert_eq!(
+        recorded["mean_difference"].as_f64(),
+        Some(paired.mean_difference)
+    );
+    assert_eq!(recorded["ci"]["low"].as_f64(), Some(paired.ci.low));
+    assert!(
+        stdout.contains("each setting − PPO") && stdout.contains("on the same 2 seeds"),
+        "{stdout}"
+    );
+    let words = ppo_tutor::ppo::lab::paired_words(&paired);
+    assert!(stdout.contains(&words), "{words:?} in {stdout}");
     // The base arm's seed 1 is `train --seed 1` with the same episodes.
     let single = dir.path().join("one.json");
     let out = ppo_tutor(&[

@@ -37,6 +37,8 @@ pub use ppo_i18n::{causes, i18n, text, tr};
 pub use ppo_rl::env;
 /// Writing a file atomically, from the RL core.
 pub use ppo_rl::files;
+/// Statistics over seeds (the RL core's): IQM, bootstrap intervals, paired comparisons.
+pub use ppo_rl::stats;
 
 /// The candle-core the engine is built on, so a notebook cell can write the candle exercise
 /// without a `:dep` of its own: `use ppo_engine::candle_core::{Result, Tensor};`.

@@ -55,7 +55,7 @@ pub enum StatsError {
     #[error("{}", tr!(
         "a paired comparison needs one score per seed in both settings: the arm has {arm}, \
          the baseline {baseline}; run both on the same seeds",
-        "成对比较需要两种设置在每个随机种子上各有一个分数：实验组有 {arm} 个，基线有 {baseline} 个；\
+        "配对比较需要两种设置在每个随机种子上各有一个分数：实验组有 {arm} 个，基线有 {baseline} 个；\
          请在相同的随机种子上运行两者"
     ))]
     Unpaired {

@@ -124,6 +124,10 @@ pub(super) fn run(
             "{n_runs} 个随机种子：{mean:.1} ± {std:.1}（各随机种子均值的平均 ± 样本标准差）"
         )
     )?;
+    let spread = Spread::of(&finals);
+    if let Some(line) = spread.line() {
+        writeln!(out, "{line}")?;
+    }
     if !args.quiet {
         let width = crossterm::terminal::size().map_or(80, |(w, _)| usize::from(w));
         writeln!(out)?;
@@ -141,7 +145,7 @@ pub(super) fn run(
             &runs,
             (&smoothed, window),
             &band,
-            (mean, std),
+            (mean, std, &spread),
             wall_s,
         );
         write_output(path, format!("{value}\n").as_bytes())?;
@@ -173,7 +177,7 @@ fn seeds_json(
     runs: &[SeedRun],
     (smoothed, window): (&[Vec<f64>], usize),
     band: &Band,
-    (mean, std): (f64, f64),
+    (mean, std, spread): (f64, f64, &Spread),
     wall_s: f64,
 ) -> serde_json::Value {
     let key = format!("mean_last_{}", setup.agent().spec().summary_window);
@@ -208,8 +212,42 @@ fn seeds_json(
         "band": { "of": "moving_average", "mean": band.mean, "low": band.low, "high": band.high },
         "config": setup,
     });
-    value[&key] = json!({ "mean": mean, "std": std });
+    value[&key] = json!({
+        "mean": mean,
+        "std": std,
+        "iqm": spread.iqm,
+        "mean_ci95": spread.mean_ci.map(|ci| json!({ "low": ci.low, "high": ci.high })),
+    });
     value
+}
+
+/// The robust summary of the seeds' scores beside mean ± std: the interquartile mean and
+/// the 95% bootstrap interval of the mean ([`crate::stats`]); no interval from one seed.
+struct Spread {
+    iqm: Option<f64>,
+    mean_ci: Option<crate::stats::Interval>,
+}
+
+impl Spread {
+    fn of(finals: &[f64]) -> Self {
+        Self {
+            iqm: crate::stats::iqm(finals),
+            mean_ci: crate::stats::Bootstrap::default()
+                .mean(finals)
+                .ok()
+                .map(|e| e.ci),
+        }
+    }
+
+    fn line(&self) -> Option<String> {
+        let (iqm, ci) = (self.iqm?, self.mean_ci?);
+        Some(tr!(
+            "  interquartile mean {iqm:.1}; 95% bootstrap interval of the mean [{:.1}, {:.1}]",
+            "  四分位均值 {iqm:.1}；均值的 95% 自助法置信区间 [{:.1}, {:.1}]",
+            ci.low,
+            ci.high
+        ))
+    }
 }
 
 /// Trains every seed of any agent, for [`RunConfig::visit`].

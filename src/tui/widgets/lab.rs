@@ -87,7 +87,8 @@ impl Widget for LabPanel<'_> {
             }
             Some(LabState::Done(result)) => {
                 let table = result.table();
-                let rows = table.len() as u16 + 1;
+                let comparisons = result.comparisons();
+                let rows = (table.len() + comparisons.len()) as u16 + 1;
                 let [top, charts] =
                     Layout::vertical([Constraint::Length(rows), Constraint::Min(0)]).areas(inner);
                 let mut lines: Vec<Line> = table
@@ -101,6 +102,13 @@ impl Widget for LabPanel<'_> {
                         }
                     })
                     .collect();
+                lines.extend(comparisons.into_iter().enumerate().map(|(i, l)| {
+                    if i == 0 {
+                        Line::styled(l, t.dim())
+                    } else {
+                        Line::raw(l)
+                    }
+                }));
                 lines.push(Line::styled(
                     tr!(
                         "{} seeds, {} episodes; charts: band and mean of each setting (o: the first)",

@@ -38,7 +38,7 @@ use super::train::mean_last;
 mod results;
 
 use results::Sums;
-pub use results::{ArmResult, LabResult, UpdateStats};
+pub use results::{ArmResult, LabResult, UpdateStats, paired_words};
 
 /// The returns each seed's final score averages.
 pub const LAST: usize = 50;

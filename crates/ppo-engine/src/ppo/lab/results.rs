@@ -1,7 +1,13 @@
 //! What a lab run found: each arm's band of curves, its seeds' final scores and what its
 //! updates did, and the tables and paired comparisons the lab prints from them.
+//!
+//! A comparison is paired: every arm ran the base's seeds, so the lab takes each seed's
+//! difference `arm − base` and its bootstrap interval ([`crate::stats`]). An arm is
+//! "higher" or "lower" only when that interval excludes zero; otherwise the lab says "no
+//! difference shown at N seeds".
 
 use crate::i18n::{pad_left, pad_right, t};
+use crate::stats::{Bootstrap, Paired, Verdict};
 use crate::tr;
 use serde::Serialize;
 
@@ -234,7 +240,76 @@ pub struct LabResult {
     pub arms: Vec<ArmResult>,
 }
 
+/// A paired difference in words: `−12.3 [−25.1, −1.2]: lower`, or `... : no difference
+/// shown at 5 seeds` when the interval contains zero.
+#[must_use]
+pub fn paired_words(p: &Paired) -> String {
+    let verdict = match p.verdict() {
+        Verdict::Higher => t("higher", "更高").to_string(),
+        Verdict::Lower => t("lower", "更低").to_string(),
+        Verdict::NotShown => tr!(
+            "no difference shown at {} seeds",
+            "{} 个随机种子下没有显示出差异",
+            p.n()
+        ),
+    };
+    tr!(
+        "{:+.1} [{:+.1}, {:+.1}]: {verdict}",
+        "{:+.1} [{:+.1}, {:+.1}]：{verdict}",
+        p.mean_difference,
+        p.ci.low,
+        p.ci.high
+    )
+}
+
 impl LabResult {
+    /// Each arm after the first against the first, seed by seed: the differences of the
+    /// seeds' last-50 means, their mean and its 95% bootstrap interval. `None` for an arm
+    /// where no interval exists (fewer than two seeds).
+    #[must_use]
+    pub fn paired(&self) -> Vec<Option<Paired>> {
+        let Some((base, others)) = self.arms.split_first() else {
+            return Vec::new();
+        };
+        others
+            .iter()
+            .map(|arm| Bootstrap::default().paired(&arm.finals, &base.finals).ok())
+            .collect()
+    }
+
+    /// The paired comparisons as lines: a heading naming the base and the seeds, then one
+    /// line per other arm ([`paired_words`]).
+    #[must_use]
+    pub fn comparisons(&self) -> Vec<String> {
+        let Some(base) = self.arms.first() else {
+            return Vec::new();
+        };
+        let n = self.seeds.len();
+        let label_width = self
+            .arms
+            .iter()
+            .map(|a| crate::i18n::width(&a.label))
+            .fold(30, usize::max);
+        let mut lines = vec![tr!(
+            "each setting − {} on the same {n} seeds (mean difference of the last-{LAST} means, 95% bootstrap interval):",
+            "各设置 − {}，在相同的 {n} 个随机种子上（最后 {LAST} 个回报均值之差的平均，95% 自助法置信区间）：",
+            base.label
+        )];
+        for (arm, paired) in self.arms.iter().skip(1).zip(self.paired()) {
+            let words = paired.as_ref().map_or_else(
+                || {
+                    tr!(
+                        "no interval from {n} seed(s): run at least 2",
+                        "{n} 个随机种子算不出区间：至少需要 2 个"
+                    )
+                },
+                paired_words,
+            );
+            lines.push(format!("{} {words}", pad_right(&arm.label, label_width)));
+        }
+        lines
+    }
+
     /// The result as a table, one row per setting: the mean ± sample std over seeds of each
     /// seed's last-50 mean, and the update statistics averaged over seeds.
     ///
