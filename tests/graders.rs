@@ -210,6 +210,76 @@ fn every_catalogued_wrong_answer_fails_naming_its_mistake() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
+/// Right answers written another way than the reference (`tests/other_solutions/
+/// <exercise>/<how>.rs`: a comparison in f64, a strict test written as a distance or a
+/// quotient, a sum walked by subtraction) pass: the cases on a stated boundary are exact
+/// whichever way a learner computes them.
+#[test]
+fn right_answers_written_another_way_pass() -> TestResult {
+    let root = Path::new(ROOT).join("tests/other_solutions");
+    let mut graded = 0;
+    for folder in std::fs::read_dir(&root)? {
+        let folder = folder?.path();
+        let name = folder
+            .file_name()
+            .and_then(|n| n.to_str())
+            .ok_or("a folder name that is not UTF-8")?
+            .to_string();
+        for file in std::fs::read_dir(&folder)? {
+            let file = file?.path();
+            let report = grade_file(&name, &file)?;
+            assert!(report.passed(), "{}:\n{}", file.display(), report.render());
+            graded += 1;
+        }
+    }
+    assert!(graded >= 3, "only {graded} other solutions found");
+    Ok(())
+}
+
+/// Wrong answers whose mistake is not in the catalogue (`tests/uncatalogued_answers/
+/// <exercise>/<what it does>.rs`, each written the way a learner would) fail without a hint
+/// that names a mistake the file does not make: no diagnosis, and none of the catalogue's
+/// hints in the report, only the exercise's own.
+#[test]
+fn a_wrong_answer_outside_the_catalogue_gets_the_exercise_hint_not_a_wrong_one() -> TestResult {
+    let root = Path::new(ROOT).join("tests/uncatalogued_answers");
+    let mut graded = 0;
+    for folder in std::fs::read_dir(&root)? {
+        let folder = folder?.path();
+        let name = folder
+            .file_name()
+            .and_then(|n| n.to_str())
+            .ok_or("a folder name that is not UTF-8")?
+            .to_string();
+        if grade::find(&name)?.meta().backend != Backend::Rustc {
+            continue; // the candle exercise's are graded in the full tier, below
+        }
+        let prose = Prose::of(&name)?;
+        for file in std::fs::read_dir(&folder)? {
+            let file = file?.path();
+            let report = grade_file(&name, &file)?;
+            let text = report.render();
+            assert!(!report.passed(), "{} passed:\n{text}", file.display());
+            assert_eq!(
+                report.mistake,
+                None,
+                "{}: diagnosed as a mistake it does not make\n{text}",
+                file.display()
+            );
+            for id in grade::find(&name)?.mistake_ids() {
+                assert!(
+                    !text.contains(prose.mistake(id)),
+                    "{}: the hint of {id}\n{text}",
+                    file.display()
+                );
+            }
+            graded += 1;
+        }
+    }
+    assert!(graded >= 3, "only {graded} uncatalogued answers found");
+    Ok(())
+}
+
 /// The registry, the catalogues in `crates/ppo-grade/src/exercises/` and the prose in
 /// `lessons/*/exercise.toml` agree: each exercise's mistake ids are the same on both sides,
 /// every `[[exercise]]` is a registered exercise of that lesson, and the registry is in
@@ -252,6 +322,22 @@ fn every_mistake_differs_from_the_reference_somewhere() -> TestResult {
         assert!(
             uncaught.is_empty(),
             "{}: {uncaught:?} never caught",
+            exercise.name()
+        );
+    }
+    Ok(())
+}
+
+/// A learner who answers every case exactly as a catalogued mistake does is diagnosed as
+/// that mistake, not as another one (so every pair of mistakes is told apart by some case,
+/// and the first listed of two look-alikes cannot shadow the second).
+#[test]
+fn every_mistake_made_alone_is_diagnosed_as_itself() -> TestResult {
+    for exercise in grade::exercises() {
+        let wrong = exercise.misdiagnosed_mistakes()?;
+        assert!(
+            wrong.is_empty(),
+            "{}: (mistake, diagnosed as) {wrong:?}",
             exercise.name()
         );
     }
@@ -722,6 +808,28 @@ fn the_candle_exercise_grades_solution_starter_wrong_answers_and_failures() -> T
         failures
     });
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+
+    // Outside the catalogue: no mistake named, and no hint that says something untrue (the
+    // training check's "your losses match the seed's on every input above" after a failed
+    // check: it gives that check's hint instead).
+    let training_hint = prose.text("training");
+    for name in ["min_of_the_means", "values_detached"] {
+        let file = Path::new(ROOT).join(format!("tests/uncatalogued_answers/ppo_losses/{name}.rs"));
+        let report = grade_candle(&std::fs::read_to_string(&file)?, ten)?;
+        let text = report.render();
+        assert!(!report.passed(), "{name} passed:\n{text}");
+        assert_eq!(report.mistake, None, "{name}: diagnosed\n{text}");
+        for id in &ids {
+            assert!(
+                !text.contains(prose.mistake(id)),
+                "{name}: the hint of {id}\n{text}"
+            );
+        }
+        assert!(
+            !text.contains(training_hint),
+            "{name}: the training hint\n{text}"
+        );
+    }
 
     let typo = "use candle_core::{Result, Tensor};\npub fn ppo_losses(probs: &Tensor, actions: &Tensor, old_log_probs: &Tensor, advantage: &Tensor, values: &Tensor, td_target: &Tensor, eps: f64) -> Result<(Tensor, Tensor)> {\n    let x: u32 = \"no\";\n    todo!()\n}\n";
     let report = grade_candle(typo, ten)?;

@@ -60,6 +60,16 @@ pub trait Exercise: Sync {
     /// [`GradeError::Fixture`] if the cases cannot be made.
     fn uncaught_mistakes(&self) -> Result<Vec<&'static str>, GradeError>;
 
+    /// The typical mistakes that the judge does not name when a learner makes exactly
+    /// that mistake, each with what it named instead (a catalogue check: it must be empty).
+    ///
+    /// # Errors
+    /// [`GradeError::Fixture`] if the cases cannot be made, [`GradeError::Content`] if the
+    /// prose does not parse.
+    fn misdiagnosed_mistakes(
+        &self,
+    ) -> Result<Vec<(&'static str, Option<&'static str>)>, GradeError>;
+
     /// The function's name.
     fn name(&self) -> &'static str {
         self.meta().name
@@ -154,5 +164,11 @@ impl<S: Spec> Exercise for S {
 
     fn uncaught_mistakes(&self) -> Result<Vec<&'static str>, GradeError> {
         pipeline::uncaught_mistakes(self)
+    }
+
+    fn misdiagnosed_mistakes(
+        &self,
+    ) -> Result<Vec<(&'static str, Option<&'static str>)>, GradeError> {
+        pipeline::misdiagnosed_mistakes(self)
     }
 }

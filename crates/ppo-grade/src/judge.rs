@@ -2,12 +2,17 @@
 //! failing case of each check, and names the likely mistake from the exercise's catalogue.
 //!
 //! A diagnosis is made per *part* (what a mistake concerns: the whole result of a plain
-//! exercise; the actor or the critic loss of the candle one). Among the mistakes of a part
-//! that reproduce at least one of the learner's wrong answers, the one agreeing with the
-//! learner on the most cases wins (wrong and right ones alike, so a variant that is wrong
-//! only where the learner is beats one that happens to coincide on a single input; the
-//! first listed wins a tie). Its hint, from the lesson's `exercise.toml`, goes with every
-//! failure in that part.
+//! exercise; the actor or the critic loss of the candle one). A known mistake of a part
+//! *explains* the learner when it accounts for the learner's wrong answers: of the cases
+//! where the learner or the mistake is wrong, the mistake gives the learner's very answer
+//! on at least half. So a variant that is wrong almost everywhere does not explain a
+//! learner who is wrong on one edge case, nor one that coincides with the learner on a
+//! few inputs, while a learner who makes the mistake with a slip of their own beside it is
+//! still told it. Among the mistakes that explain the learner, the one with the largest
+//! share wins (the first listed wins a tie). Its hint, from the lesson's `exercise.toml`,
+//! goes with every failure in that part; when no mistake explains the learner, the failure
+//! gets the exercise's own hint (`fallback`), which states the idea rather than name a
+//! mistake the learner did not make.
 
 use super::hints;
 use super::learner::Answer;
@@ -71,45 +76,63 @@ impl<'a, S: Spec> Judge<'a, S> {
         self.learner.get(i)?.as_ref()?.as_ref().ok()
     }
 
-    /// The known mistake in `part` that best explains the learner's values.
+    /// The known mistake in `part` that best explains the learner's values (see the
+    /// module's documentation for the rule).
     fn diagnose(&self, part: usize) -> Option<&'static str> {
-        let n = self.cases.len();
-        let wrong: Vec<bool> = (0..n)
+        let wrong: Vec<bool> = (0..self.cases.len())
             .map(|i| match (self.learner_value(i), &self.reference[i]) {
                 (Some(l), Some(r)) => !self.spec.agrees(l, r, part),
                 _ => false,
             })
             .collect();
-        if !wrong.contains(&true) {
+        let learner_wrong = wrong.iter().filter(|w| **w).count();
+        if learner_wrong == 0 {
             return None;
         }
-        let mut best: Option<(&'static str, usize)> = None;
+        // The best mistake so far, with its share as (reproduced, of).
+        let mut best: Option<(&'static str, usize, usize)> = None;
         for (index, (id, p)) in self.spec.mistakes().into_iter().enumerate() {
             if p != part {
                 continue;
             }
-            let agrees: Vec<bool> = self
-                .cases
-                .iter()
-                .enumerate()
-                .map(|(i, case)| {
-                    let theirs = self
-                        .spec
-                        .mistake(index, case)
-                        .and_then(|r| self.spec.value(case, r).ok());
-                    match (self.learner_value(i), theirs) {
-                        (Some(l), Some(m)) => self.spec.agrees(l, &m, part),
-                        _ => false,
-                    }
-                })
-                .collect();
-            let explains = agrees.iter().zip(&wrong).any(|(a, w)| *a && *w);
-            let score = agrees.iter().filter(|a| **a).count();
-            if explains && best.is_none_or(|(_, b)| score > b) {
-                best = Some((id, score));
+            let mut reproduced = 0;
+            let mut mistake_wrong = 0;
+            for (i, case) in self.cases.iter().enumerate() {
+                let theirs = self
+                    .spec
+                    .mistake(index, case)
+                    .and_then(|r| self.spec.value(case, r).ok());
+                let Some(theirs) = theirs else { continue };
+                if self.reference[i]
+                    .as_ref()
+                    .is_some_and(|r| !self.spec.agrees(&theirs, r, part))
+                {
+                    mistake_wrong += 1;
+                }
+                if self
+                    .learner_value(i)
+                    .is_some_and(|l| self.spec.agrees(l, &theirs, part))
+                {
+                    reproduced += usize::from(wrong[i]);
+                }
+            }
+            // The cases where either is wrong (a reproduced case is wrong for both, but for
+            // answers that agree within the tolerance on one side only).
+            let either = (learner_wrong + mistake_wrong)
+                .saturating_sub(reproduced)
+                .max(reproduced);
+            let explains = reproduced > 0 && 2 * reproduced >= either;
+            if explains && best.is_none_or(|(_, r, e)| reproduced * e > r * either) {
+                best = Some((id, reproduced, either));
             }
         }
-        best.map(|(id, _)| id)
+        best.map(|(id, _, _)| id)
+    }
+
+    /// The diagnosed mistake of `part`, if one explains the learner.
+    #[must_use]
+    pub fn diagnosis(&self, part: usize) -> Option<&'static str> {
+        self.diagnosis.get(part).copied().flatten()
     }
 
     /// The first diagnosed mistake, in part order.

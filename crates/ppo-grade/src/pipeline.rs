@@ -205,6 +205,38 @@ pub fn uncaught_mistakes<S: Spec>(spec: &S) -> Result<Vec<&'static str>, GradeEr
         .collect())
 }
 
+/// The mistakes of `spec` that the judge does not name when a learner makes exactly that
+/// mistake (answers every case as the mistake does), each with what it named instead
+/// (`None`: only the exercise's own hint). A catalogue check: it must be empty, which also
+/// means every pair of mistakes is told apart by some case.
+///
+/// # Errors
+/// The cases or the prose cannot be made.
+pub fn misdiagnosed_mistakes<S: Spec>(
+    spec: &S,
+) -> Result<Vec<(&'static str, Option<&'static str>)>, GradeError> {
+    let prose = Hints::of(spec.meta().name)?;
+    let cases = spec.cases()?;
+    let mut wrong = Vec::new();
+    for (index, (id, part)) in spec.mistakes().into_iter().enumerate() {
+        let answers = cases
+            .all
+            .iter()
+            .map(
+                |case| match spec.mistake(index, case).or_else(|| spec.reference(case)) {
+                    Some(reply) => Answer::Value(reply),
+                    None => Answer::NotRun,
+                },
+            )
+            .collect();
+        let named = Judge::new(spec, prose, &cases.all, answers).diagnosis(part);
+        if named != Some(id) {
+            wrong.push((id, named));
+        }
+    }
+    Ok(wrong)
+}
+
 /// `report` with a line per check and the follow-up checks, from `learner`'s answers.
 fn judged<S: Spec>(
     spec: &S,
@@ -235,7 +267,8 @@ fn judged<S: Spec>(
         report.checks.push(judge.report_line(check, &printed));
     }
     report.mistake = judge.any_diagnosis().map(str::to_string);
-    let mut follow_up = spec.follow_up(learner, limit, judge.any_diagnosis(), prose);
+    let mut follow_up =
+        spec.follow_up(learner, limit, judge.any_diagnosis(), prose, &report.checks);
     // What was printed during the follow-up checks (a training run asks many questions)
     // goes with the last of them.
     let printed = learner.take_printed();

@@ -138,13 +138,15 @@ pub trait Spec: Sync + Send + 'static {
     fn follow_up_names(&self) -> Vec<Text> {
         Vec::new()
     }
-    /// Checks run after the judged ones, with the learner still answering.
+    /// Checks run after the judged ones (`earlier`, their report lines), with the learner
+    /// still answering.
     fn follow_up(
         &self,
         _learner: &mut dyn Learner<Self::Question, Self::Reply>,
         _limit: Duration,
         _diagnosis: Option<&'static str>,
         _prose: Hints,
+        _earlier: &[CheckReport],
     ) -> Vec<CheckReport> {
         Vec::new()
     }

@@ -40,6 +40,14 @@ pub const EXERCISE: Plain = Plain {
             id: "absolute_difference",
             answer: |a| steps(a, |old, new| (old - new).abs(), 1.5, 0),
         },
+        Mistake {
+            id: "stops_at_the_threshold",
+            answer: |a| {
+                let kls = estimates(a.f32s(0), a.f32s(1), k1);
+                let limit = 1.5 * a.f32(2);
+                Output::Usize(kls.iter().position(|&kl| kl >= limit).unwrap_or(kls.len()))
+            },
+        },
     ],
     checks,
 };
@@ -165,6 +173,10 @@ fn checks() -> Vec<CheckCases> {
         shifted(&old, &[[0.05, 0.03, 0.06, 0.04], [0.08; 4]]),
         0.01,
     )];
+    // The estimate lands exactly on 1.5 × target_kl (0 − (−0.015) = 0.015 = 1.5 × 0.01 in
+    // f32, whichever way it is summed or compared): it has not passed it, so the step is
+    // taken.
+    let on_the_threshold = vec![case(vec![0.0], vec![0.0, -0.015], 0.01)];
     vec![
         random,
         recorded,
@@ -192,6 +204,13 @@ fn checks() -> Vec<CheckCases> {
         check(
             Text::new("stops before the first step", "在第一步之前就停止"),
             before_first,
+        ),
+        check(
+            Text::new(
+                "the estimate exactly on 1.5 × target_kl: not past it",
+                "估计值恰好等于 1.5 × target_kl：还没有越过",
+            ),
+            on_the_threshold,
         ),
     ]
 }

@@ -42,10 +42,13 @@ pub const EXERCISE: Plain = Plain {
         },
         Mistake {
             id: "crosses_episode_end",
+            // The one-step target's (1 − done) mask kept, on the window's last step only:
+            // the sum runs on through an earlier done.
             answer: |a| {
                 windows(a, |w| {
                     let rewards: f32 = (0..w.m).map(|k| w.discount(k) * w.reward(k)).sum();
-                    rewards + w.discount(w.m) * w.value(w.m)
+                    let mask = if w.done(w.m - 1) { 0.0 } else { 1.0 };
+                    rewards + w.discount(w.m) * w.value(w.m) * mask
                 })
             },
         },

@@ -591,11 +591,19 @@ impl Spec for PpoLosses {
         limit: Duration,
         diagnosis: Option<&'static str>,
         prose: Hints,
+        earlier: &[CheckReport],
     ) -> Vec<CheckReport> {
+        // The hint when CartPole does not learn and no known mistake explains it: the first
+        // failed check's (the values or the gradients), else the one for losses that match
+        // the seed's everywhere but do not train.
+        let earlier_hint = earlier.iter().find_map(|c| match &c.status {
+            CheckStatus::Failed(f) => Some(f.hint.clone()),
+            _ => None,
+        });
         vec![CheckReport {
             name: training_check_name(),
             cases: 1,
-            status: training(learner, limit, diagnosis, prose),
+            status: training(learner, limit, diagnosis, prose, earlier_hint),
             printed: crate::report::Printed::default(),
         }]
     }
@@ -607,6 +615,7 @@ fn training(
     limit: Duration,
     diagnosed: Option<&'static str>,
     prose: Hints,
+    earlier_hint: Option<Text>,
 ) -> CheckStatus {
     if learner.is_stopped() {
         return CheckStatus::NotRun(Text::new(
@@ -646,7 +655,11 @@ fn training(
          solution: {REFERENCE_MEAN})",
         "最后 {TRAIN_WINDOW} 个回合的平均回报至少为 {LEARNS_AT}（参考答案：{REFERENCE_MEAN}）"
     );
-    let hint = diagnosed.map_or_else(|| prose.text("training"), |id| prose.mistake(id));
+    let hint = match (diagnosed, earlier_hint) {
+        (Some(id), _) => prose.mistake(id),
+        (None, Some(earlier)) => earlier,
+        (None, None) => prose.text("training"),
+    };
     let failed = |problem, got: Text, detail: Text, hint: Text| {
         CheckStatus::Failed(Box::new(Failure {
             problem,

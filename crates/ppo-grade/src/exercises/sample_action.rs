@@ -130,6 +130,9 @@ fn checks() -> Vec<CheckCases> {
     let near_one = vec![
         vec![Arg::F32s(vec![0.3, 0.699_99]), Arg::F32(0.999_995)],
         vec![Arg::F32s(vec![0.2, 0.2, 0.599_9]), Arg::F32(0.999_95)],
+        // The last action has probability 0 and still gets what rounding left over (the
+        // sum, 0.99998999 in f32 and in f64, is below u).
+        vec![Arg::F32s(vec![0.3, 0.699_99, 0.0]), Arg::F32(0.999_995)],
     ];
     vec![
         random,

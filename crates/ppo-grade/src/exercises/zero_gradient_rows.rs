@@ -95,11 +95,21 @@ fn rows(a: Args<'_>, f: impl Fn(f32, f32, f32, f32) -> bool) -> Output {
 fn checks() -> Vec<CheckCases> {
     let random = random(14, |g| {
         let n = g.int(1, 40);
-        let eps = if g.chance(0.6) { 0.2 } else { g.f(0.05, 0.4) };
+        // Ratios exactly on the band's edges only where 1 ± ε, r − 1 and 1 − r are exact in
+        // f32 and f64 (ε a multiple of 1/8), so that every strict way of writing the test
+        // (r > 1 + ε, r − 1 > ε, |r − 1| > ε, in f32 or f64) gives the same answer.
+        let on_edges = g.chance(0.4);
+        let eps = if on_edges {
+            [0.125, 0.25, 0.375][g.int(0, 2)]
+        } else if g.chance(0.6) {
+            0.2
+        } else {
+            g.f(0.05, 0.4)
+        };
         let ratio = (0..n)
             .map(|_| match g.int(0, 9) {
-                0 => 1.0 - eps,
-                1 => 1.0 + eps,
+                0 if on_edges => 1.0 - eps,
+                1 if on_edges => 1.0 + eps,
                 _ => g.f(0.4, 1.7),
             })
             .collect();
@@ -115,14 +125,20 @@ fn checks() -> Vec<CheckCases> {
             .collect()
     });
     let eps = 0.2_f32;
-    let (lo, hi) = (1.0 - eps, 1.0 + eps);
     let four_corners = vec![case(
         vec![1.5, 0.5, 1.5, 0.5, 1.0, 1.0],
         vec![2.0, 2.0, -2.0, -2.0, 2.0, -2.0],
         eps,
     )];
     let zero_advantage = vec![case(vec![1.0, 1.5, 0.5], vec![0.0; 3], eps)];
-    let bounds = vec![case(vec![hi, lo, hi, lo], vec![1.0, -1.0, -1.0, 1.0], eps)];
+    // At ε = 0.25 the edges are exact whichever way the test is written (at 0.2, 1 + ε
+    // rounds to 1.2000000477 and (1 + ε) − 1 > ε).
+    let exact = 0.25_f32;
+    let bounds = vec![case(
+        vec![1.0 + exact, 1.0 - exact, 1.0 + exact, 1.0 - exact],
+        vec![1.0, -1.0, -1.0, 1.0],
+        exact,
+    )];
     vec![
         random,
         recorded,
