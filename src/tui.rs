@@ -77,7 +77,7 @@ pub fn run(chosen: bool) -> anyhow::Result<std::process::ExitCode> {
     if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
         anyhow::bail!(crate::tr!(
             "ppo-tutor needs an interactive terminal; without one, use `ppo-tutor lessons` and `ppo-tutor show <id> [--step N]`",
-            "ppo-tutor 需要交互式终端；没有终端时，请用 `ppo-tutor lessons` 和 `ppo-tutor show <id> [--step N]`"
+            "ppo-tutor 需要交互式终端；没有终端时，请用 `ppo-tutor lessons` 和 `ppo-tutor show <课> [--step <节>]`"
         ));
     }
     let path = Progress::default_path();

@@ -89,7 +89,7 @@ fn english_in_chinese(report: &Report, exercise: &dyn Exercise) -> Vec<String> {
         Some(_) => text.lines().take(2).collect::<Vec<_>>(),
         None => text
             .lines()
-            .filter(|l| !l.trim_start().starts_with("panic："))
+            .filter(|l| !l.trim_start().starts_with("异常："))
             .filter(|l| !printed.contains(l.trim_start().trim_start_matches("输出：").trim()))
             .collect(),
     };

@@ -1618,7 +1618,7 @@ fn page_keys_and_home_end_scroll_the_live_tables() -> TestResult {
 fn the_plot_legend_stays_whole_over_a_trained_curve() -> TestResult {
     for (lang, names) in [
         (Lang::En, ["returns", "moving average (9)"]),
-        (Lang::Zh, ["回报", "移动平均 (9)"]),
+        (Lang::Zh, ["回报", "移动平均（9）"]),
     ] {
         let _lang = lang.scoped();
         let mut app = app()?;

@@ -603,9 +603,9 @@ fn notebook_problems(
             let mut seen = BTreeSet::new();
             for (kind, text) in texts {
                 for line in text.lines() {
-                    // A grader report's `panic：` line quotes the learner's program (Rust's
+                    // A grader report's `异常：` line quotes the learner's program (Rust's
                     // own message, `not yet implemented`), as the compiler's errors are.
-                    let line = line.split("panic：").next().unwrap_or(line);
+                    let line = line.split("异常：").next().unwrap_or(line);
                     let words = known.english(line, Some(lesson));
                     if !words.is_empty() && seen.insert(words.clone()) {
                         problems.push(format!(

@@ -126,7 +126,7 @@ pub fn run(args: &CartpoleArgs) -> anyhow::Result<ExitCode> {
                 super::error_prefix(),
                 t_(
                     "give --actions 0,1,... or --policy random|lean (or --envs N --actions-file FILE)",
-                    "请给出 --actions 0,1,...，或者 --policy random 或 --policy lean（或者 --envs N --actions-file FILE）"
+                    "请给出 --actions 0,1,...，或者 --policy random 或 --policy lean（或者 --envs <个数> --actions-file <文件>）"
                 ),
                 super::see_help()
             );

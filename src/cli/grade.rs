@@ -97,7 +97,7 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
         if args.file.is_some() {
             return Ok(usage(t(
                 "--file needs an exercise name: ppo-tutor grade NAME --file PATH",
-                "--file 需要练习名：ppo-tutor grade NAME --file PATH",
+                "--file 需要练习名：ppo-tutor grade <练习> --file <路径>",
             )));
         }
         return grade_all(&opts);
@@ -110,7 +110,7 @@ pub fn run(args: &GradeArgs) -> anyhow::Result<ExitCode> {
             } else {
                 tr!(
                     "\nto grade another file: ppo-tutor grade {name} --file PATH",
-                    "\n要评另一个文件：ppo-tutor grade {name} --file PATH"
+                    "\n要给另一个文件评分：ppo-tutor grade {name} --file <路径>"
                 )
             };
             eprintln!("{}{e}{other}", super::error_prefix());
@@ -446,7 +446,7 @@ pub fn watch(args: &WatchArgs) -> anyhow::Result<ExitCode> {
                     "{}",
                     t(
                         "Every exercise passes already: `ppo-tutor watch NAME` watches one anyway.",
-                        "所有练习都已通过。仍想监视某个练习，可用 `ppo-tutor watch NAME`。"
+                        "所有练习都已通过。仍想监视某个练习，可用 `ppo-tutor watch <练习>`。"
                     )
                 );
                 return Ok(ExitCode::SUCCESS);

@@ -92,11 +92,11 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     ),
     (
         "cartpole:resets",
-        "再记录 N 次不带随机种子的重置后的状态（记在 `next_resets` 里）",
+        "再记录 <次数> 次不带随机种子的重置后的状态（记在 `next_resets` 里）",
     ),
     (
         "cartpole:envs",
-        "把 N 个车杆一起步进，如同 Gymnasium 的 `SyncVectorEnv`（环境 i 用种子 seed + i 重置）；需要 --actions-file",
+        "把 <个数> 个车杆一起步进，如同 Gymnasium 的 `SyncVectorEnv`（环境 i 用种子 seed + i 重置）；需要 --actions-file",
     ),
     (
         "cartpole:autoreset",
@@ -112,7 +112,7 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     ),
     (
         "cartpole:actions_file",
-        "配合 --envs N：一个 JSON 文件，由步组成的数组，每步是 N 个 0 或 1 的动作，例如 [[0, 1], [1, 1]]",
+        "配合 --envs <个数>：一个 JSON 文件，由步组成的数组，每步是 <个数> 个 0 或 1 的动作，例如 [[0, 1], [1, 1]]",
     ),
     (
         "cartpole:json",
@@ -141,7 +141,7 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     ),
     (
         "pendulum:resets",
-        "再记录 N 次不带随机种子的重置后的状态（记在 `next_resets` 里）",
+        "再记录 <次数> 次不带随机种子的重置后的状态（记在 `next_resets` 里）",
     ),
     (
         "pendulum:json",
@@ -182,7 +182,7 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     ),
     (
         "train:seeds",
-        "并行训练多个随机种子（一个范围或一个列表：0-4、1,3,8）：打印每个随机种子最后 50 个回报的均值（Pendulum-v1 为 100 个）及其均值 ± 标准差，并把均值曲线画在各随机种子的区间带上",
+        "并行训练多个随机种子（一个范围或一个列表：0-4、1,3,8）：打印每个随机种子最后 50 个回报的均值（Pendulum-v1 为 100 个）及其均值 ± 标准差，并把平均曲线画在各随机种子的范围带上",
     ),
     (
         "train:env_id",
@@ -227,7 +227,7 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     ("train:epochs", "每次更新训练的轮数 [默认：10]"),
     (
         "train:critic_epochs",
-        "价值网络每次更新的步数，需要与策略网络的 --epochs 不同时使用（截断实验室的 `epochs` 实验）[默认：与策略网络相同；仅限车杆]",
+        "价值网络每次更新走的步数，可以设得与策略网络的 --epochs 不同（截断实验室的 `epochs` 实验就这样做）[默认：与策略网络的轮数相同；仅限车杆]",
     ),
     ("train:hidden_dim", "两个网络的隐藏层宽度 [默认：128]"),
     (
@@ -299,9 +299,9 @@ pub const HELP_ZH: &[(&str, &str)] = &[
     ("lab:episodes", "每次运行的回合数"),
     (
         "lab:json",
-        "把每次运行的回报、区间带和统计量以 JSON 写入 <文件>",
+        "把每次运行的回报、范围带和统计量以 JSON 写入 <文件>",
     ),
-    ("lab:plot", "把各取值的区间带画到 <文件>（.png 或 .svg）"),
+    ("lab:plot", "把各取值的范围带画到 <文件>（.png 或 .svg）"),
     ("lab:quiet", "只打印表格（不显示进度条，不画图）"),
     // trust-region
     (

@@ -65,7 +65,7 @@ pub fn run(args: &LabArgs) -> anyhow::Result<ExitCode> {
             "{}",
             t(
                 "The clip lab's experiments (run one with ppo-tutor lab NAME):",
-                "截断实验室的实验（用 ppo-tutor lab NAME 运行其中一个）："
+                "截断实验室的实验（用 ppo-tutor lab <实验> 运行其中一个）："
             )
         )?;
         for e in Experiment::ALL {

@@ -45,7 +45,7 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<ExitCode> {
     let cases = replay_any(&text, &name)?
         .into_iter()
         .enumerate()
-        .map(|(i, case)| case.with_context(|| tr!("replaying cases[{i}]", "重放 cases[{i}]")))
+        .map(|(i, case)| case.with_context(|| tr!("replaying cases[{i}]", "回放 cases[{i}]")))
         .collect::<anyhow::Result<Vec<_>>>()?;
     if args.json {
         // The outputs' own JSON, in the fixture's key order: `{"cases":[...]}`.

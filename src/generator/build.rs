@@ -581,7 +581,8 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
         };
         let _ = write!(
             md,
-            "\n**{source} (PyTorch){}**\n\n```python\n{}\n```\n",
+            "\n**{source}{}{}**\n\n```python\n{}\n```\n",
+            t(" (PyTorch)", "（PyTorch）"),
             t(":", "："),
             step.python.trim()
         );

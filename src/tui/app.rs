@@ -319,7 +319,7 @@ impl App {
                 } else {
                     self.say(crate::tr!(
                         "{said}, not the lessons' settings: {} (the lessons' value in brackets); the lessons' figures are for theirs",
-                        "{said}，不是课程里的设置：{}（括号里是课程用的值）；课程里的数字对应课程的设置",
+                        "{said}，不是课程里的设置：{}；括号里是课程用的值，课程里的数字对应课程的设置",
                         changed.join(", ")
                     ));
                 }

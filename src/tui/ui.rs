@@ -537,7 +537,7 @@ fn draw_probe(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     let block = panel(
         t(
             "trust region: the surrogate's prediction against the truth",
-            "信任域：替代目标的预测与真实变化",
+            "信任区域：替代目标的预测与真实变化",
         ),
         theme,
     );

@@ -151,7 +151,7 @@ impl std::fmt::Display for GradeError {
             ),
             Self::Fixture(why) => tr!(
                 "the embedded PyTorch fixture cannot be replayed: {why} (a bug in this build of ppo-tutor)",
-                "内置的 PyTorch 录制数据无法重放：{why}（这是本版 ppo-tutor 的 bug）"
+                "内置的 PyTorch 录制数据无法回放：{why}（这是本版 ppo-tutor 的 bug）"
             ),
             Self::Run { binary, reason } => {
                 let binary = binary.display();

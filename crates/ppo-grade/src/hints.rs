@@ -54,7 +54,7 @@ pub fn panic(message: &str) -> String {
     } else {
         t(
             "Your function panicked on this input: run it by hand on the input above.",
-            "你的函数在这个输入上 panic 了：用上面的输入手算一遍。",
+            "你的函数在这个输入上发生了异常（panic）：用上面的输入手算一遍。",
         )
     };
     hint.to_string()

@@ -200,7 +200,10 @@ impl Report {
                 t("not started (todo!() left)", "尚未开始（还留着 todo!()）").into()
             }
             Some(Problem::Panicked(_)) => {
-                tr!("{p}/{n} checks, panicked", "{p}/{n} 项检查，panic 了")
+                tr!(
+                    "{p}/{n} checks, panicked",
+                    "{p}/{n} 项检查，发生异常（panic）"
+                )
             }
             Some(Problem::TimedOut(_)) => {
                 tr!("{p}/{n} checks, never returned", "{p}/{n} 项检查，没有返回")
@@ -220,7 +223,7 @@ impl Report {
     /// check, and the details of each failure.
     #[must_use]
     pub fn render(&self) -> String {
-        let mut out = format!("{} ({})\n", self.exercise, self.file);
+        let mut out = format!("{}{}\n", self.exercise, paren(&self.file.to_string()));
         if let Some(line) = self.not_started {
             let name = &self.exercise;
             let _ = writeln!(
@@ -250,19 +253,19 @@ impl Report {
             let name = &check.name;
             match &check.status {
                 CheckStatus::Passed => {
-                    let _ = writeln!(out, "  ✓ {name}{}", paren(&cases));
+                    let _ = writeln!(out, "  ✓ {}", with_cases(name, &cases));
                     render_printed(&mut out, &check.printed);
                 }
                 CheckStatus::NotRun(why) => {
                     let _ = writeln!(
                         out,
-                        "  · {name}{}{}",
-                        paren(&cases),
+                        "  · {}{}",
+                        with_cases(name, &cases),
                         tr!(": not run, {why}", "：未运行，{why}")
                     );
                 }
                 CheckStatus::Failed(f) => {
-                    let _ = writeln!(out, "  ✗ {name}{}", paren(&cases));
+                    let _ = writeln!(out, "  ✗ {}", with_cases(name, &cases));
                     render_failure(&mut out, f, &check.printed);
                 }
             }
@@ -299,6 +302,17 @@ fn paren(text: &str) -> String {
     }
 }
 
+/// A check's name with its count of cases: `name (3 cases)`, `名称（3 个用例）`. A Chinese
+/// name that already ends in parentheses takes the count inside them (`名称（说明；3 个用例）`),
+/// never two pairs side by side.
+fn with_cases(name: &Text, cases: &str) -> String {
+    let name = name.to_string();
+    match (Lang::current(), name.strip_suffix('）')) {
+        (Lang::Zh, Some(open)) => format!("{open}；{cases}）"),
+        _ => format!("{name}{}", paren(cases)),
+    }
+}
+
 /// The labels of the failure details, `(English, Chinese)`, each padded to 10 columns (a
 /// Chinese character and the full-width colon are two columns each: `输入：` is 6). The
 /// grader is built without the app's text-width crate (notebooks), so the padding is
@@ -306,7 +320,7 @@ fn paren(text: &str) -> String {
 const INPUT: (&str, &str) = ("input:    ", "输入：    ");
 const EXPECTED: (&str, &str) = ("expected: ", "应为：    ");
 const GOT: (&str, &str) = ("got:      ", "实际：    ");
-const PANICKED: (&str, &str) = ("panicked: ", "panic：   ");
+const PANICKED: (&str, &str) = ("panicked: ", "异常：    ");
 const CRASHED: (&str, &str) = ("crashed:  ", "崩溃：    ");
 const ERROR: (&str, &str) = ("error:    ", "错误：    ");
 const HINT: (&str, &str) = ("hint:     ", "提示：    ");

@@ -259,7 +259,10 @@ impl ExercisePanel {
                 Ok(report) => {
                     lines.extend(report.render().lines().map(|l| Line::raw(format!(" {l}"))));
                 }
-                Err(e) => lines.push(Line::raw(format!(" {}: {e}", graded.name))),
+                Err(e) => {
+                    let name = &graded.name;
+                    lines.push(Line::raw(tr!(" {name}: {e}", " {name}：{e}")));
+                }
             }
         }
         if done(ctx.lesson, ctx.progress) {
@@ -270,7 +273,7 @@ impl ExercisePanel {
                     theme.title(),
                 ));
                 for (name, idea) in exercise.names().iter().zip(&exercise.ideas) {
-                    let mut spans = vec![Span::raw(format!(" {name}: "))];
+                    let mut spans = vec![Span::raw(tr!(" {name}: ", " {name}："))];
                     spans.extend(text::inline(idea, theme));
                     lines.push(Line::from(spans));
                 }

@@ -178,7 +178,7 @@ impl Widget for ReturnPlot<'_> {
         );
         if !avg.is_empty() {
             legend.push((
-                crate::tr!("moving average ({})", "移动平均 ({})", self.window),
+                crate::tr!("moving average ({})", "移动平均（{}）", self.window),
                 theme.average(),
             ));
             datasets.push(

@@ -124,7 +124,7 @@ pub fn fold_first(body: &str, opened: usize) -> String {
                     out.push(if first && opened >= total {
                         crate::tr!(
                             "▾ **Details: {summary}** (d folds)",
-                            "▾ **细节：{summary}**（按 d 收起）"
+                            "▾ **细节：{summary}**——按 d 收起"
                         )
                     } else {
                         crate::tr!("▾ **Details: {summary}**", "▾ **细节：{summary}**")
@@ -134,12 +134,12 @@ pub fn fold_first(body: &str, opened: usize) -> String {
                 } else if index - 1 == opened {
                     out.push(crate::tr!(
                         "▸ **Details: {summary}** (d opens)",
-                        "▸ **细节：{summary}**（按 d 展开）"
+                        "▸ **细节：{summary}**——按 d 展开"
                     ));
                 } else {
                     out.push(crate::tr!(
                         "▸ **Details: {summary}** (d opens it after the one above)",
-                        "▸ **细节：{summary}**（展开上面那段之后，再按 d 展开）"
+                        "▸ **细节：{summary}**——先展开上面那段，再按 d 展开"
                     ));
                 }
             }

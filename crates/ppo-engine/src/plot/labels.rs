@@ -73,7 +73,7 @@ pub fn mean_over_seeds() -> &'static str {
 pub fn arm(label: &str, seeds: usize) -> String {
     tr!(
         "{label} (mean of {seeds} seeds, band min–max)",
-        "{label}（{seeds} 个随机种子的均值，阴影为最低到最高）"
+        "{label}：{seeds} 个随机种子的均值与最低到最高"
     )
 }
 
@@ -175,7 +175,7 @@ pub fn ascii_band(seeds: usize, window: usize) -> String {
 pub fn ascii_versus(arm: &str, base: &str, seeds: usize) -> String {
     tr!(
         "{arm} (* mean, : lowest to highest of {seeds} seeds) against {base} (o mean)",
-        "{arm}（* 为均值，: 为 {seeds} 个随机种子的最低到最高）对比 {base}（o 为均值）"
+        "{arm}：* 为均值，: 为 {seeds} 个随机种子的最低到最高；对比 {base}：o 为均值"
     )
 }
 

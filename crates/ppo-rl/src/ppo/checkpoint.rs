@@ -55,7 +55,7 @@ impl CheckpointKind {
         let flags = self.train_flags;
         crate::tr!(
             "write one with `ppo-tutor train {flags}--save FILE.safetensors`",
-            "可用 `ppo-tutor train {flags}--save FILE.safetensors` 生成一个"
+            "可用 `ppo-tutor train {flags}--save <文件>.safetensors` 生成一个"
         )
     }
 

@@ -236,7 +236,7 @@ impl Replayed {
                 let out = replay(case)?;
                 let (transitions, losses) = summary(case, &out);
                 let output = serde_json::to_string(&out).map_err(|e| {
-                    PpoError::NonFinite(crate::tr!("the replay's output: {e}", "重放的输出：{e}"))
+                    PpoError::NonFinite(crate::tr!("the replay's output: {e}", "回放的输出：{e}"))
                 })?;
                 Ok(Self {
                     transitions,

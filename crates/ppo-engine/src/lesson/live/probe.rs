@@ -26,7 +26,7 @@ pub fn probe_snapshot(
         return Err(PpoError::InvalidBatch(
             t(
                 "the snapshot holds no CartPole update yet: train at least one episode before probing the trust region",
-                "快照里还没有 CartPole 的更新：先训练至少一个回合，再探测信任域",
+                "快照里还没有 CartPole 的更新：先训练至少一个回合，再探测信任区域",
             )
             .into(),
         ));

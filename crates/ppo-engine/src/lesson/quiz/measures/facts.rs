@@ -88,7 +88,7 @@ pub(super) static FACTS: &[Measure] = &[
         name: "entropy_max",
         about: Text::new(
             "the largest entropy of a policy over CartPole's actions, in nats",
-            "CartPole 动作上策略熵的最大值（单位 nat）",
+            "CartPole 动作上策略熵的最大值（单位：奈特）",
         ),
         value: |s| {
             s.cartpole_update()?
