@@ -810,3 +810,41 @@ fn an_exercise_must_declare_what_it_reveals_with_real_anchors() -> TestResult {
     }
     Ok(())
 }
+
+/// Lesson 9's account of a missing `.detach()` ("epoch 1 gives an actor gradient of exactly
+/// 0, epoch 2 raises that error", in both languages) is what PyTorch did, as recorded by
+/// `tests/fixtures/detach_pytorch.py` in `tests/fixtures/detach_pytorch.json`: with the
+/// detach both epochs have a gradient, without it the first is exactly 0 and the second
+/// stops with the error the lesson quotes, under the version the lesson names.
+#[test]
+fn lesson_9_s_detach_check_is_the_recorded_pytorch_run() -> TestResult {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let recorded: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(
+        root.join("tests/fixtures/detach_pytorch.json"),
+    )?)?;
+    let norm = |run: &str, epoch: usize| recorded[run][epoch]["actor_grad_norm"].as_f64();
+    assert!(norm("detached", 0).is_some_and(|n| n > 0.0), "{recorded}");
+    assert!(norm("detached", 1).is_some_and(|n| n > 0.0), "{recorded}");
+    assert_eq!(norm("not_detached", 0), Some(0.0), "{recorded}");
+    let error = recorded["not_detached"][1]["error"]
+        .as_str()
+        .ok_or("no error recorded for the second epoch")?;
+    let version = recorded["torch"].as_str().ok_or("no torch version")?;
+    let minor: String = version.split('.').take(2).collect::<Vec<_>>().join(".");
+    for file in ["lesson.md", "lesson.zh.md"] {
+        let text = std::fs::read_to_string(root.join("lessons/09-ratio").join(file))?;
+        let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+        let quoted = "Trying to backward through the graph a second time";
+        assert!(error.starts_with(quoted), "{error}");
+        assert!(text.contains(quoted), "{file} does not quote the error");
+        assert!(
+            text.contains(&format!("PyTorch {minor}")),
+            "{file} does not name PyTorch {minor}, the recorded version"
+        );
+        assert!(
+            text.contains("detach_pytorch.py"),
+            "{file} does not name the recording"
+        );
+    }
+    Ok(())
+}

@@ -446,6 +446,9 @@ impl LabResult {
 impl Rich for LabResult {
     fn rich(&self) -> Vec<(&'static str, String)> {
         let mut lines = self.table();
+        // each arm against the base, seed by seed, with its interval and verdict
+        lines.push(String::new());
+        lines.extend(self.comparisons());
         if self.experiment == Experiment::Proximal {
             // each arm's per-update KL, β's range and the line search's halvings
             lines.push(String::new());

@@ -52,7 +52,9 @@ pub enum Experiment {
     Eps,
     /// Passes over each episode: 10 (the seed), 1 and 40; then 1 for the actor with the
     /// critic's 10, and 10 for the actor with the critic's 1, which tell apart what each
-    /// network's reuse of an episode does.
+    /// network's reuse of an episode does; and one actor step at ten times the learning
+    /// rate with the critic's 10, which moves the actor about as far per episode as the
+    /// seed's ten steps without reusing the episode.
     Epochs,
     /// The actor's learning rate: 1e-3 (the seed) and ten times that.
     ActorLr,
@@ -214,6 +216,21 @@ impl Experiment {
                             c.critic_epochs = Some(1);
                         }),
                     ),
+                    // one actor step as long as the base's steps together (Adam moves a
+                    // weight by about the learning rate per step): the actor's movement
+                    // per episode without its reuse of the episode
+                    arm(
+                        tr!(
+                            "actor 1 at {:.0e}, critic {critic} epochs",
+                            "策略网络 1 轮（{:.0e}），价值网络 {critic} 轮",
+                            base.actor_lr * actor as f64
+                        ),
+                        with(&|c| {
+                            c.epochs = 1;
+                            c.critic_epochs = Some(critic);
+                            c.actor_lr *= actor as f64;
+                        }),
+                    ),
                 ]
             }
             Self::ActorLr => vec![
@@ -371,6 +388,7 @@ pub fn run(
         seeds: seeds.to_vec(),
         episodes: base.num_episodes,
         arms,
+        paired: std::sync::OnceLock::new(),
     })
 }
 
@@ -426,14 +444,14 @@ mod tests {
             assert_eq!(total, 3 * 2 * 12);
         })?;
         assert_eq!(calls.into_inner(), 72);
-        // The same base arm in another experiment comes from the cache: only the two new
+        // The same base arm in another experiment comes from the cache: only the other
         // settings train, and the base arm's numbers are the same.
         let calls = std::sync::atomic::AtomicUsize::new(0);
         let epochs = run(Experiment::Epochs, &base, &[0, 1], 2, |_, total| {
             calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            assert_eq!(total, 4 * 2 * 12);
+            assert_eq!(total, 5 * 2 * 12);
         })?;
-        assert_eq!(calls.into_inner(), 96);
+        assert_eq!(calls.into_inner(), 120);
         assert_eq!(epochs.arms[0].returns, lab.arms[0].returns);
         assert_eq!(epochs.arms[0].updates, lab.arms[0].updates);
         assert_eq!(lab.arms.len(), 3);

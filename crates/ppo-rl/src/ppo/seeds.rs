@@ -160,11 +160,10 @@ impl Band {
 /// fewer than two values, and both are 0 for none.
 #[must_use]
 pub fn mean_std(values: &[f64]) -> (f64, f64) {
-    if values.is_empty() {
+    let Some(mean) = crate::stats::mean(values) else {
         return (0.0, 0.0);
-    }
+    };
     let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
     if values.len() < 2 {
         return (mean, 0.0);
     }

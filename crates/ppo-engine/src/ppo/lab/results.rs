@@ -220,7 +220,7 @@ impl ArmResult {
         );
         tr!(
             "{}: {mean:.1} ± {std:.1}, worst seed {:.1}; its mean curve {reach}",
-            "{}：{mean:.1} ± {std:.1}，最差的随机种子 {:.1}；均值曲线{reach}",
+            "{}：{mean:.1} ± {std:.1}，最差的随机种子 {:.1}；平均曲线{reach}",
             self.label,
             self.worst_final()
         )
@@ -238,6 +238,10 @@ pub struct LabResult {
     pub episodes: usize,
     /// The arms, base first.
     pub arms: Vec<ArmResult>,
+    /// [`LabResult::paired`], computed on first use (a bootstrap per arm: the app's panel
+    /// draws it every frame).
+    #[serde(skip)]
+    pub(crate) paired: std::sync::OnceLock<Vec<Option<Paired>>>,
 }
 
 /// A paired difference in words: `−12.3 [−25.1, −1.2]: lower`, or `... : no difference
@@ -267,14 +271,16 @@ impl LabResult {
     /// seeds' last-50 means, their mean and its 95% bootstrap interval. `None` for an arm
     /// where no interval exists (fewer than two seeds).
     #[must_use]
-    pub fn paired(&self) -> Vec<Option<Paired>> {
-        let Some((base, others)) = self.arms.split_first() else {
-            return Vec::new();
-        };
-        others
-            .iter()
-            .map(|arm| Bootstrap::default().paired(&arm.finals, &base.finals).ok())
-            .collect()
+    pub fn paired(&self) -> &[Option<Paired>] {
+        self.paired.get_or_init(|| {
+            let Some((base, others)) = self.arms.split_first() else {
+                return Vec::new();
+            };
+            others
+                .iter()
+                .map(|arm| Bootstrap::default().paired(&arm.finals, &base.finals).ok())
+                .collect()
+        })
     }
 
     /// The paired comparisons as lines: a heading naming the base and the seeds, then one
@@ -285,11 +291,7 @@ impl LabResult {
             return Vec::new();
         };
         let n = self.seeds.len();
-        let label_width = self
-            .arms
-            .iter()
-            .map(|a| crate::i18n::width(&a.label))
-            .fold(30, usize::max);
+        let label_width = self.label_width();
         let mut lines = vec![tr!(
             "each setting − {} on the same {n} seeds (mean difference of the last-{LAST} means, 95% bootstrap interval):",
             "各设置 − {}，在相同的 {n} 个随机种子上（最后 {LAST} 个回报均值之差的平均，95% 自助法置信区间）：",
@@ -310,6 +312,14 @@ impl LabResult {
         lines
     }
 
+    /// The width of the labels' column: the widest label, at least 30.
+    fn label_width(&self) -> usize {
+        self.arms
+            .iter()
+            .map(|a| crate::i18n::width(&a.label))
+            .fold(30, usize::max)
+    }
+
     /// The result as a table, one row per setting: the mean ± sample std over seeds of each
     /// seed's last-50 mean, and the update statistics averaged over seeds.
     ///
@@ -318,11 +328,7 @@ impl LabResult {
     /// its arms share. Labels wider than 30 columns widen the first column.
     #[must_use]
     pub fn table(&self) -> Vec<String> {
-        let label_width = self
-            .arms
-            .iter()
-            .map(|a| crate::i18n::width(&a.label))
-            .fold(30, usize::max);
+        let label_width = self.label_width();
         let with_kl = self.experiment == Experiment::Proximal;
         let kl_head = if with_kl {
             format!(
