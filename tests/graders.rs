@@ -216,24 +216,35 @@ fn every_catalogued_wrong_answer_fails_naming_its_mistake() {
 /// whichever way a learner computes them.
 #[test]
 fn right_answers_written_another_way_pass() -> TestResult {
-    let root = Path::new(ROOT).join("tests/other_solutions");
-    let mut graded = 0;
-    for folder in std::fs::read_dir(&root)? {
-        let folder = folder?.path();
-        let name = folder
+    let answers = answers_in("tests/other_solutions")?;
+    for (name, file) in &answers {
+        let report = grade_file(name, file)?;
+        assert!(report.passed(), "{}:\n{}", file.display(), report.render());
+    }
+    assert!(
+        answers.len() >= 3,
+        "only {} other solutions found",
+        answers.len()
+    );
+    Ok(())
+}
+
+/// Every `<folder>/<exercise>/<file>.rs` under the repository's `folder`, as (exercise, file).
+fn answers_in(folder: &str) -> Result<Vec<(String, PathBuf)>, Box<dyn std::error::Error>> {
+    let mut answers = Vec::new();
+    for exercise in std::fs::read_dir(Path::new(ROOT).join(folder))? {
+        let exercise = exercise?.path();
+        let name = exercise
             .file_name()
             .and_then(|n| n.to_str())
             .ok_or("a folder name that is not UTF-8")?
             .to_string();
-        for file in std::fs::read_dir(&folder)? {
-            let file = file?.path();
-            let report = grade_file(&name, &file)?;
-            assert!(report.passed(), "{}:\n{}", file.display(), report.render());
-            graded += 1;
+        for file in std::fs::read_dir(&exercise)? {
+            answers.push((name.clone(), file?.path()));
         }
     }
-    assert!(graded >= 3, "only {graded} other solutions found");
-    Ok(())
+    answers.sort();
+    Ok(answers)
 }
 
 /// Wrong answers whose mistake is not in the catalogue (`tests/uncatalogued_answers/
@@ -242,39 +253,29 @@ fn right_answers_written_another_way_pass() -> TestResult {
 /// hints in the report, only the exercise's own.
 #[test]
 fn a_wrong_answer_outside_the_catalogue_gets_the_exercise_hint_not_a_wrong_one() -> TestResult {
-    let root = Path::new(ROOT).join("tests/uncatalogued_answers");
     let mut graded = 0;
-    for folder in std::fs::read_dir(&root)? {
-        let folder = folder?.path();
-        let name = folder
-            .file_name()
-            .and_then(|n| n.to_str())
-            .ok_or("a folder name that is not UTF-8")?
-            .to_string();
+    for (name, file) in answers_in("tests/uncatalogued_answers")? {
         if grade::find(&name)?.meta().backend != Backend::Rustc {
             continue; // the candle exercise's are graded in the full tier, below
         }
         let prose = Prose::of(&name)?;
-        for file in std::fs::read_dir(&folder)? {
-            let file = file?.path();
-            let report = grade_file(&name, &file)?;
-            let text = report.render();
-            assert!(!report.passed(), "{} passed:\n{text}", file.display());
-            assert_eq!(
-                report.mistake,
-                None,
-                "{}: diagnosed as a mistake it does not make\n{text}",
+        let report = grade_file(&name, &file)?;
+        let text = report.render();
+        assert!(!report.passed(), "{} passed:\n{text}", file.display());
+        assert_eq!(
+            report.mistake,
+            None,
+            "{}: diagnosed as a mistake it does not make\n{text}",
+            file.display()
+        );
+        for id in grade::find(&name)?.mistake_ids() {
+            assert!(
+                !text.contains(prose.mistake(id)),
+                "{}: the hint of {id}\n{text}",
                 file.display()
             );
-            for id in grade::find(&name)?.mistake_ids() {
-                assert!(
-                    !text.contains(prose.mistake(id)),
-                    "{}: the hint of {id}\n{text}",
-                    file.display()
-                );
-            }
-            graded += 1;
         }
+        graded += 1;
     }
     assert!(graded >= 3, "only {graded} uncatalogued answers found");
     Ok(())
