@@ -57,14 +57,18 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(16);
-        /// The mean return the *new* policy would get, estimated from steps the *old* policy played.
+        /// The mean return when the *new* policy chooses one action and the *old* one plays on,
+        /// estimated from steps the *old* policy played.
         ///
         /// The old policy visited some states and, in each, drew an action from its own
         /// probabilities; you observed the return that followed. The new policy would pick those
         /// same actions more or less often. Averaging the returns as they are answers for the old
-        /// policy, not the new one. Use the importance ratio of lesson 9 to correct the average, so
-        /// that it estimates the new policy's mean return on these states. (The states stay those
-        /// the old policy visited: only the choice of action is corrected.)
+        /// policy. Use the importance ratio of lesson 9 to correct the average, so that it estimates
+        /// the mean return on these states when the new policy chooses the sample's action and the
+        /// old policy plays every step after it. (One ratio corrects one choice: the states stay
+        /// those the old policy visited, and so do the later actions, whose returns are in the
+        /// observed one. That is why lesson 10 asks how far from the old policy this estimate can
+        /// be trusted.)
         ///
         /// - `probs` holds the new policy's probabilities, row-major: `N` rows of `n_actions`
         ///   entries, row `i` being `π_new(·|s_i)` for the state of sample `i`. `n_actions` is 2 in

@@ -58,7 +58,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             truncated: &[bool],
             gamma: f32,
         ) -> Vec<f32> {
-            // TODO：时限把回合中断时，还有没有一个值得 V(s_{t+1}) 的未来？杆倒下时呢？
+            // TODO：时限把回合中断时，后面还有没有可以用 V(s_{t+1}) 来估计的未来？杆倒下时呢？
             todo!()
         }
 
@@ -69,7 +69,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///   `rewards`、`terminated`、`truncated`、`gamma` 的含义与 `td_target_truncation` 相同；
         ///   `lmbda` 是 λ。
         /// - 返回 `(advantages, returns)`，每行各一个，其中 returns 是 CleanRL 由优势值推出的
-        ///   价值网络目标（第 8 课第 6 节的 λ 回报）。
+        ///   价值网络目标（第 8 课第 6 节的 λ-回报）。
         /// - 每一行的一步 TD 误差按 `td_target_truncation` 的方式自举。优势值绝不跨过回合的结束处，
         ///   无论回合以何种方式结束。最后一行之后什么也没有：把那里的优势值当作 0。
         ///
