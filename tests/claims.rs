@@ -342,7 +342,12 @@ fn default_runs() -> Result<&'static [SeedRun], String> {
 }
 
 fn five_seeds(config: &PpoConfig) -> Result<Vec<SeedRun>, String> {
-    let seeds: Vec<u64> = (0..SEEDS).collect();
+    first_seeds(config, SEEDS)
+}
+
+/// Seeds `0..n` of `config` (its `num_episodes` each), two runs at a time.
+fn first_seeds(config: &PpoConfig, n: u64) -> Result<Vec<SeedRun>, String> {
+    let seeds: Vec<u64> = (0..n).collect();
     train_seeds(config, &seeds, 2, |_, _| {}).map_err(|e| e.to_string())
 }
 
@@ -2298,19 +2303,20 @@ fn ten_seed_labs() -> Result<Vec<LabResult>, String> {
         .collect()
 }
 
+/// `a − b` seed by seed on numbers of the same seeds.
+fn paired_numbers(a: &[f64], b: &[f64]) -> Result<Paired, String> {
+    Bootstrap::default().paired(a, b).map_err(|e| e.to_string())
+}
+
 /// `arm − baseline`, seed by seed, on each seed's last-50 mean.
 fn paired_finals(arm: &ArmResult, baseline: &ArmResult) -> Result<Paired, String> {
-    Bootstrap::default()
-        .paired(&arm.finals, &baseline.finals)
-        .map_err(|e| e.to_string())
+    paired_numbers(&arm.finals, &baseline.finals)
 }
 
 /// `arm − baseline`, seed by seed, on the episode of each seed's first 500-step episode.
 fn paired_first_500(arm: &ArmResult, baseline: &ArmResult) -> Result<Paired, String> {
     let of = |a: &ArmResult| -> Vec<f64> { first_500(a).iter().map(|&e| e as f64).collect() };
-    Bootstrap::default()
-        .paired(&of(arm), &of(baseline))
-        .map_err(|e| e.to_string())
+    paired_numbers(&of(arm), &of(baseline))
 }
 
 /// How a lesson quotes a paired comparison: `LABEL: ±d [±lo, ±hi]: verdict` (as `ppo-tutor
@@ -2441,19 +2447,7 @@ fn the_lessons_order_only_what_ten_seeds_show() -> TestResult {
 
 /// Ten seeds (0–9) of `config`, 500 episodes each.
 fn ten_seeds(config: &PpoConfig) -> Result<Vec<SeedRun>, String> {
-    let seeds: Vec<u64> = (0..10).collect();
-    train_seeds(config, &seeds, 2, |_, _| {}).map_err(|e| e.to_string())
-}
-
-/// `a − b` seed by seed on numbers of the same seeds.
-fn paired_numbers(a: &[f64], b: &[f64]) -> Result<Paired, String> {
-    Bootstrap::default().paired(a, b).map_err(|e| e.to_string())
-}
-
-/// A paired comparison of counts as the lessons quote it: `±d [±lo, ±hi]` and the verdict
-/// as the lab words it (higher, lower, or no difference shown at N seeds).
-fn paired_count(p: &Paired) -> String {
-    paired_words(p)
+    first_seeds(config, 10)
 }
 
 /// Lessons 14 and 16 over ten seeds (0–9), paired by seed: how the truncation fix and
@@ -2496,25 +2490,25 @@ fn the_fixes_and_switches_are_compared_over_ten_seeds() -> TestResult {
         |runs: &[SeedRun]| -> Vec<f64> { runs.iter().map(|r| r.summary.mean_last(50)).collect() };
     let mut quotes14 = vec![
         format!("{} to {}", sum(&s), sum(&f)),
-        format!("fix alone: {}", paired_count(&paired_numbers(&f, &s)?)),
+        format!("fix alone: {}", paired_words(&paired_numbers(&f, &s)?)),
         format!(
             "normalisation alone: {}",
-            paired_count(&paired_numbers(&n, &s)?)
+            paired_words(&paired_numbers(&n, &s)?)
         ),
-        format!("both: {}", paired_count(&paired_numbers(&b, &s)?)),
+        format!("both: {}", paired_words(&paired_numbers(&b, &s)?)),
         format!(
             "the fix with the normalisation on, minus the fix without it: {}",
-            paired_count(&paired_numbers(&with_norm, &without)?)
+            paired_words(&paired_numbers(&with_norm, &without)?)
         ),
     ];
     let quotes16 = vec![
         format!(
             "entropy bonus: {}",
-            paired_count(&paired_numbers(&finals(&entropy), &finals(&seed))?)
+            paired_words(&paired_numbers(&finals(&entropy), &finals(&seed))?)
         ),
         format!(
             "gradient clipping: {}",
-            paired_count(&paired_numbers(&finals(&clipped), &finals(&seed))?)
+            paired_words(&paired_numbers(&finals(&clipped), &finals(&seed))?)
         ),
     ];
     println!(
