@@ -283,52 +283,121 @@ fn the_sample_action_spec_states_what_the_reference_does() -> TestResult {
     Ok(())
 }
 
-/// The learner's `approx_kl` with the ratio upside down, from the wrong-answer catalogue.
+/// Lesson 13's reference solution, `reverse_kl` among them.
+#[allow(unused, clippy::all, clippy::pedantic)]
+#[path = "../lessons/13-clip-lab/solution.rs"]
+mod clip_lab_solution;
+
+/// The learner-like wrong `reverse_kl`s of the catalogue whose hints say what they average
+/// to, and the reference.
 #[allow(clippy::all, clippy::pedantic)]
-mod inverted_ratio {
-    include!("wrong_answers/approx_kl/inverted_ratio.rs");
+mod reverse_kl {
+    pub(crate) use super::clip_lab_solution as right;
+    pub mod forward_direction {
+        include!("wrong_answers/reverse_kl/forward_direction.rs");
+    }
+    pub mod no_correction {
+        include!("wrong_answers/reverse_kl/no_correction.rs");
+    }
+    pub mod unweighted_log_ratio {
+        include!("wrong_answers/reverse_kl/unweighted_log_ratio.rs");
+    }
+    pub mod correction_sign_flipped {
+        include!("wrong_answers/reverse_kl/correction_sign_flipped.rs");
+    }
 }
 
-/// Lesson 13's hint for an upside-down ratio: over actions from π_old, the mean of
-/// (1/r − 1) + log r is χ²(π_old ‖ π_θ) − KL(π_old ‖ π_θ), the catalogue's answer computed
-/// row by row and weighted by π_old. It is close to the KL divergence for a small move and
-/// neither direction's KL divergence for a large one.
+/// Lesson 13's `reverse_kl`: over actions drawn from π_old, the answer averages to
+/// KL(π_θ ‖ π_old) and no row of it is negative; the hints say what each catalogued wrong
+/// estimator averages to instead (approx_kl's term to the other direction, log r alone to
+/// −KL(π_old ‖ π_θ)) or where it goes negative (r·log r alone, the flipped correction). Exact
+/// means under π_old for (π_old, π_θ) over two actions, each term computed row by row by the
+/// learner's code.
 #[test]
-fn the_inverted_ratio_estimates_chi_squared_minus_kl() -> TestResult {
-    // The mean under π_old of the answer on one row, for (π_old, π_θ) over two actions.
-    let expected = |old: &[f64], new: &[f64]| -> f64 {
+fn the_reverse_kl_estimators_average_to_what_their_hints_say() -> TestResult {
+    type Estimator = fn(&[f32], &[f32]) -> f32;
+    // The mean under π_old of an estimator on one row.
+    let under_old = |f: Estimator, old: &[f64], new: &[f64]| -> f64 {
         old.iter()
             .zip(new)
-            .map(|(&p, &q)| {
-                let row = inverted_ratio::approx_kl(&[p.ln() as f32], &[q.ln() as f32]);
-                p * f64::from(row)
-            })
+            .map(|(&p, &q)| p * f64::from(f(&[p.ln() as f32], &[q.ln() as f32])))
             .sum()
     };
     let kl = |p: &[f64], q: &[f64]| -> f64 { p.iter().zip(q).map(|(a, b)| a * (a / b).ln()).sum() };
-    let chi2 = |p: &[f64], q: &[f64]| -> f64 {
-        p.iter().zip(q).map(|(a, b)| a * a / b).sum::<f64>() - 1.0
-    };
+    let close = |got: f64, want: f64| (got - want).abs() < 1e-5 + 1e-4 * want.abs();
+    for (old, new) in [
+        ([0.95, 0.05], [0.5, 0.5]),
+        ([0.5, 0.5], [0.48, 0.52]),
+        ([0.3, 0.7], [0.8, 0.2]),
+    ] {
+        let (reverse, forward) = (kl(&new, &old), kl(&old, &new));
+        let means = [
+            (
+                "the answer",
+                under_old(reverse_kl::right::reverse_kl, &old, &new),
+                reverse,
+            ),
+            (
+                "r·log r alone",
+                under_old(reverse_kl::no_correction::reverse_kl, &old, &new),
+                reverse,
+            ),
+            (
+                "the flipped correction",
+                under_old(reverse_kl::correction_sign_flipped::reverse_kl, &old, &new),
+                reverse,
+            ),
+            (
+                "approx_kl's term",
+                under_old(reverse_kl::forward_direction::reverse_kl, &old, &new),
+                forward,
+            ),
+            (
+                "log r alone",
+                under_old(reverse_kl::unweighted_log_ratio::reverse_kl, &old, &new),
+                -forward,
+            ),
+        ];
+        for (what, got, want) in means {
+            assert!(
+                close(got, want),
+                "{what} over {old:?} → {new:?}: {got} vs {want}"
+            );
+        }
+    }
+    // The two directions part on a large move: approx_kl's term is not the answer.
     let (old, far) = ([0.95, 0.05], [0.5, 0.5]);
-    let e = expected(&old, &far);
+    let (reverse, forward) = (kl(&far, &old), kl(&old, &far));
     assert!(
-        (e - (chi2(&old, &far) - kl(&old, &far))).abs() < 1e-5,
-        "{e}"
+        (forward - reverse).abs() > 0.2 * reverse,
+        "{forward} vs {reverse}"
     );
-    for direction in [kl(&old, &far), kl(&far, &old)] {
+    // Row by row: the answer is 0 at r = 1 and positive elsewhere; r·log r alone and the
+    // flipped correction go negative where the action became less likely (r < 1).
+    let row = |f: Estimator, x: f32| f(&[-1.0], &[-1.0 + x]);
+    assert_eq!(row(reverse_kl::right::reverse_kl, 0.0), 0.0);
+    for x in [-3.0, -1.0, -0.5, -0.1, 0.1, 0.5, 1.0] {
+        assert!(row(reverse_kl::right::reverse_kl, x) > 0.0, "log r = {x}");
+    }
+    for x in [-1.0, -0.5, -0.1] {
+        let alone = row(reverse_kl::no_correction::reverse_kl, x);
+        let flipped = row(reverse_kl::correction_sign_flipped::reverse_kl, x);
         assert!(
-            (e - direction).abs() > 0.2 * direction,
-            "{e} vs KL {direction}"
+            flipped < alone && alone < 0.0,
+            "log r = {x}: {flipped}, {alone}"
         );
     }
-    let (even, near) = ([0.5, 0.5], [0.48, 0.52]);
-    let (e, k) = (expected(&even, &near), kl(&even, &near));
-    assert!((e - k).abs() < 0.01 * k, "a small move: {e} vs KL {k}");
-    says(
-        include_str!("../lessons/13-clip-lab/exercise.toml"),
-        "lessons/13-clip-lab/exercise.toml",
-        "Reversed, each row is (1/r − 1) + log r, and its mean over actions from π_old estimates χ²(π_old ‖ π_θ) − KL(π_old ‖ π_θ): close to the KL divergence for small moves, but not the KL divergence in either direction.",
-    );
+    let toml = include_str!("../lessons/13-clip-lab/exercise.toml");
+    let file = "lessons/13-clip-lab/exercise.toml";
+    for claim in [
+        "r·log r is unbiased: its mean over π_old's actions is KL(π_θ ‖ π_old). But a row whose action became less likely (r < 1) gives a negative term",
+        "over π_old's actions log r averages to −KL(π_old ‖ π_θ), which is never positive",
+        "This is approx_kl, (r − 1) − log r, the estimate of KL(π_old ‖ π_θ)",
+        "where r < 1, r·log r and r − 1 are both negative, and adding them makes the row more negative",
+        "r·log r − (r − 1) is 0 at r = 1 and positive everywhere else",
+    ] {
+        says(toml, file, claim);
+    }
     Ok(())
 }
 

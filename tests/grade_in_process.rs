@@ -73,10 +73,10 @@ wrong_answers! {
     w_n_step_target = "wrong_answers/n_step_target/crosses_episode_end.rs";
     w_advantage = "wrong_answers/compute_advantage/forwards.rs";
     w_importance = "wrong_answers/importance_weighted_mean/inverted_ratio.rs";
-    w_categorical_kl = "wrong_answers/categorical_kl/no_zero_convention.rs";
+    w_categorical_kl = "wrong_answers/categorical_kl/old_masked_nan.rs";
     w_zero_gradient_rows = "wrong_answers/zero_gradient_rows/sides_swapped.rs";
     w_clipped_value_loss = "wrong_answers/clipped_value_loss/min_instead_of_max.rs";
-    w_approx_kl = "wrong_answers/approx_kl/naive_estimator.rs";
+    w_reverse_kl = "wrong_answers/reverse_kl/forward_direction.rs";
     w_kl_early_stop = "wrong_answers/kl_early_stop/k3_estimator.rs";
     w_td_target_truncation = "wrong_answers/td_target_truncation/stops_at_truncation.rs";
     w_gae_rollout = "wrong_answers/gae_rollout/resets_only_on_termination.rs";
@@ -95,7 +95,7 @@ fn every_reference_solution_passes_in_place() {
         in_process::categorical_kl(sol10_trust_region::categorical_kl),
         in_process::zero_gradient_rows(sol10::zero_gradient_rows),
         in_process::clipped_value_loss(sol11::clipped_value_loss),
-        in_process::approx_kl(sol12::approx_kl),
+        in_process::reverse_kl(sol12::reverse_kl),
         in_process::kl_early_stop(sol12::kl_early_stop),
         in_process::td_target_truncation(sol15::td_target_truncation),
         in_process::gae_rollout(sol15::gae_rollout),
@@ -177,7 +177,7 @@ fn wrong_answers_get_the_same_diagnosis_and_messages_as_from_a_file() -> TestRes
         ),
         (
             "categorical_kl",
-            "no_zero_convention",
+            "old_masked_nan",
             g::categorical_kl(w_categorical_kl::categorical_kl),
         ),
         (
@@ -191,9 +191,9 @@ fn wrong_answers_get_the_same_diagnosis_and_messages_as_from_a_file() -> TestRes
             g::clipped_value_loss(w_clipped_value_loss::clipped_value_loss),
         ),
         (
-            "approx_kl",
-            "naive_estimator",
-            g::approx_kl(w_approx_kl::approx_kl),
+            "reverse_kl",
+            "forward_direction",
+            g::reverse_kl(w_reverse_kl::reverse_kl),
         ),
         (
             "kl_early_stop",
@@ -227,7 +227,7 @@ fn a_panic_is_reported_with_its_message_and_the_grader_goes_on() {
     fn starter(_: &[f32], _: &[f32]) -> f32 {
         todo!()
     }
-    let report = in_process::approx_kl(starter);
+    let report = in_process::reverse_kl(starter);
     assert!(!report.passed());
     let failed: Vec<_> = report
         .checks
@@ -268,7 +268,7 @@ fn assert_timed_out(report: &Report, started: std::time::Instant) -> TestResult 
 #[test]
 fn a_function_that_never_returns_is_reported_after_the_time_limit() -> TestResult {
     let started = std::time::Instant::now();
-    let report = exercises::approx_kl::EXERCISE.grade_in_place_within(
+    let report = exercises::reverse_kl::EXERCISE.grade_in_place_within(
         Arc::new(|_| {
             loop {
                 std::thread::sleep(Duration::from_millis(50));

@@ -348,8 +348,8 @@ fn every_mistake_made_alone_is_diagnosed_as_itself() -> TestResult {
 #[test]
 fn a_file_that_does_not_compile_shows_rustc_errors() -> TestResult {
     let report = grade_text(
-        "approx_kl",
-        "pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {\n    let x: u32 = \"no\";\n    todo!()\n}\n",
+        "reverse_kl",
+        "pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {\n    let x: u32 = \"no\";\n    todo!()\n}\n",
         Duration::from_secs(10),
     )?;
     let (summary, compiler) = report.compile_error.clone().ok_or("compiled")?;
@@ -359,37 +359,40 @@ fn a_file_that_does_not_compile_shows_rustc_errors() -> TestResult {
     assert!(compiler.contains("learner_test.rs:2"), "{compiler}");
     assert!(!report.passed());
     assert!(report.render().contains("mismatched types"));
-    let english = english_in_chinese(&report, grade::find("approx_kl")?);
+    let english = english_in_chinese(&report, grade::find("reverse_kl")?);
     assert!(english.is_empty(), "{english:#?}");
     Ok(())
 }
 
 #[test]
 fn a_missing_or_mistyped_function_is_named() -> TestResult {
-    let approx_kl = grade::find("approx_kl")?;
-    let report = grade_text("approx_kl", "pub fn other() {}\n", Duration::from_secs(10))?;
-    assert!(english_in_chinese(&report, approx_kl).is_empty());
+    let reverse_kl = grade::find("reverse_kl")?;
+    let report = grade_text("reverse_kl", "pub fn other() {}\n", Duration::from_secs(10))?;
+    assert!(english_in_chinese(&report, reverse_kl).is_empty());
     let (summary, _) = report.compile_error.ok_or("compiled")?;
     let (summary, zh) = (summary.in_lang(Lang::En), summary.in_lang(Lang::Zh));
-    assert!(summary.contains("has no function `approx_kl`"), "{summary}");
-    assert!(zh.contains("里没有函数 `approx_kl`"), "{zh}");
+    assert!(
+        summary.contains("has no function `reverse_kl`"),
+        "{summary}"
+    );
+    assert!(zh.contains("里没有函数 `reverse_kl`"), "{zh}");
     let report = grade_text(
-        "approx_kl",
-        "pub fn approx_kl(old: &[f64], log_probs: &[f64]) -> f64 { 0.0 }\n",
+        "reverse_kl",
+        "pub fn reverse_kl(old: &[f64], log_probs: &[f64]) -> f64 { 0.0 }\n",
         Duration::from_secs(10),
     )?;
-    assert!(english_in_chinese(&report, approx_kl).is_empty());
+    assert!(english_in_chinese(&report, reverse_kl).is_empty());
     let (summary, _) = report.compile_error.ok_or("compiled")?;
     let (summary, zh) = (summary.in_lang(Lang::En), summary.in_lang(Lang::Zh));
     assert!(summary.contains("signature"), "{summary}");
     assert!(zh.contains("与练习要求的签名不符"), "{zh}");
-    assert!(summary.contains("pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32"));
+    assert!(summary.contains("pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32"));
     let report = grade_text(
-        "approx_kl",
-        "fn approx_kl(a: &[f32], b: &[f32]) -> f32 { 0.0 }\n",
+        "reverse_kl",
+        "fn reverse_kl(a: &[f32], b: &[f32]) -> f32 { 0.0 }\n",
         Duration::from_secs(10),
     )?;
-    assert!(english_in_chinese(&report, approx_kl).is_empty());
+    assert!(english_in_chinese(&report, reverse_kl).is_empty());
     let (summary, _) = report.compile_error.ok_or("compiled")?;
     let (summary, zh) = (summary.in_lang(Lang::En), summary.in_lang(Lang::Zh));
     assert!(summary.contains("private"), "{summary}");
@@ -422,8 +425,8 @@ fn a_panic_is_reported_with_its_message_and_input() -> TestResult {
 #[test]
 fn an_endless_loop_is_reported_as_never_returning() -> TestResult {
     let report = grade_text(
-        "approx_kl",
-        "pub fn approx_kl(o: &[f32], l: &[f32]) -> f32 {\n    let mut i = 0;\n    while i < o.len() { if o.len() > 1 { continue; } i += 1; }\n    0.0\n}\n",
+        "reverse_kl",
+        "pub fn reverse_kl(o: &[f32], l: &[f32]) -> f32 {\n    let mut i = 0;\n    while i < o.len() { if o.len() > 1 { continue; } i += 1; }\n    0.0\n}\n",
         Duration::from_secs(1),
     )?;
     let failed: Vec<&Problem> = report
@@ -441,7 +444,7 @@ fn an_endless_loop_is_reported_as_never_returning() -> TestResult {
         report.render()
     );
     assert!(report.render().contains("never returned within 1 s"));
-    let english = english_in_chinese(&report, grade::find("approx_kl")?);
+    let english = english_in_chinese(&report, grade::find("reverse_kl")?);
     assert!(english.is_empty(), "{english:#?}");
     assert!(
         report
@@ -506,7 +509,7 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
         Path::new(ROOT).join("lessons/13-clip-lab/solution.rs"),
         d.join("lessons/13-clip-lab/exercise.rs"),
     )?;
-    let (code, text) = ppo_tutor(d, &["grade", "approx_kl"])?;
+    let (code, text) = ppo_tutor(d, &["grade", "reverse_kl"])?;
     assert_eq!(code, 0, "{text}");
     let (code, text) = ppo_tutor(d, &["grade"])?;
     assert_eq!(code, 1, "{text}");
@@ -519,22 +522,22 @@ fn cli_grade_exit_codes_reset_and_score_table() -> TestResult {
     );
     let state = std::fs::read_to_string(d.join("state.json"))?;
     assert!(
-        state.contains("approx_kl") && state.contains("kl_early_stop"),
+        state.contains("reverse_kl") && state.contains("kl_early_stop"),
         "{state}"
     );
 
-    // Resetting kl_early_stop keeps approx_kl's work in the same file ...
+    // Resetting kl_early_stop keeps reverse_kl's work in the same file ...
     let (code, text) = ppo_tutor(d, &["reset", "kl_early_stop"])?;
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("exercise.rs.bak"), "{text}");
-    let (code, text) = ppo_tutor(d, &["grade", "approx_kl"])?;
-    assert_eq!(code, 0, "reset kl_early_stop kept approx_kl: {text}");
+    let (code, text) = ppo_tutor(d, &["grade", "reverse_kl"])?;
+    assert_eq!(code, 0, "reset kl_early_stop kept reverse_kl: {text}");
     let (code, text) = ppo_tutor(d, &["grade", "kl_early_stop"])?;
     assert_eq!(code, 1, "reset restores kl_early_stop's starter: {text}");
-    // ... and resetting approx_kl, the file's only work, restores the whole starter.
-    let (code, _) = ppo_tutor(d, &["reset", "approx_kl"])?;
+    // ... and resetting reverse_kl, the file's only work, restores the whole starter.
+    let (code, _) = ppo_tutor(d, &["reset", "reverse_kl"])?;
     assert_eq!(code, 0);
-    let (code, text) = ppo_tutor(d, &["grade", "approx_kl"])?;
+    let (code, text) = ppo_tutor(d, &["grade", "reverse_kl"])?;
     assert_eq!(code, 1, "reset restores the starter: {text}");
     Ok(())
 }
@@ -598,7 +601,7 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
     };
     let mut app = App::new(course, progress, None);
     assert_eq!(app.lesson, lesson);
-    assert!(tutor_screen(&app)?.contains("exercise approx_kl, kl_early_stop: pending"));
+    assert!(tutor_screen(&app)?.contains("exercise reverse_kl, kl_early_stop: pending"));
 
     app.update(Action::Hint);
     assert_eq!(app.overlay, Overlay::Exercise);
@@ -618,7 +621,7 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
 
     app.update(Action::Grade);
     let names = app.exercise.request.take().ok_or("no grading requested")?;
-    assert_eq!(names, ["approx_kl", "kl_early_stop"]);
+    assert_eq!(names, ["reverse_kl", "kl_early_stop"]);
     assert!(app.exercise.grading);
 
     // The starter fails: no solution shown, nothing recorded.
@@ -654,7 +657,7 @@ fn the_tutor_grades_reveals_hints_and_shows_the_solution_only_after_passing() ->
 
     app.update(Action::Back);
     assert_eq!(app.overlay, Overlay::None);
-    assert!(tutor_screen(&app)?.contains("exercise approx_kl, kl_early_stop: done"));
+    assert!(tutor_screen(&app)?.contains("exercise reverse_kl, kl_early_stop: done"));
     Ok(())
 }
 
@@ -999,7 +1002,7 @@ fn read_until(
 fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
     let dir = tempfile::tempdir()?;
     let d = dir.path();
-    let (code, text) = ppo_tutor(d, &["reset", "approx_kl"])?;
+    let (code, text) = ppo_tutor(d, &["reset", "reverse_kl"])?;
     assert_eq!(code, 0, "{text}");
     let mut child = Command::new(env!("CARGO_BIN_EXE_ppo-tutor"))
         // English whatever the machine's locale.
@@ -1007,7 +1010,7 @@ fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
         .env_remove("LC_ALL")
         .env_remove("LC_MESSAGES")
         .env("LANG", "C.UTF-8")
-        .args(["watch", "approx_kl"])
+        .args(["watch", "reverse_kl"])
         .current_dir(d)
         .env("PPO_TUTOR_STATE", d.join("state.json"))
         .env("RAYON_NUM_THREADS", "1")
@@ -1022,12 +1025,12 @@ fn watch_regrades_on_save_and_moves_on_when_it_passes() -> TestResult {
         // A wrong answer, saved: graded without a key press, with its hint.
         let file = d.join("lessons/13-clip-lab/exercise.rs");
         std::fs::copy(
-            Path::new(ROOT).join("tests/wrong_answers/approx_kl/naive_estimator.rs"),
+            Path::new(ROOT).join("tests/wrong_answers/reverse_kl/forward_direction.rs"),
             &file,
         )?;
         let graded = read_until(&rx, "Watching")?;
         assert!(
-            graded.contains("naive estimator"),
+            graded.contains("the direction the lesson shows"),
             "the mistake's hint: {graded}"
         );
         // The solution, saved: it passes and the next exercise is graded at once.

@@ -32,7 +32,7 @@ const SPOILS: &[(&str, &[&str])] = &[
     ("zero_gradient_rows", &["surr1", "surr2"]),
     ("clipped_value_loss", &["v_clipped", "value_loss"]),
     ("ppo_losses", &["actor_loss", "critic_loss"]),
-    ("approx_kl", &["approx_kl"]),
+    ("reverse_kl", &[]),
     ("kl_early_stop", &["stopped_at", "early_stop"]),
     ("td_target_truncation", &["td_target"]),
     ("gae_rollout", &["advantage"]),

@@ -1,21 +1,38 @@
 //! Lesson 13 exercise: measuring how far an update moved the policy, and stopping it in time.
 //!
-//! Grade: `ppo-tutor grade approx_kl` and `ppo-tutor grade kl_early_stop` (or `g` in the
-//! tutor). Start over: `ppo-tutor reset approx_kl` (restores this whole file).
+//! Grade: `ppo-tutor grade reverse_kl` and `ppo-tutor grade kl_early_stop` (or `g` in the
+//! tutor). Start over: `ppo-tutor reset reverse_kl` (restores this whole file).
 
-/// How far the policy has moved from the one that collected the batch, as one number.
+/// How far the policy has moved, measured the other way round: KL(π_θ ‖ π_old).
 ///
-/// Estimate the KL divergence KL(π_old ‖ π_θ) from the sampled actions only: the estimator
-/// CleanRL logs as `approx_kl`, which is never negative row by row and unbiased because the
-/// actions were drawn from π_old. Lesson 13 names it.
+/// approx_kl estimates KL(π_old ‖ π_θ), the divergence averaged over π_old's actions, from
+/// the sampled rows alone, and no row of it is ever negative. The KL divergence is not
+/// symmetric (lesson 10). Estimate the other direction, KL(π_θ ‖ π_old), the divergence
+/// averaged over π_θ's actions, from the same rows, although their actions were drawn
+/// from π_old, not from π_θ.
 ///
-/// - `old_log_probs[i]` is `log π_old(a_i|s_i)`, fixed before the update; `log_probs[i]` is
-///   `log π_θ(a_i|s_i)` under the current parameters. Same length, at least 1.
-/// - Return the mean over the rows, in float32.
+/// - `old_log_probs[i]` is `log π_old(a_i|s_i)`, fixed before the update, for an action
+///   `a_i` that π_old drew; `log_probs[i]` is `log π_θ(a_i|s_i)` under the current
+///   parameters. Same length, at least 1.
+/// - Return the mean over the rows of one term per row, in float32. Each row's term depends
+///   only on that row's ratio r = π_θ(a_i|s_i) / π_old(a_i|s_i), and it must be
+///   - unbiased: its mean over actions drawn from π_old is KL(π_θ ‖ π_old);
+///   - never negative, on every row, and exactly 0 where r = 1.
 ///
-/// Taught in lesson 13 (clip-lab), step 1 "What to watch in every update".
-pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
-    // TODO: which estimator is never negative row by row? (`h` reveals hints one by one.)
+/// Pass bar: within 1e-5 absolute plus 1e-4 relative of the reference, on 100 seeded random
+/// batches (moves of up to ±0.6 in log-probability, both ways), the recorded PyTorch
+/// episodes' epochs, single rows whose action became more or less likely (one row is its
+/// own estimate, so a negative term shows), a batch where nothing moved (exactly 0), and a
+/// batch where every action became less likely.
+///
+/// Taught in lesson 13 (clip-lab), step 1 "What to watch in every update": why approx_kl's
+/// rows are never negative and its mean is still unbiased. The weight that turns an average
+/// under one policy into an average over another's samples is the ratio of lesson 9, step 3
+/// "The ratio".
+pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+    // TODO: your code here; `h` in the tutor reveals hints one by one.
+    // Under which policy is KL(π_θ ‖ π_old) an average, and which term, of mean 0 under
+    // π_old, keeps every row at or above 0?
     todo!()
 }
 

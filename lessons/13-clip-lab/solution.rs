@@ -1,14 +1,16 @@
-//! Reference solution for lesson 13: CleanRL's `approx_kl`, and Spinning Up's early stopping
-//! at a target KL.
+//! Reference solution for lesson 13: KL(π_θ ‖ π_old) estimated from π_old's samples, and
+//! Spinning Up's early stopping at a target KL.
 
-/// CleanRL's `approx_kl = ((ratio - 1) - logratio).mean()` with
-/// `logratio = log_probs - old_log_probs`: an estimate of KL(π_old ‖ π_θ) that is never
-/// negative, row by row, and unbiased over actions sampled from π_old.
-pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+/// `mean_i(r·log r − (r − 1))` with `log r = log_probs − old_log_probs`: the importance
+/// weight r turns an average under π_θ into one over the actions π_old drew, and r − 1,
+/// whose mean under π_old is 0, makes each row's term at least 0 (its minimum is 0, at
+/// r = 1) without changing the mean.
+pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
     let mut total = 0.0_f32;
     for (&old, &new) in old_log_probs.iter().zip(log_probs) {
         let log_ratio = new - old;
-        total += (log_ratio.exp() - 1.0) - log_ratio;
+        let ratio = log_ratio.exp();
+        total += ratio * log_ratio - (ratio - 1.0);
     }
     total / old_log_probs.len() as f32
 }

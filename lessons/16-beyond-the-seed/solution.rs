@@ -1,20 +1,31 @@
-//! Reference solution for lesson 16: the TD target and GAE that tell a time-limit cut from
-//! a real end, over a rollout of several episodes (CleanRL's layout).
+//! Reference solution for lesson 16: the TD target that tells a time-limit cut from a real
+//! end in an autoreset vector environment's stream, and GAE over a rollout of several
+//! episodes (CleanRL's layout).
 
-/// `y_t = r_t + γ·V(s_{t+1})`, except `y_t = r_t` where the episode terminated at `t`. A
-/// truncated step still bootstraps: the pole was up, the future was only cut off.
+/// One TD target per row of a same-step autoreset stream: `y_t = r_t` where the episode
+/// terminated at `t`; `y_t = r_t + γ·final_values[t]` where only the time limit cut it (the
+/// environment already returned the next episode's first observation, so the future of the
+/// cut state is the value of the real last one); `y_t = r_t + γ·next_values[t]` on every
+/// other row. `final_values` is read on truncated rows only (where no episode ended it is
+/// NaN).
 pub fn td_target_truncation(
     rewards: &[f32],
     next_values: &[f32],
+    final_values: &[f32],
     terminated: &[bool],
     truncated: &[bool],
     gamma: f32,
 ) -> Vec<f32> {
-    let _ = truncated; // the time limit does not change the target
     let mut out = Vec::with_capacity(rewards.len());
     for t in 0..rewards.len() {
-        let alive = if terminated[t] { 0.0 } else { 1.0 };
-        out.push(rewards[t] + gamma * next_values[t] * alive);
+        let target = if terminated[t] {
+            rewards[t] // the pole fell: nothing follows
+        } else if truncated[t] {
+            rewards[t] + gamma * final_values[t] // cut, not ended: the real last observation
+        } else {
+            rewards[t] + gamma * next_values[t]
+        };
+        out.push(target);
     }
     out
 }

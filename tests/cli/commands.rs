@@ -866,7 +866,7 @@ fn the_score_table_lines_up_and_a_missing_file_is_named() -> TestResult {
         ("en", "does not exist: check the path"),
         ("zh", "不存在：请检查路径"),
     ] {
-        let out = ppo(lang, &["grade", "approx_kl", "--file", "/nonexistent.rs"])?;
+        let out = ppo(lang, &["grade", "reverse_kl", "--file", "/nonexistent.rs"])?;
         let err = String::from_utf8(out.stderr)?;
         assert_eq!(out.status.code(), Some(1), "{err}");
         assert!(
@@ -877,9 +877,9 @@ fn the_score_table_lines_up_and_a_missing_file_is_named() -> TestResult {
     }
     // The lesson's own file missing: reset writes it, --file grades another.
     std::fs::remove_file(dir.path().join("lessons/13-clip-lab/exercise.rs"))?;
-    let err = String::from_utf8(ppo("en", &["grade", "approx_kl"])?.stderr)?;
+    let err = String::from_utf8(ppo("en", &["grade", "reverse_kl"])?.stderr)?;
     assert!(
-        err.contains("ppo-tutor reset approx_kl") && err.contains("--file PATH"),
+        err.contains("ppo-tutor reset reverse_kl") && err.contains("--file PATH"),
         "{err}"
     );
     for (lang, says) in [

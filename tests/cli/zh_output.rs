@@ -382,7 +382,11 @@ fn table(dir: &Path) -> Result<Vec<Case>, Box<dyn std::error::Error>> {
     let all_passed = dir.join("all-passed.json");
     std::fs::write(
         &all_passed,
-        serde_json::json!({ "exercises_done": ppo_tutor::grade::exercise_names() }).to_string(),
+        serde_json::json!({
+            "exercises_done": ppo_tutor::grade::exercise_names(),
+            "exercise_tasks": ppo_tutor::lesson::progress::EXERCISE_TASKS,
+        })
+        .to_string(),
     )?;
     let empty = dir.join("empty");
     std::fs::create_dir_all(&empty)?;

@@ -26,14 +26,14 @@ fn with_prints(text: &str, name: &str, lines: &str) -> Result<String, Box<dyn st
     Ok(format!("{}\n{lines}{}", &text[..open], &text[open..]))
 }
 
-/// The approx_kl reference, printing on stdout (with and without a newline), on stderr,
+/// The reverse_kl reference, printing on stdout (with and without a newline), on stderr,
 /// and through `dbg!`.
 fn printing_solution() -> Result<String, Box<dyn std::error::Error>> {
     let solution =
         std::fs::read_to_string(Path::new(ROOT).join("lessons/13-clip-lab/solution.rs"))?;
     with_prints(
         &solution,
-        "approx_kl",
+        "reverse_kl",
         "    println!(\"rows: {}\", old_log_probs.len());\n    print!(\"no newline\");\n    \
          eprintln!(\"on stderr\");\n    dbg!(log_probs.len());\n",
     )
@@ -42,7 +42,7 @@ fn printing_solution() -> Result<String, Box<dyn std::error::Error>> {
 #[test]
 fn printing_answers_still_pass_and_their_lines_are_shown_beside_the_case() -> TestResult {
     let cache = tempfile::tempdir()?;
-    let exercise = grade::find("approx_kl")?;
+    let exercise = grade::find("reverse_kl")?;
     let report = exercise.grade_source(
         &printing_solution()?,
         "printing.rs",
@@ -67,7 +67,7 @@ fn printing_answers_still_pass_and_their_lines_are_shown_beside_the_case() -> Te
         assert_eq!(check.printed.other_cases, check.cases - 1, "{en}");
     }
     assert!(
-        en.contains("      printed:  rows: 20\n                no newline\n"),
+        en.contains("      printed:  rows: 24\n                no newline\n"),
         "{en}"
     );
     assert!(en.contains("… 99 other cases printed too"), "{en}");
@@ -75,7 +75,7 @@ fn printing_answers_still_pass_and_their_lines_are_shown_beside_the_case() -> Te
         let _zh = Lang::Zh.scoped();
         report.render()
     };
-    assert!(zh.contains("      输出：    rows: 20\n"), "{zh}");
+    assert!(zh.contains("      输出：    rows: 24\n"), "{zh}");
     assert!(zh.contains("……另有 99 个用例也有输出"), "{zh}");
     let english = english_in_chinese(&report, exercise);
     assert!(english.is_empty(), "{english:#?}");
@@ -88,7 +88,7 @@ fn a_wrong_answer_that_prints_names_its_mistake_and_shows_the_failing_case_s_lin
     let opts = fresh(cache.path(), Duration::from_secs(10));
     for (name, id) in [
         ("compute_advantage", "forwards"),
-        ("approx_kl", "no_minus_one"),
+        ("reverse_kl", "no_correction"),
     ] {
         let wrong = Path::new(ROOT).join(format!("tests/wrong_answers/{name}/{id}.rs"));
         // Many lines per case: a few are shown, the rest counted.
@@ -132,10 +132,10 @@ fn a_wrong_answer_that_prints_names_its_mistake_and_shows_the_failing_case_s_lin
         assert!(english.is_empty(), "{name}/{id}: {english:#?}");
     }
     // A line that does not fit is cut.
-    let report = grade::find("approx_kl")?.grade_source(
+    let report = grade::find("reverse_kl")?.grade_source(
         &with_prints(
             &printing_solution()?,
-            "approx_kl",
+            "reverse_kl",
             "    println!(\"{}\", \"y\".repeat(500));\n",
         )?,
         "long.rs",
@@ -162,12 +162,12 @@ fn processes_the_learner_starts_end_with_the_grading() -> TestResult {
     let dir = tempfile::tempdir()?;
     let pid_file = dir.path().join("child.pid");
     let learner = format!(
-        "pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {{\n    \
+        "pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {{\n    \
          let child = std::process::Command::new(\"sleep\").arg(\"300\").spawn().unwrap();\n    \
          std::fs::write({pid_file:?}, child.id().to_string()).unwrap();\n    \
          loop {{ std::hint::spin_loop(); }}\n}}\n"
     );
-    let report = grade::find("approx_kl")?.grade_source(
+    let report = grade::find("reverse_kl")?.grade_source(
         &learner,
         "spawns.rs",
         &fresh(&dir.path().join("cache"), Duration::from_secs(2)),
@@ -207,7 +207,7 @@ fn builds(cache: &Path, prefix: &str) -> Result<Vec<PathBuf>, std::io::Error> {
 fn the_cache_keeps_only_the_latest_few_builds_of_an_exercise() -> TestResult {
     let cache = tempfile::tempdir()?;
     let opts = fresh(cache.path(), Duration::from_secs(10));
-    let exercise = grade::find("approx_kl")?;
+    let exercise = grade::find("reverse_kl")?;
     let solution =
         std::fs::read_to_string(Path::new(ROOT).join("lessons/13-clip-lab/solution.rs"))?;
     let versions = grade::build::KEEP + 4;
@@ -221,7 +221,7 @@ fn the_cache_keeps_only_the_latest_few_builds_of_an_exercise() -> TestResult {
         };
         let report = exercise.grade_source(&text, "version.rs", &opts)?;
         assert_eq!(report.passed(), v != 2, "{}", report.render());
-        let kept = builds(cache.path(), "approx_kl-")?;
+        let kept = builds(cache.path(), "reverse_kl-")?;
         assert!(
             kept.len() <= grade::build::KEEP,
             "after {} versions the cache holds {} builds: {kept:?}",
@@ -230,14 +230,14 @@ fn the_cache_keeps_only_the_latest_few_builds_of_an_exercise() -> TestResult {
         );
     }
     // The newest build is among those kept: grading it again builds nothing.
-    let before = builds(cache.path(), "approx_kl-")?;
+    let before = builds(cache.path(), "reverse_kl-")?;
     let text = format!("{solution}\n// version {}\n", versions - 1);
     let mut built = false;
     let report = exercise.grade_source_with_progress(&text, "version.rs", &opts, &mut |p| {
         built |= matches!(p, GradeProgress::Building { .. });
     })?;
     assert!(report.passed() && !built, "{}", report.render());
-    assert_eq!(builds(cache.path(), "approx_kl-")?.len(), before.len());
+    assert_eq!(builds(cache.path(), "reverse_kl-")?.len(), before.len());
     Ok(())
 }
 
@@ -276,9 +276,9 @@ fn an_untouched_starter_is_not_started_before_any_build() -> TestResult {
     let lesson = Path::new(ROOT).join("lessons/13-clip-lab");
     let starter = std::fs::read_to_string(lesson.join("exercise.rs"))?;
     let solution = std::fs::read_to_string(lesson.join("solution.rs"))?;
-    let begun = ppo_tutor::grade::reset::splice_function(&starter, &solution, "approx_kl")
-        .ok_or("approx_kl not spliced")?;
-    let report = grade::find("approx_kl")?.grade_source(&begun, "both.rs", &opts)?;
+    let begun = ppo_tutor::grade::reset::splice_function(&starter, &solution, "reverse_kl")
+        .ok_or("reverse_kl not spliced")?;
+    let report = grade::find("reverse_kl")?.grade_source(&begun, "both.rs", &opts)?;
     assert!(report.passed(), "{}", report.render());
     let report = grade::find("kl_early_stop")?.grade_source(&begun, "both.rs", &opts)?;
     assert!(report.not_started.is_some(), "{}", report.render());
@@ -298,7 +298,7 @@ fn a_build_is_announced_then_the_checks() -> TestResult {
     let cache = tempfile::tempdir()?;
     let opts = fresh(cache.path(), Duration::from_secs(10));
     let mut said: Vec<GradeProgress> = Vec::new();
-    let report: Report = grade::find("approx_kl")?.grade_source_with_progress(
+    let report: Report = grade::find("reverse_kl")?.grade_source_with_progress(
         &printing_solution()?,
         "printing.rs",
         &opts,

@@ -38,7 +38,7 @@ registry! {
     zero_gradient_rows,
     clipped_value_loss,
     ppo_losses,
-    approx_kl,
+    reverse_kl,
     kl_early_stop,
     td_target_truncation,
     gae_rollout,

@@ -113,7 +113,7 @@ mod tests {
     fn every_learner_program_is_served_by_this_loop() {
         // The programs are text: each declares this file, carries it, and calls `serve`.
         let programs = [
-            Spec::program(&crate::exercises::approx_kl::EXERCISE),
+            Spec::program(&crate::exercises::reverse_kl::EXERCISE),
             Spec::program(&crate::exercises::ppo_losses::EXERCISE),
         ];
         for program in programs {

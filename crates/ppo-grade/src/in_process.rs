@@ -1,7 +1,7 @@
 //! Grading a function that lives in the running program: a notebook cell.
 //!
 //! The notebooks cannot hand the grader a file (a cell's text is not visible to the code it
-//! defines), so the learner passes the function itself: `grade::in_process::approx_kl(approx_kl)`.
+//! defines), so the learner passes the function itself: `grade::in_process::reverse_kl(reverse_kl)`.
 //! It runs on exactly the cases of `ppo-tutor grade`, is compared with the same reference
 //! and tolerance by the same judge, and a failure gets the same diagnosis and hint; only the
 //! compile step is the notebook's own. Each case runs on a worker thread: a panic is caught
@@ -20,12 +20,12 @@
 //! ```
 //! use ppo_grade::in_process;
 //!
-//! fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+//! fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
 //!     let rows = old_log_probs.iter().zip(log_probs);
-//!     let total: f32 = rows.map(|(o, l)| ((l - o).exp() - 1.0) - (l - o)).sum();
+//!     let total: f32 = rows.map(|(o, l)| (l - o).exp() * (l - o - 1.0) + 1.0).sum();
 //!     total / old_log_probs.len() as f32
 //! }
-//! let report = in_process::approx_kl(approx_kl);
+//! let report = in_process::reverse_kl(reverse_kl);
 //! assert!(report.passed(), "{}", report.render());
 //! ```
 

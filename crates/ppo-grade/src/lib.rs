@@ -35,10 +35,10 @@
 //! few lines of it. The grader itself returns errors, never panics.
 //!
 //! ```
-//! let exercise = ppo_grade::find("approx_kl")?;
+//! let exercise = ppo_grade::find("reverse_kl")?;
 //! assert_eq!(
 //!     exercise.signature(),
-//!     "pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32"
+//!     "pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32"
 //! );
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

@@ -85,21 +85,31 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     }
     println!("after 100 episodes, mean of the last 20 returns: PPO {:.1}, REINFORCE {:.1}", last20(&p_snap), last20(&r_snap));
     nb.cell(20);
+    // Predict before the run: which setting will end highest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) PPO
+    //   b) REINFORCE + baseline
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(21);
     // This step's experiment, as `ppo-tutor lab reinforce` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("reinforce", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(22);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(25);
     use ppo_engine::lesson::quiz;
-    nb.cell(24);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("policy-gradient", 1, '?')))).outputs());
-    nb.cell(26);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("policy-gradient", 2, '?')))).outputs());
-    nb.cell(28);
-    nb.show((&Shown(&(quiz::answer("policy-gradient", 3, '?')))).outputs());
-    nb.cell(30);
-    nb.show((&Shown(&(quiz::ask("policy-gradient", 4, &snap)))).outputs());
     nb.cell(31);
+    nb.show((&Shown(&(quiz::answer("policy-gradient", 3, '?')))).outputs());
+    nb.cell(33);
+    nb.show((&Shown(&(quiz::ask("policy-gradient", 4, &snap)))).outputs());
+    nb.cell(34);
     nb.show((&Shown(&(quiz::predict("policy-gradient", 4, "?", &snap)))).outputs());
     Ok(())
 }

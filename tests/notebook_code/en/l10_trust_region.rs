@@ -164,79 +164,125 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // This step's live values, from the training run `snap`:
     nb.show((&Shown(&(snap.show(&["ratio_min", "ratio_max", "approx_kl", "kl_after"])))).outputs());
     nb.cell(22);
+    // Predict before the run: which setting will end highest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) clip ε = 0.2
+    //   b) penalty, adaptive β (no clip)
+    //   c) KL line search δ=0.01 (no clip, 1 step, no Adam)
+    //   d) none (no clip, no penalty)
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(23);
     // This step's experiment, as `ppo-tutor lab proximal` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("proximal", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
+    nb.cell(24);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
     // The exercise as the learner first meets it: starters and grading.
     {
-        nb.cell(24);
+        nb.cell(27);
         /// The exact KL divergence `KL(π_old(·|s) ‖ π_new(·|s))` between the old and the new policy,
-        /// one number per state.
+        /// one number per state, computed from the two policies' logits.
         ///
         /// Lesson 10 measured how far the new policy has moved from the old one with this
-        /// divergence, and PPO-Penalty adds it to the loss. Here you compute it exactly for a whole
-        /// batch of states, for any number of actions, including an old policy that never takes
-        /// some action.
+        /// divergence, from the two policies' probabilities. A policy network does not output
+        /// probabilities: it outputs logits, one unconstrained number per action, and the policy is
+        /// their softmax. In a game, an action that is illegal in a state is masked: its logit is
+        /// `f32::NEG_INFINITY`, so the policy gives it probability 0. Here you compute the KL from
+        /// the logits, for a whole batch of states.
         ///
-        /// - `old_probs` holds the old policy's probabilities, row-major: `N` rows of `n_actions`
-        ///   entries, row `i` being `π_old(·|s_i)`. An entry may be exactly 0: an action the old
-        ///   policy never takes in that state.
-        /// - `new_probs` holds the new policy's probabilities in the same layout; every entry is
-        ///   positive (a softmax never gives exactly 0).
-        /// - Each row sums to 1. `n_actions` is 2 in CartPole; the grader uses 2 to 6.
+        /// - `old_logits` holds the old policy's logits, row-major: `N` rows of `n_actions` entries,
+        ///   row `i` being state `s_i`'s. `new_logits` holds the new policy's in the same layout.
+        ///   `n_actions` is 2 in CartPole; the grader uses 2 to 6.
+        /// - An entry is a finite number or `f32::NEG_INFINITY` (a masked action). Each row of each
+        ///   table has at least one finite entry. The logits are defined up to a constant: adding
+        ///   the same number to every logit of a row does not change the policy.
         ///
         /// Return `N` numbers, the divergence of each state (natural logarithm), in row order; no
-        /// rows give an empty vector. The result is never negative, and exactly 0 for a row where
-        /// the two policies agree. The grader compares to 1e-5 absolute and 1e-4 relative.
+        /// rows give an empty vector. The result must be:
+        /// - exact where the logits are large, such as 100 or 1000, where `exp` of a logit
+        ///   overflows `f32` to infinity, and where a probability is so small that it rounds to 0
+        ///   in `f32` without its action being masked: no NaN, and no infinity;
+        /// - exactly 0 for a row where the two policies agree, including logits that differ by a
+        ///   constant;
+        /// - free of NaN where the old policy masks an action, whatever logit the new policy gives
+        ///   that action: the old policy never takes it, so its own term is 0;
+        /// - `f32::INFINITY` for a row where the new policy masks an action the old policy can
+        ///   take, as PyTorch's `kl_divergence` returns.
         ///
-        /// Taught in lesson 10 (trust-region), where PPO-Penalty's KL term is computed.
-        pub fn categorical_kl(old_probs: &[f32], new_probs: &[f32], n_actions: usize) -> Vec<f32> {
+        /// The grader compares to 1e-5 absolute and 1e-4 relative (an infinity must be an
+        /// infinity), on 100 seeded random batches (some with the same actions masked in both
+        /// policies), on rows with masks in the old policy only and in the new policy only, rows
+        /// that agree, large logits, recorded PyTorch results, and no rows.
+        ///
+        /// Taught in lesson 10 (trust-region), step "How far is far: the KL between two policies".
+        pub fn categorical_kl(old_logits: &[f32], new_logits: &[f32], n_actions: usize) -> Vec<f32> {
             // TODO: your code here; `h` in the tutor reveals hints one by one.
-            // The divergence is an average of something over the actions: under which of the two
-            // policies are the actions weighted, and what should an action that policy never takes
-            // count for?
+            // The divergence is an average over the actions, weighted by one of the two policies:
+            // first turn each row of logits into what that average needs, without letting `exp`
+            // overflow; then decide what a masked action counts for on each side.
             todo!()
         }
-        nb.cell(25);
+        nb.cell(28);
         nb.show((&Shown(&(ppo_grade::in_process::categorical_kl(categorical_kl)))).outputs());
     }
-    nb.cell(28);
-    use ppo_engine::lesson::quiz;
     nb.cell(30);
-    nb.show((&Shown(&(quiz::answer("trust-region", 1, '?')))).outputs());
+    use ppo_engine::lesson::quiz;
     nb.cell(32);
+    nb.show((&Shown(&(quiz::answer("trust-region", 1, '?')))).outputs());
+    nb.cell(34);
     nb.show((&Shown(&(quiz::ask("trust-region", 2, &snap)))).outputs());
-    nb.cell(33);
-    nb.show((&Shown(&(quiz::predict("trust-region", 2, "?", &snap)))).outputs());
     nb.cell(35);
-    nb.show((&Shown(&(quiz::answer("trust-region", 3, '?')))).outputs());
+    nb.show((&Shown(&(quiz::predict("trust-region", 2, "?", &snap)))).outputs());
     nb.cell(37);
+    nb.show((&Shown(&(quiz::answer("trust-region", 3, '?')))).outputs());
+    nb.cell(39);
     nb.show((&Shown(&(quiz::ask("trust-region", 4, &snap)))).outputs());
-    nb.cell(38);
-    nb.show((&Shown(&(quiz::predict("trust-region", 4, "?", &snap)))).outputs());
     nb.cell(40);
-    nb.show((&Shown(&(quiz::answer("trust-region", 5, '?')))).outputs());
+    nb.show((&Shown(&(quiz::predict("trust-region", 4, "?", &snap)))).outputs());
     nb.cell(42);
+    nb.show((&Shown(&(quiz::answer("trust-region", 5, '?')))).outputs());
+    nb.cell(44);
     nb.show((&Shown(&(quiz::answer("trust-region", 6, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// Per row `s`: `KL(π_old(·|s) ‖ π_new(·|s)) = Σ_a π_old(a|s) · ln(π_old(a|s) / π_new(a|s))`,
-        /// an expectation under the old policy over every action; an action with `π_old(a|s) = 0`
-        /// contributes 0 (the limit of `p · ln p` as `p → 0`). Rows are `n_actions` long, row-major.
-        pub fn categorical_kl(old_probs: &[f32], new_probs: &[f32], n_actions: usize) -> Vec<f32> {
-            let mut kl = Vec::with_capacity(old_probs.len() / n_actions);
-            for (old_row, new_row) in old_probs.chunks(n_actions).zip(new_probs.chunks(n_actions)) {
+        /// Per row `s`: `KL(π_old(·|s) ‖ π_new(·|s)) = Σ_a π_old(a|s) · (ln π_old(a|s) − ln π_new(a|s))`,
+        /// an expectation under the old policy over every action, with each `ln π` the row's
+        /// log-softmax. An action the old policy masks contributes 0; one it can take but the new
+        /// policy masks makes the row +∞. Rows are `n_actions` long, row-major.
+        pub fn categorical_kl(old_logits: &[f32], new_logits: &[f32], n_actions: usize) -> Vec<f32> {
+            let mut kl = Vec::with_capacity(old_logits.len() / n_actions);
+            for (old_row, new_row) in old_logits
+                .chunks(n_actions)
+                .zip(new_logits.chunks(n_actions))
+            {
+                let (log_p, log_q) = (log_softmax(old_row), log_softmax(new_row));
                 let mut row = 0.0_f32;
-                for (&p, &q) in old_row.iter().zip(new_row) {
-                    if p > 0.0 {
-                        row += p * (p.ln() - q.ln());
+                for (&lp, &lq) in log_p.iter().zip(&log_q) {
+                    if lp == f32::NEG_INFINITY {
+                        continue; // never taken by the old policy: p = 0 costs nothing
                     }
+                    if lq == f32::NEG_INFINITY {
+                        row = f32::INFINITY; // p > 0 where the new policy gives 0
+                        break;
+                    }
+                    row += lp.exp() * (lp - lq);
                 }
                 kl.push(row);
             }
             kl
+        }
+
+        /// `ln softmax(logits)`: each logit minus the row's largest, minus the log of the sum of
+        /// the exponentials of those differences (each at most 1, the largest exactly 1, so the sum
+        /// neither overflows nor is 0). A logit of −∞ stays −∞.
+        fn log_softmax(logits: &[f32]) -> Vec<f32> {
+            let max = logits.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+            let log_total = logits.iter().map(|&l| (l - max).exp()).sum::<f32>().ln();
+            logits.iter().map(|&l| (l - max) - log_total).collect()
         }
         nb.passed("categorical_kl", ppo_grade::in_process::categorical_kl(categorical_kl).passed());
     }

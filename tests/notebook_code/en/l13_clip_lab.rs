@@ -30,26 +30,72 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // This step's live values, from the training run `snap`:
     nb.show((&Shown(&(snap.show(&["approx_kl", "clip_frac", "ratio_min", "ratio_max", "entropy", "epochs_run", "explained_variance"])))).outputs());
     nb.cell(7);
+    // Predict before the run: which setting will end highest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) ε = 0.2
+    //   b) ε = 0.05
+    //   c) no clip
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(8);
     // This step's experiment, as `ppo-tutor lab eps` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("eps", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(9);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(12);
+    // Predict before the run: which setting will end lowest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) 10 epochs
+    //   b) 1 epoch
+    //   c) 40 epochs
+    //   d) actor 1, critic 10 epochs
+    //   e) actor 10, critic 1 epoch
+    //   f) actor 1 at 1e-2, critic 10 epochs
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(13);
     // This step's experiment, as `ppo-tutor lab epochs` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("epochs", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(11);
+    nb.cell(14);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.cell(17);
+    // Predict before the run: which setting will end highest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) actor_lr = 1e-3
+    //   b) actor_lr = 1e-2
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(18);
     // This step's experiment, as `ppo-tutor lab actor-lr` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("actor-lr", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(13);
+    nb.cell(19);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(22);
+    // Predict before the run: which setting will end lowest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) 10 epochs
+    //   b) 40 epochs
+    //   c) 40 epochs, target_kl = 0.01
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(23);
     // This step's experiment, as `ppo-tutor lab target-kl` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("target-kl", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(15);
+    nb.cell(24);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.cell(27);
     // The last epoch: the rows marked clipped are the ratios outside [1 − ε, 1 + ε].
     let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();
     let eps = config.eps as f32;
@@ -62,25 +108,42 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         1.0 - eps,
         1.0 + eps
     );
-    nb.cell(16);
+    nb.cell(28);
     // This step's live values, from the training run `snap`:
     nb.show((&Shown(&(snap.show(&["ratio", "clipped"])))).outputs());
     // The exercise as the learner first meets it: starters and grading.
     {
-        nb.cell(18);
-        /// How far the policy has moved from the one that collected the batch, as one number.
+        nb.cell(30);
+        /// How far the policy has moved, measured the other way round: KL(π_θ ‖ π_old).
         ///
-        /// Estimate the KL divergence KL(π_old ‖ π_θ) from the sampled actions only: the estimator
-        /// CleanRL logs as `approx_kl`, which is never negative row by row and unbiased because the
-        /// actions were drawn from π_old. Lesson 13 names it.
+        /// approx_kl estimates KL(π_old ‖ π_θ), the divergence averaged over π_old's actions, from
+        /// the sampled rows alone, and no row of it is ever negative. The KL divergence is not
+        /// symmetric (lesson 10). Estimate the other direction, KL(π_θ ‖ π_old), the divergence
+        /// averaged over π_θ's actions, from the same rows, although their actions were drawn
+        /// from π_old, not from π_θ.
         ///
-        /// - `old_log_probs[i]` is `log π_old(a_i|s_i)`, fixed before the update; `log_probs[i]` is
-        ///   `log π_θ(a_i|s_i)` under the current parameters. Same length, at least 1.
-        /// - Return the mean over the rows, in float32.
+        /// - `old_log_probs[i]` is `log π_old(a_i|s_i)`, fixed before the update, for an action
+        ///   `a_i` that π_old drew; `log_probs[i]` is `log π_θ(a_i|s_i)` under the current
+        ///   parameters. Same length, at least 1.
+        /// - Return the mean over the rows of one term per row, in float32. Each row's term depends
+        ///   only on that row's ratio r = π_θ(a_i|s_i) / π_old(a_i|s_i), and it must be
+        ///   - unbiased: its mean over actions drawn from π_old is KL(π_θ ‖ π_old);
+        ///   - never negative, on every row, and exactly 0 where r = 1.
         ///
-        /// Taught in lesson 13 (clip-lab), step 1 "What to watch in every update".
-        pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
-            // TODO: which estimator is never negative row by row? (`h` reveals hints one by one.)
+        /// Pass bar: within 1e-5 absolute plus 1e-4 relative of the reference, on 100 seeded random
+        /// batches (moves of up to ±0.6 in log-probability, both ways), the recorded PyTorch
+        /// episodes' epochs, single rows whose action became more or less likely (one row is its
+        /// own estimate, so a negative term shows), a batch where nothing moved (exactly 0), and a
+        /// batch where every action became less likely.
+        ///
+        /// Taught in lesson 13 (clip-lab), step 1 "What to watch in every update": why approx_kl's
+        /// rows are never negative and its mean is still unbiased. The weight that turns an average
+        /// under one policy into an average over another's samples is the ratio of lesson 9, step 3
+        /// "The ratio".
+        pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+            // TODO: your code here; `h` in the tutor reveals hints one by one.
+            // Under which policy is KL(π_θ ‖ π_old) an average, and which term, of mean 0 under
+            // π_old, keeps every row at or above 0?
             todo!()
         }
 
@@ -109,36 +172,38 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             // of the epoch where it is first too large?
             todo!()
         }
-        nb.cell(19);
-        nb.show((&Shown(&(ppo_grade::in_process::approx_kl(approx_kl)))).outputs());
-        nb.cell(20);
+        nb.cell(31);
+        nb.show((&Shown(&(ppo_grade::in_process::reverse_kl(reverse_kl)))).outputs());
+        nb.cell(32);
         nb.show((&Shown(&(ppo_grade::in_process::kl_early_stop(kl_early_stop)))).outputs());
     }
-    nb.cell(22);
+    nb.cell(34);
     use ppo_engine::lesson::quiz;
-    nb.cell(24);
+    nb.cell(36);
     nb.show((&Shown(&(quiz::predict("clip-lab", 1, "?", &snap)))).outputs());
-    nb.cell(26);
+    nb.cell(38);
     nb.show((&Shown(&(quiz::answer("clip-lab", 2, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(40);
     nb.show((&Shown(&(quiz::answer("clip-lab", 3, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(42);
     nb.show((&Shown(&(quiz::answer("clip-lab", 4, '?')))).outputs());
-    nb.cell(32);
+    nb.cell(44);
     nb.show((&Shown(&(quiz::ask("clip-lab", 5, &snap)))).outputs());
-    nb.cell(33);
+    nb.cell(45);
     nb.show((&Shown(&(quiz::predict("clip-lab", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// CleanRL's `approx_kl = ((ratio - 1) - logratio).mean()` with
-        /// `logratio = log_probs - old_log_probs`: an estimate of KL(π_old ‖ π_θ) that is never
-        /// negative, row by row, and unbiased over actions sampled from π_old.
-        pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+        /// `mean_i(r·log r − (r − 1))` with `log r = log_probs − old_log_probs`: the importance
+        /// weight r turns an average under π_θ into one over the actions π_old drew, and r − 1,
+        /// whose mean under π_old is 0, makes each row's term at least 0 (its minimum is 0, at
+        /// r = 1) without changing the mean.
+        pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
             let mut total = 0.0_f32;
             for (&old, &new) in old_log_probs.iter().zip(log_probs) {
                 let log_ratio = new - old;
-                total += (log_ratio.exp() - 1.0) - log_ratio;
+                let ratio = log_ratio.exp();
+                total += ratio * log_ratio - (ratio - 1.0);
             }
             total / old_log_probs.len() as f32
         }
@@ -161,7 +226,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             }
             log_probs_per_epoch.len() / n
         }
-        nb.passed("approx_kl", ppo_grade::in_process::approx_kl(approx_kl).passed());
+        nb.passed("reverse_kl", ppo_grade::in_process::reverse_kl(reverse_kl).passed());
         nb.passed("kl_early_stop", ppo_grade::in_process::kl_early_stop(kl_early_stop).passed());
     }
     Ok(())

@@ -30,66 +30,108 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         config.actor_lr
     );
     nb.cell(8);
+    // Predict before the run: which setting will end highest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) critic_lr = 1e-2
+    //   b) critic_lr = 1e-3
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(9);
     // This step's experiment, as `ppo-tutor lab critic-lr` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("critic-lr", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(10);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(13);
     // Parameters of the two networks: 4 -> hidden_dim -> 2 and 4 -> hidden_dim -> 1.
     nb.show((&Shown(&(for h in [config.hidden_dim, 16] {
     let actor = 4 * h + h + h * 2 + 2;
     let critic = 4 * h + h + h + 1;
     println!("hidden_dim = {h:3}: actor {actor} parameters, critic {critic}");
 }))).outputs());
-    nb.cell(11);
+    nb.cell(14);
+    // Predict before the run: which setting will end highest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) hidden_dim = 128
+    //   b) hidden_dim = 16
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(15);
     // This step's experiment, as `ppo-tutor lab hidden-dim` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("hidden-dim", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(13);
+    nb.cell(16);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(19);
     nb.show((&Shown(&(for gamma in [0.9, config.gamma, 0.999] {
     println!("γ = {gamma}: horizon 1/(1 − γ) = {:.0} steps", 1.0 / (1.0 - gamma));
 }))).outputs());
-    nb.cell(14);
+    nb.cell(20);
+    // Predict before the run: which setting will end lowest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) gamma = 0.98
+    //   b) gamma = 0.9
+    //   c) gamma = 0.999
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(21);
     // This step's experiment, as `ppo-tutor lab gamma` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("gamma", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(16);
+    nb.cell(22);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.cell(25);
     // A TD error l steps ahead weighs (γλ)^l: the weight halves every ln 0.5 / ln(γλ) steps.
     nb.show((&Shown(&(for lmbda in [0.5, config.lmbda, 1.0] {
     let gl = config.gamma * lmbda;
     println!("λ = {lmbda}: γλ = {gl:.3}, the weight halves every {:.1} steps", 0.5f64.ln() / gl.ln());
 }))).outputs());
-    nb.cell(17);
+    nb.cell(26);
+    // Predict before the run: which setting will end lowest, by the mean over its 5 seeds of each seed's last 50 returns?
+    //   a) lmbda = 0.95
+    //   b) lmbda = 0.5
+    //   c) lmbda = 1
+    // Write the letter of your answer between the quotes, then run this cell and the next two;
+    // the cell after the experiment grades it against the run.
+    let prediction = ' ';
+    nb.cell(27);
     // This step's experiment, as `ppo-tutor lab lmbda` runs it in a terminal:
     // every setting over seeds 0-4, LAB_EPISODES episodes each, on every core.
     let lab = ppo_engine::notebook::lab("lmbda", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(19);
+    nb.cell(28);
+    // Your prediction, graded against the run above:
+    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.cell(31);
     use ppo_engine::env::EnvId;
     nb.show((&Shown(&(for id in EnvId::ALL {
     println!("{}: an episode is cut at {} steps", id.as_str(), id.max_episode_steps());
 }))).outputs());
-    nb.cell(20);
-    nb.show((&Shown(&(snap.cartpole()))).outputs());
-    nb.cell(22);
-    use ppo_engine::lesson::quiz;
-    nb.cell(24);
-    nb.show((&Shown(&(quiz::answer("hyperparameters", 1, '?')))).outputs());
-    nb.cell(26);
-    nb.show((&Shown(&(quiz::predict("hyperparameters", 2, "?", &snap)))).outputs());
-    nb.cell(28);
-    nb.show((&Shown(&(quiz::answer("hyperparameters", 3, '?')))).outputs());
-    nb.cell(30);
-    nb.show((&Shown(&(quiz::answer("hyperparameters", 4, '?')))).outputs());
     nb.cell(32);
+    nb.show((&Shown(&(snap.cartpole()))).outputs());
+    nb.cell(34);
+    use ppo_engine::lesson::quiz;
+    nb.cell(36);
+    nb.show((&Shown(&(quiz::answer("hyperparameters", 1, '?')))).outputs());
+    nb.cell(38);
+    nb.show((&Shown(&(quiz::predict("hyperparameters", 2, "?", &snap)))).outputs());
+    nb.cell(40);
+    nb.show((&Shown(&(quiz::answer("hyperparameters", 3, '?')))).outputs());
+    nb.cell(42);
+    nb.show((&Shown(&(quiz::answer("hyperparameters", 4, '?')))).outputs());
+    nb.cell(44);
     nb.show((&Shown(&(quiz::ask("hyperparameters", 5, &snap)))).outputs());
-    nb.cell(33);
+    nb.cell(45);
     nb.show((&Shown(&(quiz::predict("hyperparameters", 5, "?", &snap)))).outputs());
-    nb.cell(35);
+    nb.cell(47);
     nb.show((&Shown(&(quiz::answer("hyperparameters", 6, '?')))).outputs());
-    nb.cell(37);
+    nb.cell(49);
     nb.show((&Shown(&(quiz::answer("hyperparameters", 7, '?')))).outputs());
     Ok(())
 }

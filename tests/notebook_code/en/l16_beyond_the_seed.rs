@@ -40,28 +40,42 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(15);
-        /// The one-step TD target, done right: what step `t` is worth, as the reward it earned plus
-        /// what the critic expects afterwards, where "afterwards" exists.
+        /// The one-step TD target of every row of a stream from a vector environment with
+        /// same-step autoreset (Gymnasium 0.29, the version CleanRL pins): what step `t` is worth,
+        /// as the reward it earned plus what the critic expects afterwards, where "afterwards"
+        /// exists. Such an environment resets an episode on the very step that ends it.
         ///
-        /// - `rewards[t]` is `r_t`; `next_values[t]` is `V(s_{t+1})`, the critic's value of the
-        ///   observation the environment really returned after step `t` (also after the last step
-        ///   of an episode); `gamma` is γ.
+        /// - `rewards[t]` is `r_t`; `gamma` is γ.
+        /// - `next_values[t]` is the critic's value of the observation the environment returned
+        ///   after step `t`. On a row where an episode ended, the environment had already reset:
+        ///   that observation is the first one of the next episode.
+        /// - `final_values[t]` is the critic's value of the real last observation of the episode
+        ///   that ended at `t` (Gymnasium hands that observation over separately, in
+        ///   `infos["final_observation"]`). It means something only on rows where `terminated[t]`
+        ///   or `truncated[t]` is true. On every other row it is NaN, a filler that must never
+        ///   reach a target.
         /// - `terminated[t]`: the episode really ended at `t` (the pole fell). `truncated[t]`: the
         ///   time limit cut it at `t`; the pole was still up. Both can be true at once.
         /// - All slices have the same length; return one target per row.
         ///
-        /// The seed treats both flags alike (`done = term or trunc`). Decide which of the two means
-        /// there is no future worth anything. Taught in lesson 16 (beyond-the-seed), step 1
-        /// "Truncation is not termination".
+        /// Pass bar: every target within 1e-5 (absolute plus relative) of the reference's, on 100
+        /// seeded random streams, the recorded PyTorch episodes joined into one stream, and
+        /// hand-made streams: a cut, a fall, both flags on one row, cuts on the first and the last
+        /// row, and a stretch with no end at all. A NaN where a number is due counts as wrong.
+        ///
+        /// Decide, row by row, which value, if any, stands for what follows step `t`. Taught in
+        /// lesson 16 (beyond-the-seed), step 1 "Truncation is not termination"; the stream is the
+        /// one of step 4 "Rollouts, vector environments and minibatches".
         pub fn td_target_truncation(
             rewards: &[f32],
             next_values: &[f32],
+            final_values: &[f32],
             terminated: &[bool],
             truncated: &[bool],
             gamma: f32,
         ) -> Vec<f32> {
-            // TODO: when the clock cut the episode, was there still a future worth V(s_{t+1})? And
-            // when the pole fell?
+            // TODO: when the clock cut the episode, which observation's value still says what the
+            // state was worth? When the pole fell? And on a row where nothing ended?
             todo!()
         }
 
@@ -69,13 +83,14 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         /// episodes one after another, the last one possibly unfinished.
         ///
         /// - `values[t]` is `V(s_t)`; `next_values[t]` is `V` of the real next observation after
-        ///   step `t`; `rewards`, `terminated`, `truncated`, `gamma` as in `td_target_truncation`;
-        ///   `lmbda` is λ.
+        ///   step `t`, one column with no `final_values` beside it; `rewards`, `terminated`,
+        ///   `truncated`, `gamma` as in `td_target_truncation`; `lmbda` is λ.
         /// - Return `(advantages, returns)`, one of each per row, where the returns are the
         ///   critic's targets CleanRL derives from the advantages (the λ-return of lesson 8, step 6).
-        /// - Each row's one-step error bootstraps as `td_target_truncation` does. An advantage never
-        ///   reaches across the end of an episode, however it ended. Past the last row there is
-        ///   nothing: treat the advantage there as 0.
+        /// - Each row's one-step error bootstraps, from `next_values[t]`, on the rows where
+        ///   `td_target_truncation`'s target bootstraps at all. An advantage never reaches across
+        ///   the end of an episode, however it ended. Past the last row there is nothing: treat the
+        ///   advantage there as 0.
         ///
         /// Taught in lesson 16 (beyond-the-seed), step 4 "Rollouts, vector environments and
         /// minibatches", with GAE from lesson 8 (gae).
@@ -112,20 +127,30 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `y_t = r_t + γ·V(s_{t+1})`, except `y_t = r_t` where the episode terminated at `t`. A
-        /// truncated step still bootstraps: the pole was up, the future was only cut off.
+        /// One TD target per row of a same-step autoreset stream: `y_t = r_t` where the episode
+        /// terminated at `t`; `y_t = r_t + γ·final_values[t]` where only the time limit cut it (the
+        /// environment already returned the next episode's first observation, so the future of the
+        /// cut state is the value of the real last one); `y_t = r_t + γ·next_values[t]` on every
+        /// other row. `final_values` is read on truncated rows only (where no episode ended it is
+        /// NaN).
         pub fn td_target_truncation(
             rewards: &[f32],
             next_values: &[f32],
+            final_values: &[f32],
             terminated: &[bool],
             truncated: &[bool],
             gamma: f32,
         ) -> Vec<f32> {
-            let _ = truncated; // the time limit does not change the target
             let mut out = Vec::with_capacity(rewards.len());
             for t in 0..rewards.len() {
-                let alive = if terminated[t] { 0.0 } else { 1.0 };
-                out.push(rewards[t] + gamma * next_values[t] * alive);
+                let target = if terminated[t] {
+                    rewards[t] // the pole fell: nothing follows
+                } else if truncated[t] {
+                    rewards[t] + gamma * final_values[t] // cut, not ended: the real last observation
+                } else {
+                    rewards[t] + gamma * next_values[t]
+                };
+                out.push(target);
             }
             out
         }

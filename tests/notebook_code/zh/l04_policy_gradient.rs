@@ -85,21 +85,31 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     }
     println!("训练 100 个回合后，最后 20 个回报的均值：PPO {:.1}，REINFORCE {:.1}", last20(&p_snap), last20(&r_snap));
     nb.cell(20);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最高？
+    //   a) PPO
+    //   b) REINFORCE + 基线
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(21);
     // 本节的实验，与终端里 `ppo-tutor lab reinforce` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("reinforce", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(22);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(25);
     use ppo_engine::lesson::quiz;
-    nb.cell(24);
+    nb.cell(27);
     nb.show((&Shown(&(quiz::answer("policy-gradient", 1, '?')))).outputs());
-    nb.cell(26);
+    nb.cell(29);
     nb.show((&Shown(&(quiz::answer("policy-gradient", 2, '?')))).outputs());
-    nb.cell(28);
-    nb.show((&Shown(&(quiz::answer("policy-gradient", 3, '?')))).outputs());
-    nb.cell(30);
-    nb.show((&Shown(&(quiz::ask("policy-gradient", 4, &snap)))).outputs());
     nb.cell(31);
+    nb.show((&Shown(&(quiz::answer("policy-gradient", 3, '?')))).outputs());
+    nb.cell(33);
+    nb.show((&Shown(&(quiz::ask("policy-gradient", 4, &snap)))).outputs());
+    nb.cell(34);
     nb.show((&Shown(&(quiz::predict("policy-gradient", 4, "?", &snap)))).outputs());
     Ok(())
 }

@@ -162,73 +162,118 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["ratio_min", "ratio_max", "approx_kl", "kl_after"])))).outputs());
     nb.cell(22);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最高？
+    //   a) 截断 ε = 0.2
+    //   b) 惩罚，自适应 β（不截断）
+    //   c) KL 线搜索 δ=0.01（不截断，一步，无 Adam）
+    //   d) 都不用（不截断，无惩罚）
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(23);
     // 本节的实验，与终端里 `ppo-tutor lab proximal` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("proximal", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
+    nb.cell(24);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
     // The exercise as the learner first meets it: starters and grading.
     {
-        nb.cell(24);
-        /// 旧策略与新策略之间精确的 KL 散度 `KL(π_old(·|s) ‖ π_new(·|s))`，每个状态一个数。
+        nb.cell(27);
+        /// 旧策略与新策略之间精确的 KL 散度 `KL(π_old(·|s) ‖ π_new(·|s))`，每个状态一个数，
+        /// 由两个策略的 logits 算出。
         ///
-        /// 第 10 课用这个散度衡量新策略离旧策略走了多远，PPO-惩罚把它加进了损失。这里你要为一整批
-        /// 状态精确地计算它：动作可以有任意多个，旧策略也可能从不采取某个动作。
+        /// 第 10 课用这个散度衡量新策略离旧策略走了多远，用的是两个策略的概率。策略网络输出的并不是
+        /// 概率，而是 logits：每个动作一个不受约束的数，策略是它们的 softmax。在游戏里，某个状态下
+        /// 不合法的动作会被屏蔽：它的 logit 是 `f32::NEG_INFINITY`，于是策略给它的概率是 0。这里你要
+        /// 为一整批状态，从 logits 算出 KL 散度。
         ///
-        /// - `old_probs` 按行存放旧策略的概率：`N` 行，每行 `n_actions` 项，第 `i` 行是
-        ///   `π_old(·|s_i)`。某一项可以恰好为 0：旧策略在那个状态下从不采取的动作。
-        /// - `new_probs` 以同样的布局存放新策略的概率；每一项都是正数（softmax 不会给出恰好为 0
-        ///   的概率）。
-        /// - 每行之和为 1。车杆中 `n_actions` 为 2；评分器会用到 2 到 6。
+        /// - `old_logits` 按行存放旧策略的 logits：`N` 行，每行 `n_actions` 项，第 `i` 行属于状态
+        ///   `s_i`。`new_logits` 以同样的布局存放新策略的 logits。车杆中 `n_actions` 为 2；评分器
+        ///   会用到 2 到 6。
+        /// - 每一项是一个有限的数，或者 `f32::NEG_INFINITY`（被屏蔽的动作）。两张表的每一行都至少
+        ///   有一项是有限的。logits 只确定到一个常数：给一行的每个 logit 加上同一个数，策略不变。
         ///
-        /// 返回 `N` 个数，按行的顺序给出每个状态的散度（自然对数）；没有行时返回空向量。结果从不
-        /// 为负，在两个策略一致的行上恰好为 0。比较时允许绝对误差 1e-5、相对误差 1e-4。
+        /// 返回 `N` 个数，按行的顺序给出每个状态的散度（自然对数）；没有行时返回空向量。结果必须：
+        /// - 在 logits 很大时也精确，比如 100 或 1000，这时一个 logit 的 `exp` 在 `f32` 中上溢为
+        ///   无穷大；某个概率小到在 `f32` 中舍入为 0、而它的动作并没有被屏蔽时，也要精确：不能有
+        ///   NaN，也不能有无穷大；
+        /// - 在两个策略一致的行上恰好为 0，logits 相差一个常数的行也算一致；
+        /// - 在旧策略屏蔽了某个动作的地方没有 NaN，无论新策略给这个动作什么 logit：旧策略从不
+        ///   采取它，所以它自己那一项为 0；
+        /// - 在新策略屏蔽了旧策略会采取的某个动作的行上为 `f32::INFINITY`，与 PyTorch 的
+        ///   `kl_divergence` 返回的一样。
         ///
-        /// 讲解见第 10 课（trust-region）计算 PPO-惩罚的 KL 项的地方。
-        pub fn categorical_kl(old_probs: &[f32], new_probs: &[f32], n_actions: usize) -> Vec<f32> {
+        /// 比较时允许绝对误差 1e-5、相对误差 1e-4（无穷大必须是无穷大）；检查用 100 组由随机种子
+        /// 生成的批次（其中一些在两个策略中屏蔽了相同的动作）、只在旧策略中屏蔽和只在新策略中屏蔽
+        /// 动作的行、两个策略一致的行、很大的 logits、录制的 PyTorch 结果，以及没有行的情形。
+        ///
+        /// 讲解见第 10 课（trust-region）的“多远算远：两个策略之间的 KL 散度”一节。
+        pub fn categorical_kl(old_logits: &[f32], new_logits: &[f32], n_actions: usize) -> Vec<f32> {
             // TODO：在这里写代码；在教程中按 `h` 可逐条显示提示。
-            // 这个散度是对各个动作求的某种平均：动作按两个策略中的哪一个加权？那个策略从不采取的
-            // 动作，又该算多少？
+            // 这个散度是对各个动作求的平均，用两个策略中的一个加权：先把每一行 logits 变成这个平均
+            // 需要的量，同时不让 `exp` 上溢；再想清楚被屏蔽的动作在两边各算多少。
             todo!()
         }
-        nb.cell(25);
+        nb.cell(28);
         nb.show((&Shown(&(ppo_grade::in_process::categorical_kl(categorical_kl)))).outputs());
     }
-    nb.cell(28);
-    use ppo_engine::lesson::quiz;
     nb.cell(30);
-    nb.show((&Shown(&(quiz::answer("trust-region", 1, '?')))).outputs());
+    use ppo_engine::lesson::quiz;
     nb.cell(32);
+    nb.show((&Shown(&(quiz::answer("trust-region", 1, '?')))).outputs());
+    nb.cell(34);
     nb.show((&Shown(&(quiz::ask("trust-region", 2, &snap)))).outputs());
-    nb.cell(33);
-    nb.show((&Shown(&(quiz::predict("trust-region", 2, "?", &snap)))).outputs());
     nb.cell(35);
-    nb.show((&Shown(&(quiz::answer("trust-region", 3, '?')))).outputs());
+    nb.show((&Shown(&(quiz::predict("trust-region", 2, "?", &snap)))).outputs());
     nb.cell(37);
+    nb.show((&Shown(&(quiz::answer("trust-region", 3, '?')))).outputs());
+    nb.cell(39);
     nb.show((&Shown(&(quiz::ask("trust-region", 4, &snap)))).outputs());
-    nb.cell(38);
-    nb.show((&Shown(&(quiz::predict("trust-region", 4, "?", &snap)))).outputs());
     nb.cell(40);
-    nb.show((&Shown(&(quiz::answer("trust-region", 5, '?')))).outputs());
+    nb.show((&Shown(&(quiz::predict("trust-region", 4, "?", &snap)))).outputs());
     nb.cell(42);
+    nb.show((&Shown(&(quiz::answer("trust-region", 5, '?')))).outputs());
+    nb.cell(44);
     nb.show((&Shown(&(quiz::answer("trust-region", 6, '?')))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// Per row `s`: `KL(π_old(·|s) ‖ π_new(·|s)) = Σ_a π_old(a|s) · ln(π_old(a|s) / π_new(a|s))`,
-        /// an expectation under the old policy over every action; an action with `π_old(a|s) = 0`
-        /// contributes 0 (the limit of `p · ln p` as `p → 0`). Rows are `n_actions` long, row-major.
-        pub fn categorical_kl(old_probs: &[f32], new_probs: &[f32], n_actions: usize) -> Vec<f32> {
-            let mut kl = Vec::with_capacity(old_probs.len() / n_actions);
-            for (old_row, new_row) in old_probs.chunks(n_actions).zip(new_probs.chunks(n_actions)) {
+        /// Per row `s`: `KL(π_old(·|s) ‖ π_new(·|s)) = Σ_a π_old(a|s) · (ln π_old(a|s) − ln π_new(a|s))`,
+        /// an expectation under the old policy over every action, with each `ln π` the row's
+        /// log-softmax. An action the old policy masks contributes 0; one it can take but the new
+        /// policy masks makes the row +∞. Rows are `n_actions` long, row-major.
+        pub fn categorical_kl(old_logits: &[f32], new_logits: &[f32], n_actions: usize) -> Vec<f32> {
+            let mut kl = Vec::with_capacity(old_logits.len() / n_actions);
+            for (old_row, new_row) in old_logits
+                .chunks(n_actions)
+                .zip(new_logits.chunks(n_actions))
+            {
+                let (log_p, log_q) = (log_softmax(old_row), log_softmax(new_row));
                 let mut row = 0.0_f32;
-                for (&p, &q) in old_row.iter().zip(new_row) {
-                    if p > 0.0 {
-                        row += p * (p.ln() - q.ln());
+                for (&lp, &lq) in log_p.iter().zip(&log_q) {
+                    if lp == f32::NEG_INFINITY {
+                        continue; // never taken by the old policy: p = 0 costs nothing
                     }
+                    if lq == f32::NEG_INFINITY {
+                        row = f32::INFINITY; // p > 0 where the new policy gives 0
+                        break;
+                    }
+                    row += lp.exp() * (lp - lq);
                 }
                 kl.push(row);
             }
             kl
+        }
+
+        /// `ln softmax(logits)`: each logit minus the row's largest, minus the log of the sum of
+        /// the exponentials of those differences (each at most 1, the largest exactly 1, so the sum
+        /// neither overflows nor is 0). A logit of −∞ stays −∞.
+        fn log_softmax(logits: &[f32]) -> Vec<f32> {
+            let max = logits.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+            let log_total = logits.iter().map(|&l| (l - max).exp()).sum::<f32>().ln();
+            logits.iter().map(|&l| (l - max) - log_total).collect()
         }
         nb.passed("categorical_kl", ppo_grade::in_process::categorical_kl(categorical_kl).passed());
     }

@@ -65,22 +65,36 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(17);
-        /// 截断后的目标已经不再推动哪些行。
+        /// 双重截断 PPO 的目标已经不再推动哪些行。
         ///
-        /// 每一行为 PPO 所最大化的截断替代目标贡献一项 `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)`
-        /// （原教程代码的策略网络损失就是这些项取相反数后的平均）。对每一行，当该项对这一行比率的导数为零、因而这次更新不再改变策略选择该行动作
-        /// 的概率时，返回 `true`；梯度仍在流动时返回 `false`。
+        /// 原教程代码的智能体，以及第 11 课所有实时演示的步骤，用的都是 PPO 的普通截断。本练习问的是
+        /// 课文没有演示过的一个变体：双重截断 PPO（叶德珩等人 2020 年关于 MOBA 游戏的论文），它为优势值
+        /// 为负的行再加一道界限，使得很大的比率不能让一行的损失变得任意大。每一行为它所最大化的目标贡献的项是
+        ///
+        /// - Â ≥ 0 时，PPO 通常的 `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)`；
+        /// - Â < 0 时，`max(min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â), c·Â)`，其中 `c > 1` 是常数
+        ///   （论文中取 3）。
+        ///
+        /// 对每一行，当该项对这一行比率的导数为零、因而这次更新不再改变策略选择该行动作的概率时，
+        /// 返回 `true`；梯度仍在流动时返回 `false`。
         ///
         /// - `ratio[i]` 是 `π_θ(a_i|s_i) / π_old(a_i|s_i)`，`advantage[i]` 是 `Â_i`，两者长度相同；
-        ///   `eps` 是截断范围 ε。结果每行一个标记。
+        ///   `eps` 是截断范围 ε，`c` 是双重截断的常数。结果每行一个标记。
         /// - 根据优势值的符号和比率所在的位置来判断；不要做数值求导。
-        /// - 恰好在 `r = 1 − ε` 或 `r = 1 + ε` 时，以 PyTorch 为准：`clamp` 在边界上会传递梯度。
+        /// - 边界上以 PyTorch 的自动求导为准：恰好在 `r = 1 − ε` 或 `r = 1 + ε` 时，`clamp` 会传递
+        ///   梯度（它在闭区间上的导数为 1）；`torch.max` 的两个参数相等时，各得一半梯度。
         ///   优势值恰好为 0 的行，没有任何可推动的东西。
         ///
-        /// 讲解见第 11 课（clipping）第 4 节和第 5 节：“优势值为正时”和“优势值为负时”。
-        /// 评分：`ppo-tutor grade zero_gradient_rows`。
-        pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<bool> {
-            // TODO：优势值为正时，区间的哪一侧让梯度停止？优势值为负时呢？
+        /// 通过标准：每个标记都与参考答案相同，检查的是 100 组由随机种子生成的批次（ε 在 0.05 到 0.4
+        /// 之间，c 在 1.5 到 4 之间，比率从 0.4 到 2c + 1，约十分之一的优势值恰好为 0）、录制的 PyTorch
+        /// 批次（用它们自己的 ε，c = 3），以及边界情况：两种符号下区间两侧和 c 两侧、优势值为 0、
+        /// 比率恰好等于 1 − ε、1 + ε 和 c（这些用例中 ε 是 1/8 的倍数、c 是 1/2 的倍数：在 f32 中都是精确的）。
+        /// 所有用例都满足 c > 1 + ε。
+        ///
+        /// 讲解见第 11 课（clipping）第 4 节和第 5 节：“优势值为正时”和“优势值为负时”；这里同样的推理
+        /// 多遇到一项。评分：`ppo-tutor grade zero_gradient_rows`。
+        pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32, c: f32) -> Vec<bool> {
+            // TODO：对优势值的每种符号、比率的每个范围，目标选中的是哪一项？比率变化时，这一项会变吗？
             todo!()
         }
         nb.cell(18);
@@ -111,18 +125,22 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// Whether each row's term `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)` has zero derivative with
-        /// respect to `r`, following PyTorch's autograd: `clamp` passes the gradient at its bounds,
-        /// and `min` of two equal values passes half to each.
-        pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<bool> {
+        /// Whether each row's term has zero derivative with respect to `r`, following PyTorch's
+        /// autograd. For Â ≥ 0 the term is PPO's `min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â)`; for Â < 0
+        /// the dual clip bounds it from below, `max(min(r·Â, clamp(r, 1 − ε, 1 + ε)·Â), c·Â)`.
+        /// `clamp` passes the gradient at its bounds, and `max` of two equal values passes half
+        /// to each.
+        pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32, c: f32) -> Vec<bool> {
             let (low, high) = (1.0 - eps, 1.0 + eps);
             ratio
                 .iter()
                 .zip(advantage)
                 .map(|(&r, &a)| {
-                    // A zero advantage makes both surrogates flat in r. Otherwise the min picks the
-                    // clipped term, whose clamp is flat, only past the bound on the advantage's side.
-                    a == 0.0 || (a > 0.0 && r > high) || (a < 0.0 && r < low)
+                    // A zero advantage makes every term flat in r. For a positive one the min picks
+                    // the constant clipped term above the band. For a negative one the min is
+                    // constant below the band, and past r = c the max picks the constant bound c·Â
+                    // (at r = c exactly the tie still passes half of r·Â's slope).
+                    a == 0.0 || (a > 0.0 && r > high) || (a < 0.0 && (r < low || r > c))
                 })
                 .collect()
         }

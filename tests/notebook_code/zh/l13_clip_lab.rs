@@ -30,26 +30,72 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["approx_kl", "clip_frac", "ratio_min", "ratio_max", "entropy", "epochs_run", "explained_variance"])))).outputs());
     nb.cell(7);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最高？
+    //   a) ε = 0.2
+    //   b) ε = 0.05
+    //   c) 不截断
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(8);
     // 本节的实验，与终端里 `ppo-tutor lab eps` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("eps", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(9);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(12);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最低？
+    //   a) 10 轮
+    //   b) 1 轮
+    //   c) 40 轮
+    //   d) 策略网络 1 轮，价值网络 10 轮
+    //   e) 策略网络 10 轮，价值网络 1 轮
+    //   f) 策略网络 1 轮（1e-2），价值网络 10 轮
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(13);
     // 本节的实验，与终端里 `ppo-tutor lab epochs` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("epochs", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(11);
+    nb.cell(14);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.cell(17);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最高？
+    //   a) actor_lr = 1e-3
+    //   b) actor_lr = 1e-2
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(18);
     // 本节的实验，与终端里 `ppo-tutor lab actor-lr` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("actor-lr", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(13);
+    nb.cell(19);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(22);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最低？
+    //   a) 10 轮
+    //   b) 40 轮
+    //   c) 40 轮，target_kl = 0.01
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(23);
     // 本节的实验，与终端里 `ppo-tutor lab target-kl` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("target-kl", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(15);
+    nb.cell(24);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.cell(27);
     // 最后一轮：标记为被截断的行，正是比率落在 [1 − ε, 1 + ε] 之外的那些行。
     let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();
     let eps = config.eps as f32;
@@ -62,80 +108,96 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         1.0 - eps,
         1.0 + eps
     );
-    nb.cell(16);
+    nb.cell(28);
     // 本节的实时数值，来自训练运行 `snap`：
     nb.show((&Shown(&(snap.show(&["ratio", "clipped"])))).outputs());
     // The exercise as the learner first meets it: starters and grading.
     {
-        nb.cell(18);
-        /// 策略离收集这批数据的那个策略有多远，用一个数表示。
+        nb.cell(30);
+        /// 策略移动了多远，换一个方向来量：KL(π_θ ‖ π_old)。
         ///
-        /// 只用采样到的动作来估计 KL 散度 KL(π_old ‖ π_θ)：使用 CleanRL 记为 `approx_kl` 的
-        /// 估计量，它逐行来看从不为负，并且因为动作是从 π_old 中抽取的，所以是无偏的。
-        /// 第 13 课给出了它的名字。
+        /// approx_kl 只用采样到的各行就能估计 KL(π_old ‖ π_θ)，也就是在 π_old 的动作上求平均的
+        /// 散度，而且它没有哪一行是负的。KL 散度不对称（第 10 课）。请估计另一个方向
+        /// KL(π_θ ‖ π_old)，也就是在 π_θ 的动作上求平均的散度；用的还是这些行，尽管它们的动作
+        /// 是从 π_old 而不是从 π_θ 中抽取的。
         ///
-        /// - `old_log_probs[i]` 是 `log π_old(a_i|s_i)`，在更新之前就已固定；`log_probs[i]` 是
-        ///   当前参数下的 `log π_θ(a_i|s_i)`。两者长度相同，至少为 1。
-        /// - 返回对所有行的均值，用 float32 计算。
+        /// - `old_log_probs[i]` 是 `log π_old(a_i|s_i)`，在更新之前就已固定，其中的动作 `a_i`
+        ///   由 π_old 抽取；`log_probs[i]` 是当前参数下的 `log π_θ(a_i|s_i)`。两者长度相同，
+        ///   至少为 1。
+        /// - 返回对所有行的均值，每行一项，用 float32 计算。每一行的项只取决于这一行的比率
+        ///   r = π_θ(a_i|s_i) / π_old(a_i|s_i)，并且必须满足：
+        ///   - 无偏：它在从 π_old 抽取的动作上的均值等于 KL(π_θ ‖ π_old)；
+        ///   - 从不为负，每一行都是如此，并且在 r = 1 处恰好为 0。
         ///
-        /// 讲解见第 13 课（clip-lab）第 1 节“每次更新都要看什么”。
-        pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
-            // TODO：哪个估计量逐行来看从不为负？（按 `h` 可逐条显示提示。）
+        /// 通过标准：与参考答案之差不超过 1e-5 的绝对误差加上 1e-4 的相对误差。检查的是 100 组
+        /// 由随机种子生成的批次（对数概率向两个方向移动，最多 ±0.6）、录制的 PyTorch 回合的各轮、
+        /// 动作概率变高或变低的单独一行（一行就是它自己的估计，所以负的项会显露出来）、什么都没
+        /// 变的批次（恰好为 0），以及每个动作的概率都变低的批次。
+        ///
+        /// 讲解见第 13 课（clip-lab）第 1 节“每次更新都要看什么”：approx_kl 的每一行为什么从不
+        /// 为负，而它的均值仍然无偏。把一个策略下的平均变成另一个策略的样本上的平均，所用的权重
+        /// 就是第 9 课第 3 节“比率”讲的比率。
+        pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+            // TODO：在这里写代码；在本教程中按 `h` 可逐条显示提示。
+            // KL(π_θ ‖ π_old) 是在哪个策略下的平均？哪一项在 π_old 下的均值为 0，又能让每一行
+            // 都不低于 0？
             todo!()
         }
 
-        /// 在 Spinning Up 的提前停止之下，一次更新执行了多少个梯度步。
+        /// 在 Spinning Up 的提前停止之下，一次更新执行了多少次梯度更新。
         ///
         /// 截断并不能阻止策略离收集这批数据的那个策略越来越远（第 13 课实验 4）。Spinning Up 的
-        /// PPO 加了一道防线：在每一轮执行梯度步之前，先估计策略已经移动了多远；如果估计值超过了
+        /// PPO 加了一道防线：在每一轮执行梯度更新之前，先估计策略已经移动了多远；如果估计值超过了
         /// `target_kl` 之上的那道界限，就在那里结束本次更新，这一步也不再执行。请用它的估计量、
         /// 按它的规则，处理一次逐轮给出对数概率的更新。
         ///
         /// - `old_log_probs[i]` 是 `log π_old(a_i|s_i)`，在更新之前就已固定；共 `N` 行，至少 1 行。
         /// - `log_probs_per_epoch` 依次存放 `E` 行、每行 `N` 个数（按行优先排列，
         ///   `E = log_probs_per_epoch.len() / N`，至少为 1）：第 `e` 行是第 `e` 轮开始时、
-        ///   也就是这一轮的梯度步之前，策略给出的 `log π(a_i|s_i)`。
+        ///   也就是这一轮的梯度更新之前，策略给出的 `log π(a_i|s_i)`。
         /// - `target_kl` 就是 Spinning Up 的 `target_kl`（默认 0.01）。
         ///
-        /// 返回 `E` 轮中有多少轮执行了梯度步：防线从未触发时返回 `E`。各个估计值都是对所有行
+        /// 返回 `E` 轮中有多少轮执行了梯度更新：防线从未触发时返回 `E`。各个估计值都是对所有行
         /// 求的均值，用 float32 计算。
         ///
         /// 讲解见第 13 课（clip-lab）第 5 节“实验 4：在目标 KL 处提前停止”。
         pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {
             // TODO：在这里写代码；在本教程中按 `h` 可逐条显示提示。
-            // Spinning Up 检验的是 KL 散度的哪一种估计？估计值第一次过大的那一轮，它的梯度步会怎样？
+            // Spinning Up 检验的是 KL 散度的哪一种估计？估计值第一次过大的那一轮，它的梯度更新会怎样？
             todo!()
         }
-        nb.cell(19);
-        nb.show((&Shown(&(ppo_grade::in_process::approx_kl(approx_kl)))).outputs());
-        nb.cell(20);
+        nb.cell(31);
+        nb.show((&Shown(&(ppo_grade::in_process::reverse_kl(reverse_kl)))).outputs());
+        nb.cell(32);
         nb.show((&Shown(&(ppo_grade::in_process::kl_early_stop(kl_early_stop)))).outputs());
     }
-    nb.cell(22);
+    nb.cell(34);
     use ppo_engine::lesson::quiz;
-    nb.cell(24);
+    nb.cell(36);
     nb.show((&Shown(&(quiz::predict("clip-lab", 1, "?", &snap)))).outputs());
-    nb.cell(26);
+    nb.cell(38);
     nb.show((&Shown(&(quiz::answer("clip-lab", 2, '?')))).outputs());
-    nb.cell(28);
+    nb.cell(40);
     nb.show((&Shown(&(quiz::answer("clip-lab", 3, '?')))).outputs());
-    nb.cell(30);
+    nb.cell(42);
     nb.show((&Shown(&(quiz::answer("clip-lab", 4, '?')))).outputs());
-    nb.cell(32);
+    nb.cell(44);
     nb.show((&Shown(&(quiz::ask("clip-lab", 5, &snap)))).outputs());
-    nb.cell(33);
+    nb.cell(45);
     nb.show((&Shown(&(quiz::predict("clip-lab", 5, "?", &snap)))).outputs());
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// CleanRL's `approx_kl = ((ratio - 1) - logratio).mean()` with
-        /// `logratio = log_probs - old_log_probs`: an estimate of KL(π_old ‖ π_θ) that is never
-        /// negative, row by row, and unbiased over actions sampled from π_old.
-        pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+        /// `mean_i(r·log r − (r − 1))` with `log r = log_probs − old_log_probs`: the importance
+        /// weight r turns an average under π_θ into one over the actions π_old drew, and r − 1,
+        /// whose mean under π_old is 0, makes each row's term at least 0 (its minimum is 0, at
+        /// r = 1) without changing the mean.
+        pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
             let mut total = 0.0_f32;
             for (&old, &new) in old_log_probs.iter().zip(log_probs) {
                 let log_ratio = new - old;
-                total += (log_ratio.exp() - 1.0) - log_ratio;
+                let ratio = log_ratio.exp();
+                total += ratio * log_ratio - (ratio - 1.0);
             }
             total / old_log_probs.len() as f32
         }
@@ -158,7 +220,7 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
             }
             log_probs_per_epoch.len() / n
         }
-        nb.passed("approx_kl", ppo_grade::in_process::approx_kl(approx_kl).passed());
+        nb.passed("reverse_kl", ppo_grade::in_process::reverse_kl(reverse_kl).passed());
         nb.passed("kl_early_stop", ppo_grade::in_process::kl_early_stop(kl_early_stop).passed());
     }
     Ok(())

@@ -30,66 +30,108 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         config.actor_lr
     );
     nb.cell(8);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最高？
+    //   a) critic_lr = 1e-2
+    //   b) critic_lr = 1e-3
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(9);
     // 本节的实验，与终端里 `ppo-tutor lab critic-lr` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("critic-lr", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(10);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(13);
     // 两个网络的参数量：4 -> hidden_dim -> 2 和 4 -> hidden_dim -> 1。
     nb.show((&Shown(&(for h in [config.hidden_dim, 16] {
     let actor = 4 * h + h + h * 2 + 2;
     let critic = 4 * h + h + h + 1;
     println!("hidden_dim = {h:3}：策略网络 {actor} 个参数，价值网络 {critic} 个");
 }))).outputs());
-    nb.cell(11);
+    nb.cell(14);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最高？
+    //   a) hidden_dim = 128
+    //   b) hidden_dim = 16
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(15);
     // 本节的实验，与终端里 `ppo-tutor lab hidden-dim` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("hidden-dim", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(13);
+    nb.cell(16);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.cell(19);
     nb.show((&Shown(&(for gamma in [0.9, config.gamma, 0.999] {
     println!("γ = {gamma}：视野 1/(1 − γ) = {:.0} 步", 1.0 / (1.0 - gamma));
 }))).outputs());
-    nb.cell(14);
+    nb.cell(20);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最低？
+    //   a) gamma = 0.98
+    //   b) gamma = 0.9
+    //   c) gamma = 0.999
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(21);
     // 本节的实验，与终端里 `ppo-tutor lab gamma` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("gamma", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(16);
+    nb.cell(22);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.cell(25);
     // l 步之后的 TD 误差权重为 (γλ)^l：权重每 ln 0.5 / ln(γλ) 步减半。
     nb.show((&Shown(&(for lmbda in [0.5, config.lmbda, 1.0] {
     let gl = config.gamma * lmbda;
     println!("λ = {lmbda}：γλ = {gl:.3}，权重每 {:.1} 步减半", 0.5f64.ln() / gl.ln());
 }))).outputs());
-    nb.cell(17);
+    nb.cell(26);
+    // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最低？
+    //   a) lmbda = 0.95
+    //   b) lmbda = 0.5
+    //   c) lmbda = 1
+    // 把答案的字母写在引号之间，然后运行本单元格和后面两个；
+    // 实验之后的单元格会用这次运行的结果给它评分。
+    let prediction = ' ';
+    nb.cell(27);
     // 本节的实验，与终端里 `ppo-tutor lab lmbda` 的运行方式相同：
     // 每种设置跑随机种子 0-4，各 LAB_EPISODES 个回合，用上所有 CPU 核。
     let lab = ppo_engine::notebook::lab("lmbda", &[0, 1, 2, 3, 4], LAB_EPISODES)?;
     nb.show((&Shown(&(lab))).outputs());
-    nb.cell(19);
+    nb.cell(28);
+    // 你的预测，用上面这次运行的结果评分：
+    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.cell(31);
     use ppo_engine::env::EnvId;
     nb.show((&Shown(&(for id in EnvId::ALL {
     println!("{}：回合到 {} 步时因时限中断", id.as_str(), id.max_episode_steps());
 }))).outputs());
-    nb.cell(20);
-    nb.show((&Shown(&(snap.cartpole()))).outputs());
-    nb.cell(22);
-    use ppo_engine::lesson::quiz;
-    nb.cell(24);
-    nb.show((&Shown(&(quiz::answer("hyperparameters", 1, '?')))).outputs());
-    nb.cell(26);
-    nb.show((&Shown(&(quiz::predict("hyperparameters", 2, "?", &snap)))).outputs());
-    nb.cell(28);
-    nb.show((&Shown(&(quiz::answer("hyperparameters", 3, '?')))).outputs());
-    nb.cell(30);
-    nb.show((&Shown(&(quiz::answer("hyperparameters", 4, '?')))).outputs());
     nb.cell(32);
+    nb.show((&Shown(&(snap.cartpole()))).outputs());
+    nb.cell(34);
+    use ppo_engine::lesson::quiz;
+    nb.cell(36);
+    nb.show((&Shown(&(quiz::answer("hyperparameters", 1, '?')))).outputs());
+    nb.cell(38);
+    nb.show((&Shown(&(quiz::predict("hyperparameters", 2, "?", &snap)))).outputs());
+    nb.cell(40);
+    nb.show((&Shown(&(quiz::answer("hyperparameters", 3, '?')))).outputs());
+    nb.cell(42);
+    nb.show((&Shown(&(quiz::answer("hyperparameters", 4, '?')))).outputs());
+    nb.cell(44);
     nb.show((&Shown(&(quiz::ask("hyperparameters", 5, &snap)))).outputs());
-    nb.cell(33);
+    nb.cell(45);
     nb.show((&Shown(&(quiz::predict("hyperparameters", 5, "?", &snap)))).outputs());
-    nb.cell(35);
+    nb.cell(47);
     nb.show((&Shown(&(quiz::answer("hyperparameters", 6, '?')))).outputs());
-    nb.cell(37);
+    nb.cell(49);
     nb.show((&Shown(&(quiz::answer("hyperparameters", 7, '?')))).outputs());
     Ok(())
 }

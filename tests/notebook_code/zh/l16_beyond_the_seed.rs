@@ -40,38 +40,53 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(15);
-        /// 正确的一步 TD 目标：第 `t` 步的价值，等于它得到的奖励，加上价值网络对之后的预期，
-        /// 前提是“之后”确实存在。
+        /// 带“同一步”自动重置的向量化环境（Gymnasium 0.29，即 CleanRL 固定使用的版本）产生的数据流中，
+        /// 每一行的一步 TD 目标：第 `t` 步的价值，等于它得到的奖励，加上价值网络对之后的预期，
+        /// 前提是“之后”确实存在。这样的环境在回合结束的那一步就把回合重置了。
         ///
-        /// - `rewards[t]` 是 `r_t`；`next_values[t]` 是 `V(s_{t+1})`，即价值网络对第 `t` 步之后
-        ///   环境真正返回的那个观测的估值（回合最后一步之后也是如此）；`gamma` 是 γ。
+        /// - `rewards[t]` 是 `r_t`；`gamma` 是 γ。
+        /// - `next_values[t]` 是价值网络对第 `t` 步之后环境返回的那个观测的估值。在回合结束的行上，
+        ///   环境已经重置过了：那个观测是下一个回合的第一个观测。
+        /// - `final_values[t]` 是价值网络对在 `t` 处结束的那个回合真正的最后一个观测的估值
+        ///   （Gymnasium 把这个观测单独交出来，放在 `infos["final_observation"]` 里）。只有在
+        ///   `terminated[t]` 或 `truncated[t]` 为真的行上它才有意义；其余每一行都是 NaN，
+        ///   只是占位的值，绝不能进入任何目标值。
         /// - `terminated[t]`：回合在 `t` 处真正结束了（杆倒下了）。`truncated[t]`：时限在 `t` 处
         ///   把回合中断了，杆还立着。两者可以同时为真。
         /// - 所有切片长度相同；每一行返回一个目标值。
         ///
-        /// 原教程代码对两个标志一视同仁（`done = term or trunc`）。请判断其中哪一个意味着不再有任何
-        /// 有价值的未来。讲解见第 16 课（beyond-the-seed）第 1 节“时限中断不是终止”。
+        /// 通过标准：每个目标值与参考答案相差不超过 1e-5（绝对误差加相对误差），用例包括 100 条
+        /// 由随机种子生成的数据流、连成一条数据流的录制 PyTorch 回合，以及手工构造的数据流：
+        /// 一次时限中断、一次杆倒下、同一行两个标志都为真、第一行和最后一行都因时限中断，
+        /// 以及一段完全没有回合结束的采样。该是数值的地方出现 NaN，算作错误。
+        ///
+        /// 请逐行判断：哪一个值（如果有的话）代表第 `t` 步之后的未来。讲解见第 16 课
+        /// （beyond-the-seed）第 1 节“时限中断不是终止”；这种数据流见第 4 节
+        /// “固定长度采样、向量化环境与小批量”。
         pub fn td_target_truncation(
             rewards: &[f32],
             next_values: &[f32],
+            final_values: &[f32],
             terminated: &[bool],
             truncated: &[bool],
             gamma: f32,
         ) -> Vec<f32> {
-            // TODO：时限把回合中断时，后面还有没有可以用 V(s_{t+1}) 来估计的未来？杆倒下时呢？
+            // TODO：时限把回合中断时，哪个观测的估值还能说明这个状态值多少？杆倒下时呢？
+            // 什么都没有结束的行呢？
             todo!()
         }
 
         /// 在跨越多个回合的一段采样上计算 GAE，采用 CleanRL 的布局：每步一行，回合首尾相接，
         /// 最后一个回合可能尚未结束。
         ///
-        /// - `values[t]` 是 `V(s_t)`；`next_values[t]` 是第 `t` 步之后真实的下一个观测的 `V`；
-        ///   `rewards`、`terminated`、`truncated`、`gamma` 的含义与 `td_target_truncation` 相同；
-        ///   `lmbda` 是 λ。
+        /// - `values[t]` 是 `V(s_t)`；`next_values[t]` 是第 `t` 步之后真实的下一个观测的 `V`，
+        ///   只有这一列，旁边没有 `final_values`；`rewards`、`terminated`、`truncated`、`gamma`
+        ///   的含义与 `td_target_truncation` 相同；`lmbda` 是 λ。
         /// - 返回 `(advantages, returns)`，每行各一个，其中 returns 是 CleanRL 由优势值推出的
         ///   价值网络目标（第 8 课第 6 节的 λ-回报）。
-        /// - 每一行的一步 TD 误差按 `td_target_truncation` 的方式自举。优势值绝不跨过回合的结束处，
-        ///   无论回合以何种方式结束。最后一行之后什么也没有：把那里的优势值当作 0。
+        /// - 在 `td_target_truncation` 的目标值会自举的那些行上，每一行的一步 TD 误差都从
+        ///   `next_values[t]` 自举。优势值绝不跨过回合的结束处，无论回合以何种方式结束。
+        ///   最后一行之后什么也没有：把那里的优势值当作 0。
         ///
         /// 讲解见第 16 课（beyond-the-seed）第 4 节“固定长度采样、向量化环境与小批量”，
         /// GAE 本身见第 8 课（gae）。
@@ -107,20 +122,30 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     // The reference solutions, graded in place: each must pass.
     nb.solutions();
     {
-        /// `y_t = r_t + γ·V(s_{t+1})`, except `y_t = r_t` where the episode terminated at `t`. A
-        /// truncated step still bootstraps: the pole was up, the future was only cut off.
+        /// One TD target per row of a same-step autoreset stream: `y_t = r_t` where the episode
+        /// terminated at `t`; `y_t = r_t + γ·final_values[t]` where only the time limit cut it (the
+        /// environment already returned the next episode's first observation, so the future of the
+        /// cut state is the value of the real last one); `y_t = r_t + γ·next_values[t]` on every
+        /// other row. `final_values` is read on truncated rows only (where no episode ended it is
+        /// NaN).
         pub fn td_target_truncation(
             rewards: &[f32],
             next_values: &[f32],
+            final_values: &[f32],
             terminated: &[bool],
             truncated: &[bool],
             gamma: f32,
         ) -> Vec<f32> {
-            let _ = truncated; // the time limit does not change the target
             let mut out = Vec::with_capacity(rewards.len());
             for t in 0..rewards.len() {
-                let alive = if terminated[t] { 0.0 } else { 1.0 };
-                out.push(rewards[t] + gamma * next_values[t] * alive);
+                let target = if terminated[t] {
+                    rewards[t] // the pole fell: nothing follows
+                } else if truncated[t] {
+                    rewards[t] + gamma * final_values[t] // cut, not ended: the real last observation
+                } else {
+                    rewards[t] + gamma * next_values[t]
+                };
+                out.push(target);
             }
             out
         }

@@ -1,19 +1,43 @@
-pub fn categorical_kl(old_probs: &[f32], new_probs: &[f32], n_actions: usize) -> Vec<f32> {
+fn log_softmax(logits: &[f32]) -> Vec<f32> {
+    let mut max = f32::NEG_INFINITY;
+    for &l in logits {
+        if l > max {
+            max = l;
+        }
+    }
+    let mut sum = 0.0;
+    for &l in logits {
+        sum += (l - max).exp();
+    }
+    let mut out = Vec::new();
+    for &l in logits {
+        out.push(l - max - sum.ln());
+    }
+    out
+}
+
+fn kl_one_way(lp: &[f32], lq: &[f32]) -> f32 {
+    let mut kl = 0.0;
+    for a in 0..lp.len() {
+        if lp[a] == f32::NEG_INFINITY {
+            continue;
+        }
+        if lq[a] == f32::NEG_INFINITY {
+            return f32::INFINITY;
+        }
+        kl += lp[a].exp() * (lp[a] - lq[a]);
+    }
+    kl
+}
+
+pub fn categorical_kl(old_logits: &[f32], new_logits: &[f32], n_actions: usize) -> Vec<f32> {
     // a distance should not depend on the order: average both directions
-    let n = old_probs.len() / n_actions;
+    let n = old_logits.len() / n_actions;
     let mut out = Vec::new();
     for i in 0..n {
-        let mut forward = 0.0;
-        let mut backward = 0.0;
-        for a in 0..n_actions {
-            let p = old_probs[i * n_actions + a];
-            let q = new_probs[i * n_actions + a];
-            if p > 0.0 {
-                forward += p * (p / q).ln();
-            }
-            backward += q * (q / p).ln();
-        }
-        out.push((forward + backward) / 2.0);
+        let lp = log_softmax(&old_logits[i * n_actions..(i + 1) * n_actions]);
+        let lq = log_softmax(&new_logits[i * n_actions..(i + 1) * n_actions]);
+        out.push(0.5 * (kl_one_way(&lp, &lq) + kl_one_way(&lq, &lp)));
     }
     out
 }

@@ -1,4 +1,4 @@
-pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<bool> {
+pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32, c: f32) -> Vec<bool> {
     let low = 1.0 - eps;
     let high = 1.0 + eps;
     let mut out = Vec::new();
@@ -10,7 +10,7 @@ pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<boo
             flows = false;
         } else if a > 0.0 && r > high {
             flows = false;
-        } else if a < 0.0 && r < low {
+        } else if a < 0.0 && (r < low || r > c) {
             flows = false;
         }
         out.push(flows);

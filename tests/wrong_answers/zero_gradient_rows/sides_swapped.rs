@@ -1,4 +1,4 @@
-pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<bool> {
+pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32, c: f32) -> Vec<bool> {
     let low = 1.0 - eps;
     let high = 1.0 + eps;
     let mut out = Vec::new();
@@ -8,7 +8,7 @@ pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<boo
         let zero = if a > 0.0 {
             r < low
         } else if a < 0.0 {
-            r > high
+            r > high || r > c
         } else {
             true
         };

@@ -24,6 +24,21 @@ pub const STATE_FILE: &str = ".ppo-tutor-state.json";
 /// questions in [`REPLACED`], and one written before numbering 3 those in [`REPLACED_3`].
 pub const QUIZ_NUMBERING: u32 = 3;
 
+/// The version of the exercises' tasks that [`Progress::exercises_done`] follows now. A file
+/// written before (with no `exercise_tasks`) is 0, and loading it forgets its passes of the
+/// exercises in [`RETASKED_1`].
+pub const EXERCISE_TASKS: u32 = 1;
+
+/// Exercises whose task changed at version 1 under the same name: each now applies its
+/// lesson's idea to a situation the lesson does not show (masked logits, the dual clip, an
+/// autoreset stream's final observation). A pass saved before was a pass of the old task,
+/// and is forgotten.
+pub const RETASKED_1: &[&str] = &[
+    "categorical_kl",
+    "zero_gradient_rows",
+    "td_target_truncation",
+];
+
 /// A quiz question by lesson id and number (from 1), as in [`Progress::quiz_key`].
 pub type QuestionAt = (&'static str, usize);
 
@@ -104,6 +119,16 @@ pub struct Progress {
     /// number, so that a question seen again shows it. Empty in older files.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub answers: BTreeMap<String, String>,
+    /// The predictions made before lab experiments, by experiment name (`eps`): the chosen
+    /// setting's label, or "" where the learner ran it without one. A step that asks for a
+    /// prediction shows what the run found once this holds its experiment. Empty in older
+    /// files.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub predictions: BTreeMap<String, String>,
+    /// The version of the exercises' tasks [`Self::exercises_done`] follows:
+    /// [`EXERCISE_TASKS`], or 0 in a file written before it existed.
+    #[serde(default)]
+    pub exercise_tasks: u32,
 }
 
 impl Default for Progress {
@@ -117,6 +142,8 @@ impl Default for Progress {
             quiz_numbering: QUIZ_NUMBERING,
             lang: None,
             answers: BTreeMap::new(),
+            predictions: BTreeMap::new(),
+            exercise_tasks: EXERCISE_TASKS,
         }
     }
 }
@@ -179,6 +206,16 @@ impl Progress {
         let quiz = &self.quiz;
         self.answers.retain(|key, _| quiz.contains_key(key));
         self.quiz_numbering = QUIZ_NUMBERING;
+    }
+
+    /// Forgets passes of exercises whose task changed since the file was written
+    /// ([`RETASKED_1`]).
+    pub fn forget_retasked(&mut self) {
+        if self.exercise_tasks < 1 {
+            self.exercises_done
+                .retain(|e| !RETASKED_1.contains(&e.as_str()));
+        }
+        self.exercise_tasks = EXERCISE_TASKS;
     }
 
     /// The interface language saved with the progress, if one was chosen (and is one this
@@ -247,6 +284,7 @@ impl Progress {
         match parsed {
             Ok(mut p) => {
                 p.renumber_quiz();
+                p.forget_retasked();
                 (p, None)
             }
             Err(why) => {
@@ -610,6 +648,48 @@ mod tests {
         let fresh = Progress::default();
         fresh.save(&path)?;
         assert_eq!(Progress::load(&path).0.quiz_numbering, QUIZ_NUMBERING);
+        Ok(())
+    }
+
+    #[test]
+    fn passes_of_retasked_exercises_are_forgotten_once() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
+        let path = dir.path().join("state.json");
+        // Written before the tasks' version: the retasked passes go, the others stay.
+        std::fs::write(
+            &path,
+            r#"{"exercises_done":["categorical_kl","n_step_target","zero_gradient_rows"],
+                "predictions":{"eps":"b","epochs":""}}"#,
+        )?;
+        let (p, _) = Progress::load(&path);
+        assert_eq!(
+            p.exercises_done
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>(),
+            ["n_step_target"]
+        );
+        assert_eq!(p.exercise_tasks, EXERCISE_TASKS);
+        assert_eq!(p.predictions.get("eps").map(String::as_str), Some("b"));
+        // A pass of the new task, saved, is kept.
+        let mut p = p;
+        p.exercises_done.insert("categorical_kl".into());
+        p.save(&path)?;
+        assert!(
+            Progress::load(&path)
+                .0
+                .exercises_done
+                .contains("categorical_kl")
+        );
+        for name in RETASKED_1 {
+            assert!(
+                crate::lesson::Course::embedded()?.lessons.iter().any(|l| l
+                    .exercise
+                    .as_ref()
+                    .is_some_and(|e| e.names().contains(name))),
+                "{name} is no exercise of the course"
+            );
+        }
         Ok(())
     }
 

@@ -1,9 +1,10 @@
-pub fn approx_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+pub fn reverse_kl(old_log_probs: &[f32], log_probs: &[f32]) -> f32 {
+    // approx_kl's term, as the lesson prints it.
     let mut total = 0.0;
     for i in 0..old_log_probs.len() {
         let log_ratio = log_probs[i] - old_log_probs[i];
         let ratio = log_ratio.exp();
         total += (ratio - 1.0) - log_ratio;
     }
-    total
+    total / old_log_probs.len() as f32
 }

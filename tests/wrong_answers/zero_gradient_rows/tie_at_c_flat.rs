@@ -1,4 +1,4 @@
-pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<bool> {
+pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32, c: f32) -> Vec<bool> {
     let low = 1.0 - eps;
     let high = 1.0 + eps;
     let mut out = Vec::new();
@@ -6,9 +6,10 @@ pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<boo
         let r = ratio[i];
         let a = advantage[i];
         let zero = if a > 0.0 {
-            r >= high
+            r > high
         } else if a < 0.0 {
-            r <= low
+            // The bound c * a takes over from r = c on.
+            r < low || r >= c
         } else {
             true
         };

@@ -1,4 +1,4 @@
-pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<bool> {
+pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32, c: f32) -> Vec<bool> {
     let low = 1.0 - eps;
     let high = 1.0 + eps;
     let mut out = Vec::new();
@@ -8,9 +8,10 @@ pub fn zero_gradient_rows(ratio: &[f32], advantage: &[f32], eps: f32) -> Vec<boo
         let zero = if a > 0.0 {
             r > high
         } else if a < 0.0 {
-            r < low
+            // The dual clip's bound, c away from 1 as eps is.
+            r < low || r > 1.0 + c
         } else {
-            false
+            true
         };
         out.push(zero);
     }
