@@ -205,6 +205,7 @@ pub fn handle(app: &mut App, event: Event) {
                     && app.overlay != app::Overlay::Help,
                 sandbox_open: app.overlay == app::Overlay::Sandbox,
                 quiz_open: app.overlay == app::Overlay::Quiz,
+                prediction_open: app.overlay == app::Overlay::None && app.asking_prediction(),
             };
             // While the screen only says it is too small, keys would act unseen: only
             // quitting does.

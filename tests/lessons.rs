@@ -134,7 +134,7 @@ fn a_broken_lesson_is_reported_with_its_folder_and_step() {
 }
 
 #[test]
-fn details_and_lab_steps_are_checked_where_they_are_written() {
+fn details_and_lab_steps_are_checked_where_they_are_written() -> TestResult {
     use ppo_tutor::lesson::loader::parse_lesson;
     let err_of = |text: &str| {
         parse_lesson("02-x", text)
@@ -164,6 +164,81 @@ fn details_and_lab_steps_are_checked_where_they_are_written() {
         lesson.map(|l| l.steps[0].lab.map(|e| e.name())),
         Ok(Some("eps"))
     );
+    // A prediction asks about the step's experiment and hides what the run found.
+    let lab = "lab = \"eps\"\nshow = [\"lab\"]\n";
+    let unknown = format!("{head}{lab}predict = \"ends_best\"\n+++\n## A\nbody\n");
+    assert!(
+        err_of(&unknown).contains("prediction"),
+        "{}",
+        err_of(&unknown)
+    );
+    let no_lab = format!("{head}predict = \"ends_highest\"\n+++\n## A\nbody\n");
+    assert!(err_of(&no_lab).contains("add `lab"), "{}", err_of(&no_lab));
+    let unhidden = format!("{head}{lab}predict = \"ends_highest\"\n+++\n## A\nbody\n");
+    assert!(
+        err_of(&unhidden).contains("<!-- after the run -->"),
+        "{}",
+        err_of(&unhidden)
+    );
+    let stray = format!("{head}+++\n## A\nbody\n<!-- after the run -->\nfound\n");
+    assert!(
+        err_of(&stray).contains("only such a step"),
+        "{}",
+        err_of(&stray)
+    );
+    let hidden = format!(
+        "{head}{lab}predict = \"ends_lowest\"\n+++\n## A\nbefore\n<!-- after the run -->\nfound\n"
+    );
+    let step = parse_lesson("02-x", &hidden)
+        .map_err(|e| e.to_string())?
+        .steps[0]
+        .clone();
+    assert_eq!(
+        step.parts(ppo_tutor::lesson::face::Face::Terminal),
+        ("before\n".to_string(), Some("found".to_string()))
+    );
+    assert_eq!(
+        step.text(ppo_tutor::lesson::face::Face::Terminal),
+        "before\nfound"
+    );
+    Ok(())
+}
+
+/// Every experiment of the course asks for a prediction before it runs, and no figure of
+/// what its seeds showed stands before that point, in either language or face.
+#[test]
+fn every_experiment_is_predicted_before_its_results_show() -> TestResult {
+    use ppo_tutor::i18n::Lang;
+    use ppo_tutor::lesson::face::Face;
+    for lang in [Lang::En, Lang::Zh] {
+        let course = Course::embedded_in(lang)?;
+        let mut asked = 0;
+        for lesson in &course.lessons {
+            for step in lesson.steps.iter().filter(|s| s.lab.is_some()) {
+                let place = format!("{lang:?} lesson {} '{}'", lesson.order, step.title);
+                assert!(step.predict.is_some(), "{place}: no prediction");
+                for face in Face::ALL {
+                    let (before, after) = step.parts(face);
+                    assert!(
+                        after.is_some_and(|a| a.contains('±')),
+                        "{place}: no results after the line"
+                    );
+                    for figure in ["±", "495.5", "488.3"] {
+                        assert!(
+                            !before.contains(figure),
+                            "{place} ({face:?}): '{figure}' before the prediction"
+                        );
+                    }
+                }
+                asked += 1;
+            }
+        }
+        assert_eq!(
+            asked, 10,
+            "{lang:?}: the ten experiments of lessons 4, 10, 13 and 15"
+        );
+    }
+    Ok(())
 }
 
 #[test]

@@ -422,9 +422,43 @@ fn x_runs_the_step_s_experiment_and_the_panel_shows_its_result() -> TestResult {
     open(&mut app, "clip-lab")?;
     app.update(Action::Next); // Experiment 1: the clip range
     let before = screen(&app, 140, 45)?;
-    assert!(before.contains("x runs the experiment"), "{before}");
+    assert!(
+        before.contains("x asks your prediction, then runs the experiment"),
+        "{before}"
+    );
+    // What the seeds showed stays hidden until the learner commits to a prediction.
+    assert!(
+        before.contains("appears here once you have made your"),
+        "{before}"
+    );
+    assert!(!before.contains("495.5"), "{before}");
     app.update(Action::RunLab);
-    let (experiment, base) = app.lab.request.take().ok_or("x asked for no experiment")?;
+    assert!(app.lab.request.is_none(), "x asks before it runs");
+    let asking = screen(&app, 140, 45)?;
+    assert!(
+        asking.contains("which setting will end highest"),
+        "{asking}"
+    );
+    assert!(asking.contains("c) no clip"), "{asking}");
+    app.update(Action::Type('z'));
+    assert!(app.lab.request.is_none(), "no such choice");
+    assert!(app.status.text().contains("from a to c"), "{}", app.status);
+    app.update(Action::Type('b'));
+    assert_eq!(
+        app.progress.predictions.get("eps").map(String::as_str),
+        Some("b")
+    );
+    let (experiment, base) = app
+        .lab
+        .request
+        .take()
+        .ok_or("the prediction started no run")?;
+    let revealed = screen(&app, 140, 45)?;
+    assert!(
+        revealed.contains("Your prediction: b) ε = 0.05"),
+        "{revealed}"
+    );
+    assert!(!revealed.contains("appears here once"), "{revealed}");
     assert_eq!((experiment, base.num_episodes), (Experiment::Eps, 500));
     assert!(matches!(
         app.lab.get(&experiment),
@@ -460,7 +494,24 @@ fn x_runs_the_step_s_experiment_and_the_panel_shows_its_result() -> TestResult {
         after.contains("ε = 0.05 vs ε = 0.2") && after.contains("no clip vs ε = 0.2"),
         "{after}"
     );
+    // The prediction, graded against the run: the setting it found and the paired line.
+    assert!(after.contains("Your prediction: ε = 0.05"), "{after}");
+    assert!(after.contains("Paired seed by seed"), "{after}");
     assert!(app.status.text().contains("lab eps: done"));
+    // Esc on the next experiment runs it without a prediction, and shows its results.
+    app.update(Action::Next);
+    app.update(Action::RunLab);
+    assert!(app.lab.request.is_none());
+    app.update(Action::Back);
+    assert_eq!(
+        app.progress.predictions.get("epochs").map(String::as_str),
+        Some("")
+    );
+    assert_eq!(
+        app.lab.request.take().map(|(e, _)| e),
+        Some(Experiment::Epochs)
+    );
+    assert!(app.results_open());
     Ok(())
 }
 
@@ -623,7 +674,7 @@ fn saving_the_exercise_file_grades_it_one_grading_at_a_time() -> TestResult {
     let names = app.exercise.request.take().ok_or("no grading requested")?;
     assert_eq!(
         names,
-        vec!["approx_kl".to_string(), "kl_early_stop".to_string()]
+        vec!["reverse_kl".to_string(), "kl_early_stop".to_string()]
     );
     app.on_saved();
     assert!(app.exercise.request.is_none(), "one grading at a time");

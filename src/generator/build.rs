@@ -369,7 +369,7 @@ pub fn cells_from_recipe(
                     });
                 }
                 if let Some(k) = pending_show.take() {
-                    cells.extend(show_cells(lesson, k, &mut shown));
+                    cells.extend(step_end_cells(lesson, k, &mut shown));
                 }
                 cells.push(Cell::Markdown(step_markdown(lesson, next_step)));
                 pending_show = Some(next_step);
@@ -377,7 +377,7 @@ pub fn cells_from_recipe(
             }
             Piece::Exercise => {
                 if let Some(k) = pending_show.take() {
-                    cells.extend(show_cells(lesson, k, &mut shown));
+                    cells.extend(step_end_cells(lesson, k, &mut shown));
                 }
                 cells.extend(exercise_cells(lesson, file, root)?);
                 let course = course_in_current_language();
@@ -387,7 +387,7 @@ pub fn cells_from_recipe(
         }
     }
     if let Some(k) = pending_show.take() {
-        cells.extend(show_cells(lesson, k, &mut shown));
+        cells.extend(step_end_cells(lesson, k, &mut shown));
     }
     if next_step != lesson.steps.len() {
         return Err(BuildError::MissingStep {
@@ -572,7 +572,7 @@ fn step_markdown(lesson: &Lesson, k: usize) -> String {
         "## {}. {}\n\n{}\n",
         k + 1,
         step.title,
-        step.text(Face::Notebook)
+        step.parts(Face::Notebook).0
     );
     if !step.python.is_empty() {
         let source = match Lang::current() {
@@ -719,6 +719,40 @@ fn rebinds_snapshot(code: &str) -> bool {
     })
 }
 
+/// The cells that end step `k`: its live values and views ([`show_cells`]), then what its
+/// experiment's run found, where the step asks for a prediction first (the text after its
+/// [`AFTER_THE_RUN`](crate::lesson::AFTER_THE_RUN) line).
+fn step_end_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
+    let mut cells = show_cells(lesson, k, shown);
+    if let (_, Some(after)) = lesson.steps[k].parts(Face::Notebook) {
+        cells.push(Cell::Markdown(after));
+    }
+    cells
+}
+
+/// The cell that asks for a prediction before experiment `e` runs: the question and the
+/// lettered settings as comments, and the letter to fill in.
+fn prediction_cell(e: crate::ppo::lab::Experiment, outcome: crate::ppo::lab::Outcome) -> Cell {
+    let base = crate::ppo::PpoConfig::default();
+    let choices: String = outcome
+        .choices(e, &base)
+        .iter()
+        .map(|c| format!("//   {c}\n"))
+        .collect();
+    Cell::Code(tr!(
+        "// {}\n{choices}// Write the letter of your answer between the quotes, then run this cell and the next two;\n\
+         // the cell after the experiment grades it against the run.\n\
+         let prediction = ' ';",
+        "// {}\n{choices}// 把答案的字母写在引号之间，然后运行本单元格和后面两个；\n\
+         // 实验之后的单元格会用这次运行的结果给它评分。\n\
+         let prediction = ' ';",
+        outcome.question(LAB_SEEDS.len())
+    ))
+}
+
+/// The seeds a notebook's experiment cells run.
+const LAB_SEEDS: [u64; 5] = [0, 1, 2, 3, 4];
+
 /// The cells that show step `k`'s live values and views, less those `shown` already holds
 /// (which it then records); none when the step shows nothing new.
 fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
@@ -757,6 +791,9 @@ fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
             View::CartPole => cells.push(Cell::Code("snap.cartpole()".to_string())),
             View::ClipChart => cells.push(Cell::Code("snap.clip_chart()".to_string())),
             View::Lab => {
+                if let (Some(e), Some(outcome)) = (step.lab, step.predict) {
+                    cells.push(prediction_cell(e, outcome));
+                }
                 if let Some(e) = step.lab {
                     cells.push(Cell::Code(tr!(
                         "// This step's experiment, as `ppo-tutor lab {name}` runs it in a terminal:\n\
@@ -768,6 +805,15 @@ fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
                          let lab = ppo_engine::notebook::lab({name:?}, &[0, 1, 2, 3, 4], LAB_EPISODES)?;\n\
                          lab",
                         name = e.name()
+                    )));
+                }
+                if let (Some(_), Some(outcome)) = (step.lab, step.predict) {
+                    cells.push(Cell::Code(tr!(
+                        "// Your prediction, graded against the run above:\n\
+                         lab.grade_prediction({:?}, prediction)",
+                        "// 你的预测，用上面这次运行的结果评分：\n\
+                         lab.grade_prediction({:?}, prediction)",
+                        outcome.name()
                     )));
                 }
             }
@@ -795,6 +841,7 @@ mod tests {
             show: show.iter().map(|s| (*s).to_string()).collect(),
             body: format!("About {title}."),
             lab: None,
+            predict: None,
         }
     }
 
@@ -839,6 +886,44 @@ mod tests {
                 &Cell::Markdown("## 2. Two\n\nAbout Two.\n".into()),
             ]
         );
+        Ok(())
+    }
+
+    #[test]
+    fn a_predicted_experiment_asks_before_it_runs_and_shows_its_findings_after()
+    -> Result<(), BuildError> {
+        let _en = crate::i18n::Lang::En.scoped();
+        let mut lab = step("One", &["lab"]);
+        lab.lab = Some(crate::ppo::lab::Experiment::Eps);
+        lab.predict = Some(crate::ppo::lab::Outcome::EndsHighest);
+        lab.body = "Before.\n<!-- after the run -->\nFound.\n".into();
+        let l = lesson(vec![lab, step("Two", &[])]);
+        let cells = cells_from_recipe(&l, "// %% step: One\n// %% step: Two\n", "r.rs", root())?;
+        let rest: Vec<&Cell> = cells.iter().skip(2).collect();
+        let code = |i: usize| match rest[i] {
+            Cell::Code(c) => c.as_str(),
+            Cell::Markdown(m) => m.as_str(),
+        };
+        assert!(matches!(rest[0], Cell::Markdown(_)), "{rest:?}");
+        assert!(
+            code(0).contains("Before.") && !code(0).contains("Found."),
+            "{}",
+            code(0)
+        );
+        assert!(
+            code(1).contains("which setting will end highest"),
+            "{}",
+            code(1)
+        );
+        assert!(code(1).contains("//   c) no clip") && code(1).ends_with("let prediction = ' ';"));
+        assert!(
+            code(2).contains("ppo_engine::notebook::lab(\"eps\""),
+            "{}",
+            code(2)
+        );
+        assert!(code(3).ends_with("lab.grade_prediction(\"ends_highest\", prediction)"));
+        assert_eq!(rest[4], &Cell::Markdown("Found.".into()));
+        assert_eq!(rest[5], &Cell::Markdown("## 2. Two\n\nAbout Two.\n".into()));
         Ok(())
     }
 

@@ -294,6 +294,13 @@ impl Kernel {
                 code: code.clone(),
                 source: Box::new(source),
             })?;
+            // The dependency cell's only output is evcxr's own echo of `:cache`
+            // ("cache: 4000 MiB"), which says nothing about the lesson: it is left out.
+            let out = if code.lines().any(|l| l.trim_start().starts_with(":cache")) {
+                Outputs::default()
+            } else {
+                out
+            };
             outputs.push(Some(out));
             after(index);
         }

@@ -132,6 +132,7 @@ macro_rules! ctx {
             step: lesson.and_then(|l| l.steps.get($app.step)),
             progress: &$app.progress,
             snapshot: &$app.run.snapshot,
+            results_open: $app.results_open(),
         }
     }};
 }
@@ -348,8 +349,77 @@ impl App {
         }
     }
 
+    /// Whether the open step's experiment is waiting for the learner's prediction (its
+    /// choice letters are then typed, not mapped to the lesson view's keys).
+    #[must_use]
+    pub fn asking_prediction(&self) -> bool {
+        self.lab.asking.is_some() && self.lab.asking == self.current_step().and_then(|s| s.lab)
+    }
+
+    /// The prediction recorded for `experiment`: `Some(Some(i))` the learner chose arm `i`,
+    /// `Some(None)` it ran without one, `None` not asked yet.
+    #[must_use]
+    pub fn prediction(&self, experiment: crate::ppo::lab::Experiment) -> Option<Option<usize>> {
+        let letter = self.progress.predictions.get(experiment.name())?;
+        let arms = experiment.arms(&self.lab_base()).len();
+        Some(
+            letter
+                .chars()
+                .next()
+                .and_then(|c| crate::ppo::lab::choice_index(c, arms)),
+        )
+    }
+
+    /// Whether the open step shows what its experiment's run found: always, unless it asks
+    /// for a prediction the learner has not made yet.
+    #[must_use]
+    pub fn results_open(&self) -> bool {
+        match self.current_step().map(|s| (s.lab, s.predict)) {
+            Some((Some(e), Some(_))) => self.prediction(e).is_some(),
+            _ => true,
+        }
+    }
+
+    /// A key while the open step asks for a prediction: a choice letter records it and
+    /// starts the run, Esc starts it without one; `false` for any other key (the
+    /// question stays open).
+    fn answer_prediction(&mut self, action: Action) -> bool {
+        let Some(experiment) = self.lab.asking.filter(|_| self.asking_prediction()) else {
+            return false;
+        };
+        let arms = experiment.arms(&self.lab_base()).len();
+        let letter = match action {
+            Action::Type(c) => {
+                if crate::ppo::lab::choice_index(c, arms).is_none() {
+                    let last = crate::ppo::lab::letters()
+                        .nth(arms.saturating_sub(1))
+                        .unwrap_or('a');
+                    self.say(crate::tr!(
+                        "choose a letter from a to {last} (Esc runs it without a prediction)",
+                        "请在 a 到 {last} 之间选一个字母（按 Esc 则不预测直接运行）"
+                    ));
+                    return true;
+                }
+                c.to_string()
+            }
+            Action::Back => String::new(),
+            _ => return false,
+        };
+        self.lab.asking = None;
+        self.progress
+            .predictions
+            .insert(experiment.name().to_string(), letter);
+        let _ = self.save_progress();
+        let said = self.lab.start(Some(experiment), self.lab_base(), &[]);
+        self.say(said);
+        true
+    }
+
     /// The lesson view's keys (no face open, or a key the open face passed on).
     fn update_main(&mut self, action: Action) {
+        if self.answer_prediction(action) {
+            return;
+        }
         match action {
             Action::Quit => self.quit(),
             Action::Next => self.next_step(),
@@ -400,7 +470,19 @@ impl App {
             Action::Grade => self.request_grade(),
             Action::Hint => self.reveal_hint(),
             Action::RunLab => {
-                let experiment = self.current_step().and_then(|s| s.lab);
+                let step = self.current_step();
+                let experiment = step.and_then(|s| s.lab);
+                if let (Some(e), Some(_)) = (experiment, step.and_then(|s| s.predict))
+                    && !self.progress.predictions.contains_key(e.name())
+                    && self.lab.get(&e).is_none()
+                {
+                    self.lab.asking = Some(e);
+                    self.say(t(
+                        "predict first: press the letter of your answer; Esc runs it without a prediction",
+                        "先预测：按下答案的字母；按 Esc 则不预测直接运行",
+                    ));
+                    return;
+                }
                 let lessons: Vec<u32> = self
                     .course
                     .lessons

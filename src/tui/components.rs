@@ -142,6 +142,9 @@ pub struct Ctx<'a> {
     pub progress: &'a Progress,
     /// The live run's latest values.
     pub snapshot: &'a Snapshot,
+    /// Whether the open step shows what its experiment found (false while it waits for
+    /// the learner's prediction).
+    pub results_open: bool,
 }
 
 /// What a face asks of the app after a key.

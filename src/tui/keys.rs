@@ -218,6 +218,9 @@ pub struct Context {
     pub sandbox_open: bool,
     /// A quiz question is open (a–d, digits, `.` and `-` are typed as an answer).
     pub quiz_open: bool,
+    /// A lab step asks for a prediction (a–f, as many as an experiment has settings, are
+    /// typed as its choice).
+    pub prediction_open: bool,
 }
 
 /// Maps a key press to an action in the given context.
@@ -227,6 +230,7 @@ pub fn map(key: KeyEvent, context: Context) -> Option<Action> {
         overlay_open,
         sandbox_open,
         quiz_open,
+        prediction_open,
     } = context;
     if key.kind == KeyEventKind::Release {
         return None;
@@ -236,6 +240,7 @@ pub fn map(key: KeyEvent, context: Context) -> Option<Action> {
     }
     let action = match key.code {
         KeyCode::Char(c @ ('a'..='d' | '0'..='9' | '.' | '-')) if quiz_open => Action::Type(c),
+        KeyCode::Char(c @ 'a'..='f') if prediction_open => Action::Type(c),
         KeyCode::Backspace if quiz_open => Action::Erase,
         KeyCode::Char('q') => Action::Quit,
         KeyCode::Esc => Action::Back,

@@ -10,6 +10,7 @@ use super::app::{App, Overlay, TrainState};
 use super::components::{Component, panel};
 use super::keys::language_label;
 use super::theme::Theme;
+use super::widgets::lab::Guess;
 use super::widgets::{
     cartpole::CartPoleView, clip::ClipChart, pendulum::PendulumView, plot::ReturnPlot, tensors,
     text,
@@ -513,8 +514,15 @@ fn draw_view(app: &App, theme: Theme, view: StepView, area: Rect, buf: &mut Buff
             let Some(experiment) = app.current_step().and_then(|s| s.lab) else {
                 return;
             };
+            let guess = match app.current_step().and_then(|s| s.predict) {
+                None => Guess::None,
+                Some(o) if app.asking_prediction() => Guess::Asking(o),
+                Some(o) => app
+                    .prediction(experiment)
+                    .map_or(Guess::Ahead(o), |c| Guess::Made(o, c)),
+            };
             app.lab
-                .render(experiment, &app.lab_base(), theme, area, buf);
+                .render(experiment, &app.lab_base(), guess, theme, area, buf);
         }
         StepView::ClipChart => {
             let trace = s.cartpole_update().map(|c| &c.trace);

@@ -72,14 +72,47 @@ pub struct Step {
     pub body: String,
     /// The clip-lab experiment this step runs (shown by the `lab` view), if any.
     pub lab: Option<crate::ppo::lab::Experiment>,
+    /// What the learner predicts before the step's experiment runs (`predict = "..."`):
+    /// the text after [`AFTER_THE_RUN`] stays hidden until the prediction is made.
+    pub predict: Option<crate::ppo::lab::Outcome>,
 }
+
+/// The line that splits a lab step's text: what comes after it is what the run found, which
+/// the app shows once the learner has committed to a prediction and a notebook puts after
+/// the experiment's cells.
+pub const AFTER_THE_RUN: &str = "<!-- after the run -->";
 
 impl Step {
     /// The explanation as `face` reads it: the `<app>` or `<notebook>` passages of that
-    /// face kept (without their tags), the other face's dropped (see [`face`]).
+    /// face kept (without their tags), the other face's dropped (see [`face`]). The
+    /// [`AFTER_THE_RUN`] line is dropped; the text on both sides of it is kept.
     #[must_use]
     pub fn text(&self, face: face::Face) -> String {
-        face::text(&self.body, face)
+        let (before, after) = self.parts(face);
+        match after {
+            Some(after) => format!("{before}{after}"),
+            None => before,
+        }
+    }
+
+    /// The explanation split at its [`AFTER_THE_RUN`] line: the text before it, and the
+    /// text after it (`None` for a step without the line).
+    #[must_use]
+    pub fn parts(&self, face: face::Face) -> (String, Option<String>) {
+        let text = face::text(&self.body, face);
+        let mut before = String::new();
+        let mut after: Option<String> = None;
+        for line in text.split_inclusive('\n') {
+            if line.trim_end() == AFTER_THE_RUN && after.is_none() {
+                after = Some(String::new());
+                continue;
+            }
+            match after.as_mut() {
+                Some(a) => a.push_str(line),
+                None => before.push_str(line),
+            }
+        }
+        (before, after)
     }
 }
 

@@ -423,6 +423,42 @@ pub fn lab(name: &str, seeds: &[u64], episodes: usize) -> anyhow::Result<LabResu
 }
 
 impl LabResult {
+    /// Grades the prediction `letter` (`'a'` for the first setting) of `outcome`
+    /// (`"ends_highest"` or `"ends_lowest"`) against this run, and prints the verdict; a
+    /// blank or unknown letter prints which letters there are.
+    pub fn grade_prediction(&self, outcome: &str, letter: char) {
+        let Some(outcome) = crate::ppo::lab::Outcome::from_name(outcome) else {
+            println!(
+                "{}",
+                crate::tr!(
+                    "unknown prediction '{outcome}': use \"ends_highest\" or \"ends_lowest\"",
+                    "没有名为 '{outcome}' 的预测：请用 \"ends_highest\" 或 \"ends_lowest\""
+                )
+            );
+            return;
+        };
+        let arms = self.arms.len();
+        let last = crate::ppo::lab::letters()
+            .nth(arms.saturating_sub(1))
+            .unwrap_or('a');
+        let graded =
+            crate::ppo::lab::choice_index(letter, arms).and_then(|i| outcome.grade(i, self));
+        match graded {
+            Some(g) => {
+                for line in g.lines {
+                    println!("{line}");
+                }
+            }
+            None => println!(
+                "{}",
+                crate::tr!(
+                    "No prediction to grade: write a letter from a to {last} between the quotes of `prediction`, before running the experiment's cell again.",
+                    "没有可评分的预测：先在 `prediction` 的引号之间写一个 a 到 {last} 的字母，再重新运行实验的单元格。"
+                )
+            ),
+        }
+    }
+
     /// The settings' bands and means in one figure.
     ///
     /// # Errors

@@ -70,8 +70,26 @@ impl Explanation {
         Reply::Stay
     }
 
-    fn draw(&self, step: &Step, opened: usize, theme: Theme, area: Rect, buf: &mut Buffer) {
-        let body = crate::lesson::details::fold_first(&step.text(Face::Terminal), opened);
+    fn draw(
+        &self,
+        step: &Step,
+        opened: usize,
+        results_open: bool,
+        theme: Theme,
+        area: Rect,
+        buf: &mut Buffer,
+    ) {
+        let text = match step.parts(Face::Terminal) {
+            (before, Some(_)) if !results_open => format!(
+                "{before}\n{}\n",
+                crate::i18n::t(
+                    "*What the seeds showed appears here once you have made your prediction: press x.*",
+                    "*做出预测后，这里会显示随机种子的结果：按 x。*",
+                )
+            ),
+            _ => step.text(Face::Terminal),
+        };
+        let body = crate::lesson::details::fold_first(&text, opened);
         let columns = usize::from(area.width.saturating_sub(2));
         let lines = text::wrap(
             text::markdown(&body, theme, columns),
@@ -98,7 +116,7 @@ impl Component for Explanation {
 
     fn render(&self, ctx: &Ctx<'_>, theme: Theme, area: Rect, buf: &mut Buffer) {
         if let Some(step) = ctx.step {
-            self.draw(step, self.opened(ctx), theme, area, buf);
+            self.draw(step, self.opened(ctx), ctx.results_open, theme, area, buf);
         }
     }
 }

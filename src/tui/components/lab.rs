@@ -13,7 +13,7 @@ use crate::ppo::PpoConfig;
 use crate::ppo::lab::Experiment;
 use crate::tr;
 use crate::tui::theme::Theme;
-use crate::tui::widgets::lab::{LabPanel, LabState};
+use crate::tui::widgets::lab::{Guess, LabPanel, LabState};
 
 /// Seeds every clip-lab experiment runs in the app (as `ppo-tutor lab`'s default).
 pub const LAB_SEEDS: [u64; 5] = [0, 1, 2, 3, 4];
@@ -25,6 +25,9 @@ pub struct Lab {
     pub states: BTreeMap<Experiment, LabState>,
     /// An experiment to start, taken by the event loop (which runs it off the UI thread).
     pub request: Option<(Experiment, PpoConfig)>,
+    /// The experiment whose step asks for the learner's prediction before it runs (`x`
+    /// pressed, no letter yet).
+    pub asking: Option<Experiment>,
 }
 
 impl Lab {
@@ -96,11 +99,13 @@ impl Lab {
         &self,
         experiment: Experiment,
         base: &PpoConfig,
+        guess: Guess,
         theme: Theme,
         area: Rect,
         buf: &mut Buffer,
     ) {
         LabPanel {
+            guess,
             experiment,
             arms: experiment.arms(base).into_iter().map(|a| a.label).collect(),
             seeds: LAB_SEEDS.len(),

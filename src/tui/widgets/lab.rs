@@ -7,7 +7,8 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget};
 
 use super::plot::{draw_chart, points};
-use crate::ppo::lab::{ArmResult, Experiment, LabResult};
+use crate::i18n::t as t_;
+use crate::ppo::lab::{ArmResult, Experiment, LabResult, Outcome, letters};
 use crate::tr;
 use crate::tui::theme::Theme;
 
@@ -27,6 +28,19 @@ pub enum LabState {
     Failed(String),
 }
 
+/// Where the learner's prediction of the experiment stands, on a step that asks for one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Guess {
+    /// The step asks for none.
+    None,
+    /// It asks for one; `x` will ask it.
+    Ahead(Outcome),
+    /// It is asking now.
+    Asking(Outcome),
+    /// Made: the chosen arm, or `None` where the learner ran without one.
+    Made(Outcome, Option<usize>),
+}
+
 /// The panel of one experiment.
 pub struct LabPanel<'a> {
     /// Which experiment the step runs.
@@ -39,6 +53,8 @@ pub struct LabPanel<'a> {
     pub episodes: usize,
     /// Its state, `None` before the learner starts it.
     pub state: Option<&'a LabState>,
+    /// The learner's prediction.
+    pub guess: Guess,
     /// The surrounding block.
     pub block: Block<'a>,
     /// Styles.
@@ -62,6 +78,7 @@ impl Widget for LabPanel<'_> {
                     self.episodes
                 )));
                 lines.push(Line::raw(""));
+                lines.extend(self.guess_lines_before());
                 lines.push(match self.state {
                     Some(LabState::Running { done, total }) => Line::styled(
                         tr!(
@@ -74,6 +91,31 @@ impl Widget for LabPanel<'_> {
                     Some(LabState::Failed(m)) => {
                         Line::styled(tr!("stopped: {m}", "已停止：{m}"), t.negative())
                     }
+                    _ if matches!(self.guess, Guess::Asking(_)) => Line::from(vec![
+                        Span::styled(
+                            format!(
+                                " a–{} ",
+                                letters()
+                                    .nth(self.arms.len().saturating_sub(1))
+                                    .unwrap_or('a')
+                            ),
+                            t.key(),
+                        ),
+                        Span::raw(t_(
+                            "your prediction; the run starts",
+                            "你的预测；随后开始运行",
+                        )),
+                        Span::styled("  Esc ", t.key()),
+                        Span::raw(t_("run without one", "不预测直接运行")),
+                    ]),
+                    _ if matches!(self.guess, Guess::Ahead(_)) => Line::from(vec![
+                        Span::styled(" x ", t.key()),
+                        Span::raw(tr!(
+                            "asks your prediction, then runs the experiment (or: ppo-tutor lab {})",
+                            "先请你预测，再运行实验（或在终端运行：ppo-tutor lab {}）",
+                            self.experiment.name()
+                        )),
+                    ]),
                     _ => Line::from(vec![
                         Span::styled(" x ", t.key()),
                         Span::raw(tr!(
@@ -88,7 +130,8 @@ impl Widget for LabPanel<'_> {
             Some(LabState::Done(result)) => {
                 let table = result.table();
                 let comparisons = result.comparisons();
-                let rows = (table.len() + comparisons.len()) as u16 + 1;
+                let graded = super::text::wrap(self.guess_lines_after(result), inner.width);
+                let rows = (table.len() + comparisons.len() + graded.len()) as u16 + 1;
                 let [top, charts] =
                     Layout::vertical([Constraint::Length(rows), Constraint::Min(0)]).areas(inner);
                 let mut lines: Vec<Line> = table
@@ -109,10 +152,11 @@ impl Widget for LabPanel<'_> {
                         Line::raw(l)
                     }
                 }));
+                lines.extend(graded);
                 lines.push(Line::styled(
                     tr!(
                         "{} seeds, {} episodes; charts: band and mean of each setting (o: the first)",
-                        "{} 个随机种子，{} 个回合；图：每个设置的范围带和均值（o：第一个设置）",
+                        "{} 个随机种子，{} 个回合；图：每个设置的范围带和平均曲线（o：第一个设置）",
                         result.seeds.len(),
                         result.episodes
                     ),
@@ -128,6 +172,58 @@ impl Widget for LabPanel<'_> {
                     }
                 }
             }
+        }
+    }
+}
+
+impl LabPanel<'_> {
+    /// Before the run: the question and its lettered choices while asking, the choice once
+    /// made.
+    fn guess_lines_before(&self) -> Vec<Line<'static>> {
+        let t = self.theme;
+        let letter = |i: usize| letters().nth(i).unwrap_or('?');
+        match self.guess {
+            Guess::None | Guess::Ahead(_) => Vec::new(),
+            Guess::Asking(outcome) => {
+                let mut lines = vec![Line::styled(outcome.question(self.seeds), t.title())];
+                lines.extend(
+                    self.arms
+                        .iter()
+                        .enumerate()
+                        .map(|(i, a)| Line::raw(format!("  {}) {a}", letter(i)))),
+                );
+                lines.push(Line::raw(""));
+                lines
+            }
+            Guess::Made(_, Some(i)) => vec![
+                Line::raw(tr!(
+                    "Your prediction: {}) {}; graded when the run ends.",
+                    "你的预测：{}) {}；运行结束后评分。",
+                    letter(i),
+                    self.arms.get(i).map_or("", String::as_str)
+                )),
+                Line::raw(""),
+            ],
+            Guess::Made(_, None) => Vec::new(),
+        }
+    }
+
+    /// After the run: the prediction graded against it.
+    fn guess_lines_after(&self, result: &LabResult) -> Vec<Line<'static>> {
+        let t = self.theme;
+        match self.guess {
+            Guess::Made(outcome, Some(i)) => outcome.grade(i, result).map_or_else(Vec::new, |g| {
+                g.lines
+                    .into_iter()
+                    .enumerate()
+                    .map(|(k, l)| match (k, g.right) {
+                        (0, true) => Line::styled(l, t.positive()),
+                        (0, false) => Line::styled(l, t.negative()),
+                        _ => Line::styled(l, t.dim()),
+                    })
+                    .collect()
+            }),
+            _ => Vec::new(),
         }
     }
 }

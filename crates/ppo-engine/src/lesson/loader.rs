@@ -309,6 +309,8 @@ struct StepMeta {
     show: Vec<String>,
     #[serde(default)]
     lab: String,
+    #[serde(default)]
+    predict: String,
 }
 
 /// The whole course, in order.
@@ -507,7 +509,7 @@ pub fn translate_lesson(lesson: &mut Lesson, dir: &str, text: &str) -> Result<()
                 )));
             }
         }
-        for tag in ["<app>", "<notebook>"] {
+        for tag in ["<app>", "<notebook>", super::AFTER_THE_RUN] {
             if step.body.matches(tag).count() != zh.matches(tag).count() {
                 return Err(bad(format!(
                     "step {n}: {tag} appears {} times, but {} times in lesson.md",
@@ -672,6 +674,39 @@ fn check_step(
                 .into(),
         });
     }
+    let predict = if meta.predict.is_empty() {
+        None
+    } else {
+        Some(
+            crate::ppo::lab::Outcome::from_name(&meta.predict).ok_or_else(|| {
+                LessonError::UnknownReference {
+                    dir: dir.into(),
+                    index,
+                    kind: "prediction (ends_highest or ends_lowest)",
+                    name: meta.predict.clone(),
+                }
+            })?,
+        )
+    };
+    if predict.is_some() && lab.is_none() {
+        return Err(LessonError::StepMismatch {
+            dir: dir.into(),
+            index,
+            reason: "`predict` asks about the step's experiment: add `lab = \"NAME\"` or remove it"
+                .into(),
+        });
+    }
+    let marked = body.lines().any(|l| l.trim_end() == super::AFTER_THE_RUN);
+    if predict.is_some() != marked {
+        return Err(LessonError::StepMismatch {
+            dir: dir.into(),
+            index,
+            reason: format!(
+                "a step with `predict` must hide what the run found after a line `{}`, and only such a step may have one",
+                super::AFTER_THE_RUN
+            ),
+        });
+    }
     Ok(Step {
         title: meta.title,
         python: meta.python.trim().to_string(),
@@ -679,5 +714,6 @@ fn check_step(
         show: meta.show,
         body,
         lab,
+        predict,
     })
 }

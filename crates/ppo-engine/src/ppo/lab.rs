@@ -35,8 +35,10 @@ use super::moving_average::smoothed_returns;
 use super::seeds::{Band, SeedError, train_jobs};
 use super::train::mean_last;
 
+mod predict;
 mod results;
 
+pub use predict::{Outcome, PredictionGrade, choice_index, letters};
 use results::Sums;
 pub use results::{ArmResult, LabResult, UpdateStats, paired_words};
 
