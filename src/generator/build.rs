@@ -810,9 +810,9 @@ fn show_cells(lesson: &Lesson, k: usize, shown: &mut Shown) -> Vec<Cell> {
                 if let (Some(_), Some(outcome)) = (step.lab, step.predict) {
                     cells.push(Cell::Code(tr!(
                         "// Your prediction, graded against the run above:\n\
-                         lab.grade_prediction({:?}, prediction)",
+                         for line in lab.prediction_lines({:?}, prediction) {{\n    println!(\"{{line}}\");\n}}",
                         "// 你的预测，用上面这次运行的结果评分：\n\
-                         lab.grade_prediction({:?}, prediction)",
+                         for line in lab.prediction_lines({:?}, prediction) {{\n    println!(\"{{line}}\");\n}}",
                         outcome.name()
                     )));
                 }
@@ -921,7 +921,7 @@ mod tests {
             "{}",
             code(2)
         );
-        assert!(code(3).ends_with("lab.grade_prediction(\"ends_highest\", prediction)"));
+        assert!(code(3).contains("lab.prediction_lines(\"ends_highest\", prediction)"));
         assert_eq!(rest[4], &Cell::Markdown("Found.".into()));
         assert_eq!(rest[5], &Cell::Markdown("## 2. Two\n\nAbout Two.\n".into()));
         Ok(())

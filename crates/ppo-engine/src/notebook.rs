@@ -424,18 +424,15 @@ pub fn lab(name: &str, seeds: &[u64], episodes: usize) -> anyhow::Result<LabResu
 
 impl LabResult {
     /// Grades the prediction `letter` (`'a'` for the first setting) of `outcome`
-    /// (`"ends_highest"` or `"ends_lowest"`) against this run, and prints the verdict; a
-    /// blank or unknown letter prints which letters there are.
-    pub fn grade_prediction(&self, outcome: &str, letter: char) {
+    /// (`"ends_highest"` or `"ends_lowest"`) against this run: the verdict's lines; for a
+    /// blank or unknown letter, which letters there are.
+    #[must_use]
+    pub fn prediction_lines(&self, outcome: &str, letter: char) -> Vec<String> {
         let Some(outcome) = crate::ppo::lab::Outcome::from_name(outcome) else {
-            println!(
-                "{}",
-                crate::tr!(
+            return vec![crate::tr!(
                     "unknown prediction '{outcome}': use \"ends_highest\" or \"ends_lowest\"",
-                    "没有名为 '{outcome}' 的预测：请用 \"ends_highest\" 或 \"ends_lowest\""
-                )
-            );
-            return;
+                "没有名为 '{outcome}' 的预测：请用 \"ends_highest\" 或 \"ends_lowest\""
+            )];
         };
         let arms = self.arms.len();
         let last = crate::ppo::lab::letters()
@@ -444,18 +441,11 @@ impl LabResult {
         let graded =
             crate::ppo::lab::choice_index(letter, arms).and_then(|i| outcome.grade(i, self));
         match graded {
-            Some(g) => {
-                for line in g.lines {
-                    println!("{line}");
-                }
-            }
-            None => println!(
-                "{}",
-                crate::tr!(
+            Some(g) => g.lines,
+            None => vec![crate::tr!(
                     "No prediction to grade: write a letter from a to {last} between the quotes of `prediction`, before running the experiment's cell again.",
-                    "没有可评分的预测：先在 `prediction` 的引号之间写一个 a 到 {last} 的字母，再重新运行实验的单元格。"
-                )
-            ),
+                "没有可评分的预测：先在 `prediction` 的引号之间写一个 a 到 {last} 的字母，再重新运行实验的单元格。"
+            )],
         }
     }
 
