@@ -44,7 +44,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(9);
     // Your prediction, graded against the run above:
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(12);
     // Predict before the run: which setting will end lowest, by the mean over its 5 seeds of each seed's last 50 returns?
     //   a) 10 epochs
@@ -63,7 +65,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(14);
     // Your prediction, graded against the run above:
-    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_lowest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(17);
     // Predict before the run: which setting will end highest, by the mean over its 5 seeds of each seed's last 50 returns?
     //   a) actor_lr = 1e-3
@@ -78,7 +82,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(19);
     // Your prediction, graded against the run above:
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(22);
     // Predict before the run: which setting will end lowest, by the mean over its 5 seeds of each seed's last 50 returns?
     //   a) 10 epochs
@@ -94,7 +100,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(24);
     // Your prediction, graded against the run above:
-    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_lowest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(27);
     // The last epoch: the rows marked clipped are the ratios outside [1 − ε, 1 + ε].
     let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();

@@ -43,7 +43,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(10);
     // Your prediction, graded against the run above:
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(13);
     // Parameters of the two networks: 4 -> hidden_dim -> 2 and 4 -> hidden_dim -> 1.
     nb.show((&Shown(&(for h in [config.hidden_dim, 16] {
@@ -65,7 +67,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(16);
     // Your prediction, graded against the run above:
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(19);
     nb.show((&Shown(&(for gamma in [0.9, config.gamma, 0.999] {
     println!("γ = {gamma}: horizon 1/(1 − γ) = {:.0} steps", 1.0 / (1.0 - gamma));
@@ -85,7 +89,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(22);
     // Your prediction, graded against the run above:
-    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_lowest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(25);
     // A TD error l steps ahead weighs (γλ)^l: the weight halves every ln 0.5 / ln(γλ) steps.
     nb.show((&Shown(&(for lmbda in [0.5, config.lmbda, 1.0] {
@@ -107,7 +113,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(28);
     // Your prediction, graded against the run above:
-    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_lowest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(31);
     use ppo_engine::env::EnvId;
     nb.show((&Shown(&(for id in EnvId::ALL {

@@ -177,7 +177,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(24);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     // The exercise as the learner first meets it: starters and grading.
     {
         nb.cell(27);

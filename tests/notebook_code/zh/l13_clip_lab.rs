@@ -44,7 +44,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(9);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(12);
     // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最低？
     //   a) 10 轮
@@ -63,7 +65,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(14);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_lowest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(17);
     // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最高？
     //   a) actor_lr = 1e-3
@@ -78,7 +82,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(19);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(22);
     // 运行之前先预测：按 5 个随机种子各自最后 50 个回报的均值再取平均，哪种设置最终最低？
     //   a) 10 轮
@@ -94,7 +100,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(24);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_lowest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(27);
     // 最后一轮：标记为被截断的行，正是比率落在 [1 − ε, 1 + ε] 之外的那些行。
     let last: EpochTrace = trace.epochs[trace.epochs.len() - 1].clone();

@@ -43,7 +43,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(10);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(13);
     // 两个网络的参数量：4 -> hidden_dim -> 2 和 4 -> hidden_dim -> 1。
     nb.show((&Shown(&(for h in [config.hidden_dim, 16] {
@@ -65,7 +67,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(16);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_highest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_highest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(19);
     nb.show((&Shown(&(for gamma in [0.9, config.gamma, 0.999] {
     println!("γ = {gamma}：视野 1/(1 − γ) = {:.0} 步", 1.0 / (1.0 - gamma));
@@ -85,7 +89,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(22);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_lowest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(25);
     // l 步之后的 TD 误差权重为 (γλ)^l：权重每 ln 0.5 / ln(γλ) 步减半。
     nb.show((&Shown(&(for lmbda in [0.5, config.lmbda, 1.0] {
@@ -107,7 +113,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
     nb.show((&Shown(&(lab))).outputs());
     nb.cell(28);
     // 你的预测，用上面这次运行的结果评分：
-    nb.show((&Shown(&(lab.grade_prediction("ends_lowest", prediction)))).outputs());
+    nb.show((&Shown(&(for line in lab.prediction_lines("ends_lowest", prediction) {
+    println!("{line}");
+}))).outputs());
     nb.cell(31);
     use ppo_engine::env::EnvId;
     nb.show((&Shown(&(for id in EnvId::ALL {
