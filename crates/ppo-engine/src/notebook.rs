@@ -430,7 +430,7 @@ impl LabResult {
     pub fn prediction_lines(&self, outcome: &str, letter: char) -> Vec<String> {
         let Some(outcome) = crate::ppo::lab::Outcome::from_name(outcome) else {
             return vec![crate::tr!(
-                    "unknown prediction '{outcome}': use \"ends_highest\" or \"ends_lowest\"",
+                "unknown prediction '{outcome}': use \"ends_highest\" or \"ends_lowest\"",
                 "没有名为 '{outcome}' 的预测：请用 \"ends_highest\" 或 \"ends_lowest\""
             )];
         };
@@ -443,7 +443,7 @@ impl LabResult {
         match graded {
             Some(g) => g.lines,
             None => vec![crate::tr!(
-                    "No prediction to grade: write a letter from a to {last} between the quotes of `prediction`, before running the experiment's cell again.",
+                "No prediction to grade: write a letter from a to {last} between the quotes of `prediction`, before running the experiment's cell again.",
                 "没有可评分的预测：先在 `prediction` 的引号之间写一个 a 到 {last} 的字母，再重新运行实验的单元格。"
             )],
         }
