@@ -96,7 +96,7 @@ impl Step {
     }
 
     /// The explanation split at its [`AFTER_THE_RUN`] line: the text before it, and the
-    /// text after it (`None` for a step without the line).
+    /// text after it without its leading blank lines (`None` for a step without the line).
     #[must_use]
     pub fn parts(&self, face: face::Face) -> (String, Option<String>) {
         let text = face::text(&self.body, face);
@@ -108,6 +108,7 @@ impl Step {
                 continue;
             }
             match after.as_mut() {
+                Some(a) if a.is_empty() && line.trim().is_empty() => {}
                 Some(a) => a.push_str(line),
                 None => before.push_str(line),
             }
@@ -212,3 +213,33 @@ pub const VIEWS: [&str; View::ALL.len()] = {
     }
     names
 };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn step(body: &str) -> Step {
+        Step {
+            title: "A".into(),
+            python: String::new(),
+            code: String::new(),
+            show: Vec::new(),
+            body: body.into(),
+            lab: None,
+            predict: None,
+        }
+    }
+
+    #[test]
+    fn the_text_after_the_run_starts_at_its_first_line_of_text() {
+        let s = step("Predict.\n\n<!-- after the run -->\n\n\n- found 1\n\n- found 2\n");
+        let (before, after) = s.parts(face::Face::Notebook);
+        assert_eq!(before, "Predict.\n\n");
+        assert_eq!(after.as_deref(), Some("- found 1\n\n- found 2"));
+        assert_eq!(
+            s.text(face::Face::Terminal),
+            "Predict.\n\n- found 1\n\n- found 2"
+        );
+        assert_eq!(step("No marker.\n").parts(face::Face::Notebook).1, None);
+    }
+}

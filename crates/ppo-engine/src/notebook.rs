@@ -443,8 +443,9 @@ impl LabResult {
         match graded {
             Some(g) => g.lines,
             None => vec![crate::tr!(
-                "No prediction to grade: write a letter from a to {last} between the quotes of `prediction`, before running the experiment's cell again.",
-                "没有可评分的预测：先在 `prediction` 的引号之间写一个 a 到 {last} 的字母，再重新运行实验的单元格。"
+                "No prediction to grade for the `{name}` experiment: write a letter from a to {last} between the quotes of `prediction`, before running the experiment's cell again.",
+                "`{name}` 实验没有可评分的预测：先在 `prediction` 的引号之间写一个 a 到 {last} 的字母，再重新运行实验的单元格。",
+                name = self.experiment.name()
             )],
         }
     }

@@ -121,10 +121,26 @@ pub fn step(v: f64, by: f64, lo: f64, hi: f64, up: bool) -> f64 {
     (moved * 1000.0).round() / 1000.0
 }
 
-/// `v` doubled or halved, kept in `[1e-6, 1]` (the learning rates).
+/// The learning rates' next rung up or down on the 1–2–5 ladder (…, 1e-3, 2e-3, 5e-3, 1e-2,
+/// …), kept in `[1e-6, 1]`: three presses make a rate ten times larger or smaller, so the
+/// sandbox reaches the rates the lessons compare. A rate between rungs (3e-4, say) moves to
+/// the nearest rung in that direction.
 #[must_use]
-pub fn double_or_halve(v: f64, up: bool) -> f64 {
-    (if up { v * 2.0 } else { v / 2.0 }).clamp(1e-6, 1.0)
+pub fn lr_rung(v: f64, up: bool) -> f64 {
+    const LO: f64 = 1e-6;
+    const HI: f64 = 1.0;
+    if !v.is_finite() || v <= LO {
+        return if up { 2e-6 } else { LO };
+    }
+    // Rungs from 1e-7 to 10, each compared with a relative margin so that a value printed
+    // and parsed back (0.001 for 1e-3) counts as on its rung.
+    let rungs = (-7..=1).flat_map(|d| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(d)));
+    let next = if up {
+        rungs.filter(|r| *r > v * (1.0 + 1e-9)).reduce(f64::min)
+    } else {
+        rungs.filter(|r| *r < v * (1.0 - 1e-9)).reduce(f64::max)
+    };
+    next.unwrap_or(v).clamp(LO, HI)
 }
 
 /// The epochs' ladder: 1, 2, 3, 5, 10 (the seed), 20 or 40.
@@ -218,14 +234,14 @@ impl Tunable for PpoConfig {
             "actor_lr",
             |c| show_rate(c.actor_lr),
             |c, up| {
-                c.actor_lr = double_or_halve(c.actor_lr, up);
+                c.actor_lr = lr_rung(c.actor_lr, up);
             },
         ),
         Knob::value(
             "critic_lr",
             |c| show_rate(c.critic_lr),
             |c, up| {
-                c.critic_lr = double_or_halve(c.critic_lr, up);
+                c.critic_lr = lr_rung(c.critic_lr, up);
             },
         ),
         Knob::SEED,
@@ -322,14 +338,14 @@ impl Tunable for PpoContinuousConfig {
             "actor_lr",
             |c| show_rate(c.actor_lr),
             |c, up| {
-                c.actor_lr = double_or_halve(c.actor_lr, up);
+                c.actor_lr = lr_rung(c.actor_lr, up);
             },
         ),
         Knob::value(
             "critic_lr",
             |c| show_rate(c.critic_lr),
             |c, up| {
-                c.critic_lr = double_or_halve(c.critic_lr, up);
+                c.critic_lr = lr_rung(c.critic_lr, up);
             },
         ),
         Knob::SEED,
@@ -352,7 +368,28 @@ mod tests {
     fn steps_and_ladders_stay_in_range() {
         assert_eq!(step(0.2, 0.05, 0.05, 0.95, true), 0.25);
         assert_eq!(step(0.05, 0.05, 0.05, 0.95, false), 0.05);
-        assert_eq!(double_or_halve(1e-6, false), 1e-6);
+        assert_eq!(lr_rung(1e-6, false), 1e-6);
+        assert_eq!(lr_rung(1.0, true), 1.0);
+        let mut lr = 1e-2;
+        for want in [5e-3, 2e-3, 1e-3] {
+            lr = lr_rung(lr, false);
+            assert!(
+                (lr - want).abs() < 1e-12,
+                "{lr} after halving towards {want}"
+            );
+        }
+        for want in [2e-3, 5e-3, 1e-2] {
+            lr = lr_rung(lr, true);
+            assert!((lr - want).abs() < 1e-12, "{lr} on the way up to {want}");
+        }
+        assert!(
+            (lr_rung(3e-4, true) - 5e-4).abs() < 1e-12,
+            "off the ladder, up"
+        );
+        assert!(
+            (lr_rung(3e-4, false) - 2e-4).abs() < 1e-12,
+            "off the ladder, down"
+        );
         assert_eq!(climb(10, &EPOCHS, true), 20);
         assert_eq!(climb(40, &EPOCHS, true), 40);
         assert_eq!(climb(1, &EPOCHS, false), 1);

@@ -21,7 +21,7 @@
 use serde::Serialize;
 
 use super::super::config::PpoConfig;
-use super::{Experiment, LAST, LabResult, paired_words};
+use super::{Experiment, LAST, LabResult, paired_words_or_none};
 use crate::i18n::t;
 use crate::stats::Bootstrap;
 use crate::tr;
@@ -95,7 +95,11 @@ impl Outcome {
     /// without arms.
     #[must_use]
     pub fn answer(self, result: &LabResult) -> Option<usize> {
-        let means: Vec<f64> = result.arms.iter().map(|a| a.final_mean_std().0).collect();
+        self.best(&final_means(result))
+    }
+
+    /// The index of the best of `means` on the outcome's side (the first of equals).
+    fn best(self, means: &[f64]) -> Option<usize> {
         let better = |a: f64, b: f64| match self {
             Self::EndsHighest => a > b,
             Self::EndsLowest => a < b,
@@ -113,7 +117,8 @@ impl Outcome {
     /// of the result.
     #[must_use]
     pub fn grade(self, choice: usize, result: &LabResult) -> Option<PredictionGrade> {
-        let found = self.answer(result)?;
+        let means = final_means(result);
+        let found = self.best(&means)?;
         let chosen = result.arms.get(choice)?;
         let top = &result.arms[found];
         let n = result.seeds.len();
@@ -127,38 +132,29 @@ impl Outcome {
                 "Your prediction: {}. Right on these {n} seeds: it ended {kind} ({:.1}).",
                 "你的预测：{}。在这 {n} 个随机种子上猜对了：它最终{kind}（{:.1}）。",
                 chosen.label,
-                chosen.final_mean_std().0
+                means[choice]
             )
         } else {
             tr!(
                 "Your prediction: {} ({:.1}). Not on these {n} seeds: {} ended {kind} ({:.1}).",
                 "你的预测：{}（{:.1}）。在这 {n} 个随机种子上没猜对：{} 最终{kind}（{:.1}）。",
                 chosen.label,
-                chosen.final_mean_std().0,
+                means[choice],
                 top.label,
-                top.final_mean_std().0
+                means[found]
             )
         }];
         // Whether the run separates the choice from the setting it found: if right, the
         // runner-up against it; if not, the choice against it.
         let other = if right {
-            self.runner_up(result, found)
+            self.runner_up(&means, found)
         } else {
             Some(choice)
         };
         if let Some(other) = other {
             let o = &result.arms[other];
-            let words = Bootstrap::default()
-                .paired(&o.finals, &top.finals)
-                .map_or_else(
-                    |_| {
-                        tr!(
-                            "no interval from {n} seed(s): run at least 2",
-                            "{n} 个随机种子算不出区间：至少需要 2 个"
-                        )
-                    },
-                    |p| paired_words(&p),
-                );
+            let paired = Bootstrap::default().paired(&o.finals, &top.finals).ok();
+            let words = paired_words_or_none(paired.as_ref(), n);
             lines.push(tr!(
                 "Paired seed by seed, {} − {}: {words}.",
                 "逐个随机种子配对，{} − {}：{words}。",
@@ -167,8 +163,8 @@ impl Outcome {
             ));
             lines.push(
                 tr!(
-                    "An ordering counts only where that interval excludes zero; five seeds often cannot tell two settings apart.",
-                    "只有区间不含 0 时，这个先后才算数；5 个随机种子常常分不出两种设置的高下。"
+                    "An ordering counts only where that interval excludes zero; {n} seeds often cannot tell two settings apart.",
+                    "只有区间不含 0 时，这个先后才算数；{n} 个随机种子常常分不出两种设置的高下。"
                 ),
             );
         }
@@ -176,13 +172,12 @@ impl Outcome {
     }
 
     /// The setting closest to `found` on the outcome's side: the second highest (lowest).
-    fn runner_up(self, result: &LabResult, found: usize) -> Option<usize> {
-        let mut rest: Vec<(usize, f64)> = result
-            .arms
+    fn runner_up(self, means: &[f64], found: usize) -> Option<usize> {
+        let mut rest: Vec<(usize, f64)> = means
             .iter()
+            .copied()
             .enumerate()
             .filter(|(i, _)| *i != found)
-            .map(|(i, a)| (i, a.final_mean_std().0))
             .collect();
         rest.sort_by(|a, b| a.1.total_cmp(&b.1));
         match self {
@@ -190,6 +185,11 @@ impl Outcome {
             Self::EndsLowest => rest.first().map(|r| r.0),
         }
     }
+}
+
+/// Each arm's mean over seeds of its seeds' last-50 means, in the arms' order.
+fn final_means(result: &LabResult) -> Vec<f64> {
+    result.arms.iter().map(|a| a.final_mean_std().0).collect()
 }
 
 /// The choice letters, `a` on.
@@ -280,6 +280,18 @@ mod tests {
         );
         assert_eq!(Outcome::EndsHighest.grade(3, &r), None);
         Ok(())
+    }
+
+    #[test]
+    fn a_notebook_without_a_letter_is_told_which_experiment_waits_for_one() {
+        let r = result(vec![arm("a", &[1.0, 2.0]), arm("b", &[3.0, 4.0])]);
+        let lines = r.prediction_lines("ends_highest", ' ');
+        assert_eq!(lines.len(), 1, "{lines:?}");
+        assert!(lines[0].contains("`eps` experiment"), "{lines:?}");
+        assert!(lines[0].contains("from a to b"), "{lines:?}");
+        let graded = r.prediction_lines("ends_highest", 'b');
+        assert!(graded[0].contains("Right on these 2 seeds"), "{graded:?}");
+        assert!(r.prediction_lines("ends_first", 'a')[0].contains("ends_first"));
     }
 
     #[test]

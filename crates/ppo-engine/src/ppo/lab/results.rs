@@ -266,6 +266,21 @@ pub fn paired_words(p: &Paired) -> String {
     )
 }
 
+/// [`paired_words`] for a comparison that may have no interval: with fewer than two of the
+/// `n` seeds there is none, and the words say so and how to get one.
+#[must_use]
+pub fn paired_words_or_none(p: Option<&Paired>, n: usize) -> String {
+    p.map_or_else(
+        || {
+            tr!(
+                "no interval from {n} seed(s): run at least 2",
+                "{n} 个随机种子算不出区间：至少需要 2 个"
+            )
+        },
+        paired_words,
+    )
+}
+
 impl LabResult {
     /// Each arm after the first against the first, seed by seed: the differences of the
     /// seeds' last-50 means, their mean and its 95% bootstrap interval. `None` for an arm
@@ -298,15 +313,7 @@ impl LabResult {
             base.label
         )];
         for (arm, paired) in self.arms.iter().skip(1).zip(self.paired()) {
-            let words = paired.as_ref().map_or_else(
-                || {
-                    tr!(
-                        "no interval from {n} seed(s): run at least 2",
-                        "{n} 个随机种子算不出区间：至少需要 2 个"
-                    )
-                },
-                paired_words,
-            );
+            let words = paired_words_or_none(paired.as_ref(), n);
             lines.push(format!("{} {words}", pad_right(&arm.label, label_width)));
         }
         lines
