@@ -78,8 +78,9 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///   (3 in the paper).
         ///
         /// Return, for each row, `true` when that term's derivative with respect to the row's ratio
-        /// is zero, so that the update no longer moves the policy's probability of that row's
-        /// action, and `false` when the gradient still flows.
+        /// is zero, so that the row's own term no longer pushes on the probability of its action
+        /// (other rows, through the shared weights, may still move it), and `false` when the
+        /// gradient still flows.
         ///
         /// - `ratio[i]` is `π_θ(a_i|s_i) / π_old(a_i|s_i)`, `advantage[i]` is `Â_i`, both the same
         ///   length; `eps` is the clip range ε and `c` the dual clip's constant. The result has one

@@ -161,7 +161,10 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         /// (lesson 13, experiment 4). Spinning Up's PPO adds a guard: before each epoch's gradient
         /// step it estimates how far the policy has moved, and if the estimate has passed its margin
         /// above `target_kl` it ends the update there, without taking that step. Apply its rule, with
-        /// its estimator, to an update whose log-probabilities you are given epoch by epoch.
+        /// its estimator, to an update whose log-probabilities you are given epoch by epoch. The
+        /// rule is a few lines of Spinning Up's source (github.com/openai/spinningup): the loop in
+        /// `update()` of `spinup/algos/pytorch/ppo/ppo.py`, with the estimate computed in
+        /// `compute_loss_pi` of the same file. Read them, then write them for this input.
         ///
         /// - `old_log_probs[i]` is `log π_old(a_i|s_i)`, fixed before the update; `N` rows, at
         ///   least 1.
@@ -172,6 +175,12 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///
         /// Return how many of the `E` epochs took their gradient step: `E` when the guard never
         /// fires. The estimates are means over the rows, in float32.
+        ///
+        /// Pass bar: the exact number of steps, on 100 seeded random updates (1 to 40 epochs of 4 to
+        /// 64 rows), the recorded PyTorch updates at `target_kl` 0.01 and 0.001, and hand-made
+        /// updates: moves both ways that cancel, every action made more likely, an estimate that
+        /// passes `target_kl` one epoch before the margin, a stop before the first step, and an
+        /// estimate exactly on the margin.
         ///
         /// Taught in lesson 13 (clip-lab), step 5 "Experiment 4: stopping early at a target KL".
         pub fn kl_early_stop(old_log_probs: &[f32], log_probs_per_epoch: &[f32], target_kl: f32) -> usize {

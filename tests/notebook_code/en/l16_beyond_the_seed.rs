@@ -92,6 +92,11 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         ///   the end of an episode, however it ended. Past the last row there is nothing: treat the
         ///   advantage there as 0.
         ///
+        /// Pass bar: every advantage and return within 1e-4 absolute plus 1e-4 relative of the
+        /// reference's, on 100 seeded random rollouts (3 to 80 rows, episodes ending both ways), the
+        /// recorded PyTorch episodes joined into one rollout, and hand-made rollouts: a time-limit
+        /// cut then a new episode, a fall then a new episode, and a rollout that ends mid-episode.
+        ///
         /// Taught in lesson 16 (beyond-the-seed), step 4 "Rollouts, vector environments and
         /// minibatches", with GAE from lesson 8 (gae).
         pub fn gae_rollout(
