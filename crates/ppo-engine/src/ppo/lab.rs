@@ -40,7 +40,8 @@ mod results;
 
 pub use predict::{Outcome, PredictionGrade, choice_index, letters};
 use results::Sums;
-pub use results::{ArmResult, LabResult, UpdateStats, paired_words, paired_words_or_none};
+pub(crate) use results::paired_words_or_none;
+pub use results::{ArmResult, LabResult, UpdateStats, paired_words};
 
 /// The returns each seed's final score averages.
 pub const LAST: usize = 50;

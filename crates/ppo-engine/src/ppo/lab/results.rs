@@ -269,7 +269,7 @@ pub fn paired_words(p: &Paired) -> String {
 /// [`paired_words`] for a comparison that may have no interval: with fewer than two of the
 /// `n` seeds there is none, and the words say so and how to get one.
 #[must_use]
-pub fn paired_words_or_none(p: Option<&Paired>, n: usize) -> String {
+pub(crate) fn paired_words_or_none(p: Option<&Paired>, n: usize) -> String {
     p.map_or_else(
         || {
             tr!(
