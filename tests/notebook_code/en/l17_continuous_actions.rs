@@ -90,6 +90,12 @@ pub fn run(nb: &mut Nb) -> anyhow::Result<()> {
         /// - A log-density can be above 0 (a narrow Normal is denser than 1 near its mean) and very
         ///   negative for an action many standard deviations away from the mean.
         ///
+        /// Pass bar: every row within 1e-4 absolute plus 1e-5 relative of the reference, on 16 seeded
+        /// random batches (1 to 30 rows of 1 to 6 dimensions), one-dimensional cases, CleanRL's
+        /// initial `log σ = 0`, a single row of six dimensions, actions many σ from the mean, nine
+        /// rows recorded from PyTorch's `Normal.log_prob` (summed over each row's dimensions), and a
+        /// batch with no rows.
+        ///
         /// Taught in lesson 17 (continuous-actions), step 3 "The log-density of a Normal", for one
         /// dimension; the step's last paragraph says what changes with several.
         pub fn diag_gaussian_log_prob(
