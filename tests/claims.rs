@@ -1032,7 +1032,8 @@ fn the_lab_lessons_state_what_the_experiments_show() -> TestResult {
         pg_file,
         &format!(
             "its first 500-step episode comes between episode {} and {}. Ten critic steps with \
-             one actor step change little (between {} and {}); ten actor steps with one critic \
+             one actor step change little on these five seeds (between {} and {}); ten actor \
+             steps with one critic \
              step bring it to between {} and {}",
             one_span.0,
             one_span.1,
