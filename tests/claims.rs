@@ -1469,15 +1469,16 @@ fn the_pendulum_lesson_shows_the_seed_that_fell_behind() -> TestResult {
         PENDULUM,
         file,
         &format!(
-            "At episode 1000 its last 100 episodes average {}, barely better than the untrained \
-             policy, while the other seeds' average between {} and {}",
+            "At episode 1000 its last 100 episodes average {}, about where the untrained policy \
+             started, while the other seeds' average between {} and {}",
             signed(at_1000, 0),
             signed(others_1000.0, 0),
             signed(others_1000.1, 0)
         ),
     );
-    // barely better than the untrained policy (−1100 to −1500 over its first 20 episodes)
-    assert!(at_1000 < -1000.0, "{at_1000}");
+    // About where the untrained policy started: inside the first-20 range the lesson quotes
+    // for seeds 0 to 2 (−1100 to −1500), give or take 50.
+    assert!((-1550.0..=-1050.0).contains(&at_1000), "{at_1000}");
     says(
         PENDULUM,
         file,
@@ -1864,7 +1865,8 @@ fn proximal_arms_over_five_seeds() -> TestResult {
     // to order by score).
     // Which arm ends above which is the ten-seed test's, paired by seed with intervals
     // (`the_lessons_order_only_what_ten_seeds_show`); here, what the five seeds' lesson
-    // text describes of them: the clip's the highest mean, best worst seed, earliest curve.
+    // text describes of them: the clip's the highest mean, best worst seed, and the mean
+    // curve first to reach 400.
     let (mean_of, worst_of) = (|a: &ArmResult| a.final_mean_std().0, ArmResult::worst_final);
     let reach = |a: &ArmResult| a.first_reaching(400.0).unwrap_or(usize::MAX);
     for other in [penalty, search, none] {
