@@ -42,14 +42,23 @@ fn inside_box(screen: &str, title: &str) -> String {
     }) else {
         return String::new();
     };
-    let Some(right) = rows[top].iter().skip(left).position(|&c| c == '┐').map(|p| p + left)
+    let Some(right) = rows[top]
+        .iter()
+        .skip(left)
+        .position(|&c| c == '┐')
+        .map(|p| p + left)
     else {
         return String::new();
     };
     rows[top + 1..]
         .iter()
         .take_while(|r| r.get(left) != Some(&'└'))
-        .map(|r| r.iter().skip(left + 1).take(right - left - 1).collect::<String>())
+        .map(|r| {
+            r.iter()
+                .skip(left + 1)
+                .take(right - left - 1)
+                .collect::<String>()
+        })
         .collect()
 }
 
