@@ -742,12 +742,7 @@ impl Agent {
             // PPO-Penalty: −mean(ratio · Â) + β · mean(KL), a KL term in place of the clip
             UpdateRule::Penalty => match &kl {
                 Some(kl) => penalty_actor_loss(&surr1, kl, self.beta)?,
-                None => {
-                    return Err(PpoError::InvalidBatch(crate::tr!(
-                        "PPO-Penalty needs π_old",
-                        "PPO-惩罚需要 π_old"
-                    )));
-                }
+                None => return Err(PpoError::InvalidBatch("PPO-Penalty needs π_old".into())),
             },
             // the KL line search takes no Adam step: its record is the surrogate it
             // climbed, −mean(ratio · Â), at the accepted θ
